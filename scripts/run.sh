@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine: installs what is missing, builds, then
+#   scripts/run.sh render [SCENE] [firmament render options...]   renders (default: scenes/default.json) into out/
+#   scripts/run.sh test                                           runs the whole test suite (CTest)
+#   scripts/run.sh build                                          only installs and builds
+# Environment: BUILD_DIR (default build), FIRMAMENT_SKIP_INSTALL=1 to never call apt-get.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+build=${BUILD_DIR:-build}
+action=${1:-build}
+[ $# -gt 0 ] && shift
+
+# Debian 12 packages the project needs (docs/dependencies.md says why each).
+packages=(cmake ninja-build g++ pkg-config libglm-dev nlohmann-json3-dev libopenexr-dev libpng-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools liberfa-dev
+  libgeographiclib-dev libgtest-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "${FIRMAMENT_SKIP_INSTALL:-0}" = 1 ]; then
+    echo "missing packages: ${missing[*]}" >&2
+    echo "install them with: sudo apt-get install -y ${missing[*]}" >&2
+    exit 2
+  elif [ "$(id -u)" = 0 ]; then
+    echo "installing: ${missing[*]}" >&2
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  elif command -v sudo >/dev/null && sudo -n true 2>/dev/null; then
+    sudo apt-get update -qq
+    sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "missing packages: ${missing[*]}" >&2
+    echo "install them with: sudo apt-get install -y ${missing[*]}" >&2
+    exit 2
+  fi
+fi
+
+jobs=$(nproc)
+if [ ! -f "$build/build.ninja" ]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+cmake --build "$build" -j "$jobs"
+
+case "$action" in
+  build) ;;
+  render)
+    scene=scenes/default.json
+    if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scene=$1; shift; fi
+    mkdir -p out
+    name=$(basename "$scene" .json)
+    "$build/samples/firmament" render "$scene" -o "out/$name.exr" "$@"
+    ;;
+  test)
+    ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
+    ;;
+  *)
+    echo "usage: scripts/run.sh build|render [SCENE] [options]|test [ctest options]" >&2
+    exit 2
+    ;;
+esac
