@@ -43,4 +43,8 @@ using glm::exp2; using glm::log2; using glm::distance; using glm::reflect;
 #define INOUT(T) inout T
 #endif
 
+SHARED_BEGIN
+const Real kPi = 3.14159265358979323846;
+SHARED_END
+
 #endif  // FIRMAMENT_COMPAT_GLSL

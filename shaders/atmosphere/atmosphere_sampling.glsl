@@ -1,0 +1,32 @@
+// atmosphere_sampling.glsl (GPU only): lookups into the precomputed tables. The tables' layouts are
+// defined in common/atmosphere_lut.glsl; texture sizes come from textureSize().
+#ifndef FIRMAMENT_ATMOSPHERE_SAMPLING_GLSL
+#define FIRMAMENT_ATMOSPHERE_SAMPLING_GLSL
+
+#include "atmosphere/atmosphere_block.glsl"
+
+// Transmittance from (r, mu) to the top of the atmosphere.
+vec3 transmittanceToTop(sampler2D lut, AtmosphereParameters atmosphere, float r, float mu) {
+  ivec2 size = textureSize(lut, 0);
+  return textureLod(lut, transmittanceUvFromRMu(atmosphere, r, mu, size), 0.0).rgb;
+}
+
+// Transmittance of sunlight arriving at radius r with sun zenith cosine mu_s, including the
+// planet's shadow: a sun below the local horizon is faded out over its angular diameter
+// (Bruneton 2017, GetTransmittanceToSun), so the terminator has no hard step.
+vec3 transmittanceToSun(sampler2D lut, AtmosphereParameters atmosphere, float r, float mu_s) {
+  float sin_theta_h = atmosphere.bottom_radius / r;
+  float cos_theta_h = -sqrt(max(1.0 - sin_theta_h * sin_theta_h, 0.0));
+  float visible = smoothstep(-sin_theta_h * atmosphere.sun_angular_radius,
+                             sin_theta_h * atmosphere.sun_angular_radius, mu_s - cos_theta_h);
+  return visible * transmittanceToTop(lut, atmosphere, r, mu_s);
+}
+
+// Hillaire 2020's Psi_ms: radiance per unit scattering coefficient from all orders >= 2, for an
+// isotropic phase, at (r, mu_s).
+vec3 multipleScattering(sampler2D lut, AtmosphereParameters atmosphere, float r, float mu_s) {
+  ivec2 size = textureSize(lut, 0);
+  return textureLod(lut, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb;
+}
+
+#endif  // FIRMAMENT_ATMOSPHERE_SAMPLING_GLSL

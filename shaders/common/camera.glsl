@@ -1,0 +1,67 @@
+// camera.glsl: pixel -> view ray, shared by the GPU render and the CPU reference so both trace the
+// same rays (see compat.glsl). Directions live in the local East-North-Up frame of the ground point
+// (x east, y north, z up); the planet centre is at -z.
+#ifndef FIRMAMENT_CAMERA_GLSL
+#define FIRMAMENT_CAMERA_GLSL
+
+#include "common/compat.glsl"
+
+SHARED_BEGIN
+
+const int kProjectionPerspective = 0;
+const int kProjectionFisheye = 1;
+const int kProjectionEquirectangular = 2;
+
+struct CameraParameters {
+  vec3 forward;     // unit view direction
+  vec3 right;       // unit, perpendicular to forward
+  vec3 up;          // unit, completes the right-handed basis (right x forward = up)
+  Real fov;         // horizontal field of view, rad
+  Real yaw;         // rad, clockwise from north (equirectangular centre)
+  int projection;
+  int width;
+  int height;
+};
+
+// Basis from yaw (clockwise from north), pitch (above horizontal) and roll (about forward), radians.
+void cameraBasis(Real yaw, Real pitch, Real roll, OUT(vec3) forward, OUT(vec3) right, OUT(vec3) up) {
+  forward = vec3(sin(yaw) * cos(pitch), cos(yaw) * cos(pitch), sin(pitch));
+  vec3 level_right = vec3(cos(yaw), -sin(yaw), 0.0);
+  vec3 level_up = cross(level_right, forward);
+  right = cos(roll) * level_right + sin(roll) * level_up;
+  up = cos(roll) * level_up - sin(roll) * level_right;
+}
+
+// Direction through the point `pixel` (pixel units, (0.5, 0.5) = centre of the top-left pixel).
+// `valid` is false outside a fisheye's image circle.
+vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(bool) valid) {
+  valid = true;
+  Real w = Real(camera.width);
+  Real h = Real(camera.height);
+  if (camera.projection == kProjectionEquirectangular) {
+    // longitude spans 360 degrees across the width with yaw at the centre; latitude 180 across the height
+    Real longitude = camera.yaw + (pixel.x / w - 0.5) * 2.0 * kPi;
+    Real latitude = (0.5 - pixel.y / h) * kPi;
+    return vec3(cos(latitude) * sin(longitude), cos(latitude) * cos(longitude), sin(latitude));
+  }
+  // Normalised image-plane coordinates: x in [-1, 1] across the width, y scaled by the aspect ratio.
+  Real x = 2.0 * pixel.x / w - 1.0;
+  Real y = (1.0 - 2.0 * pixel.y / h) * (h / w);
+  if (camera.projection == kProjectionFisheye) {
+    // Equidistant fisheye: the angle from the axis grows linearly with the distance from the centre.
+    Real radius = sqrt(x * x + y * y);
+    Real theta = radius * 0.5 * camera.fov;
+    if (theta > kPi) {
+      valid = false;
+      return camera.forward;
+    }
+    Real s = radius > 0.0 ? sin(theta) / radius : 0.0;
+    return normalize(cos(theta) * camera.forward + s * (x * camera.right + y * camera.up));
+  }
+  Real tan_half = tan(0.5 * camera.fov);
+  return normalize(camera.forward + tan_half * (x * camera.right + y * camera.up));
+}
+
+SHARED_END
+
+#endif  // FIRMAMENT_CAMERA_GLSL
