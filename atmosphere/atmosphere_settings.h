@@ -1,0 +1,47 @@
+#pragma once
+// The physical description of a clear-sky atmosphere, independent of wavelength sampling, and its
+// evaluation at three wavelengths into the shared AtmosphereParameters (common/atmosphere_medium.glsl).
+// Defaults are Bruneton 2017's Earth (docs/atmosphere.md lists each value and its source).
+#include <glm/glm.hpp>
+#include <string>
+
+#include "common/atmosphere_medium.glsl"
+#include "core/scene.h"
+
+namespace firmament {
+
+struct AtmosphereSettings {
+  double bottomRadius = 6360e3;         // m, sea level
+  double topRadius = 6420e3;            // m
+  double groundHeight = 0.0;            // m above sea level of the ground sphere (the scene's location)
+  double rayleighScaleHeight = 8000.0;  // m
+  double rayleighScatteringUm4 = 1.24062e-6;  // m^-1 µm^4: beta_R(lambda) = k lambda^-4
+  double mieAngstromAlpha = 0.0;
+  double mieAngstromBeta = 5.328e-3;    // aerosol optical depth at 1 µm
+  double mieScaleHeight = 1200.0;       // m
+  double mieSingleScatteringAlbedo = 0.9;
+  double miePhaseG = 0.8;
+  double ozoneColumnDobson = 300.0;     // DU
+  double groundAlbedo = 0.1;
+  double sunAngularRadius = 0.00935 / 2.0;  // rad
+  // Largest sun zenith angle the tables must represent: 102 degrees keeps twilight (Bruneton's
+  // choice for Earth with ozone), below that the sun's light is negligible.
+  double muSMin = -0.2079116908177593;  // cos(102 deg)
+
+  static AtmosphereSettings fromScene(const Scene& scene);
+  // 16 hex digits identifying every field, for caching tables.
+  std::string hash() const;
+};
+
+// Evaluates the medium at three wavelengths (nm). The ground sphere is at bottomRadius +
+// groundHeight; density profiles are shifted so that densities stay those of the true altitude above
+// sea level (an exponential shifted by h0 is still an exponential, scaled by exp(-h0/H)).
+shared::AtmosphereParameters atmosphereParametersAt(const AtmosphereSettings& settings, glm::dvec3 wavelengthsNm);
+
+// Physical constants used above (Bruneton 2017, demo/model; Dobson unit definition).
+inline constexpr double kDobsonUnit = 2.687e20;        // molecules m^-2
+inline constexpr double kOzoneTentHalfWidth = 15000.0;  // m: tent from 10 to 40 km, peak at 25 km
+inline constexpr double kOzoneTentBottom = 10000.0;     // m above sea level
+inline constexpr double kOzoneTentPeak = 25000.0;       // m above sea level
+
+}  // namespace firmament

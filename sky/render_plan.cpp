@@ -1,0 +1,55 @@
+#include "sky/render_plan.h"
+
+namespace firmament {
+
+bool RenderPlan::has(const std::string& name) const {
+  for (const auto& p : passes)
+    if (p.name == name) return true;
+  return false;
+}
+
+RenderPlan planRender(const Scene& scene) {
+  RenderPlan plan;
+  // The atmosphere is always present; its tables depend on its parameters only.
+  plan.passes.push_back({"atmosphere/transmittance_lut", "transmittance table T(r, mu)",
+                         "every sky needs sunlight attenuation", false});
+  plan.passes.push_back({"atmosphere/multiple_scattering_lut", "multiple-scattering table Psi_ms(r, mu_s)",
+                         "light scattered more than once (Hillaire 2020)", false});
+  plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)", "the view: sky, ground and sun disc", true});
+
+  if (scene.hasSection("clouds")) {
+    plan.unavailable.push_back({"clouds", "cloud rendering is not implemented in this version; the sky is clear"});
+  } else {
+    plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});
+  }
+  if (scene.hasSection("weather")) {
+    plan.unavailable.push_back({"weather", "the weather map only feeds clouds; run `firmament weather` to simulate it"});
+  } else {
+    plan.omitted.push_back({"weather", "no weather section: no simulation"});
+  }
+  if (scene.hasSection("terrain")) {
+    plan.unavailable.push_back({"terrain", "terrain rendering is not implemented in this version; the ground is the smooth sphere"});
+  } else {
+    plan.omitted.push_back({"terrain", "no terrain section: the ground is the atmosphere's smooth sphere"});
+  }
+  return plan;
+}
+
+std::string describePlan(const RenderPlan& plan) {
+  std::string out = "passes:\n";
+  int index = 1;
+  for (const auto& p : plan.passes)
+    out += "  " + std::to_string(index++) + ". " + p.name + (p.perFrame ? "" : " [cached by parameter hash]") +
+           "\n       -> " + p.output + "; " + p.reason + "\n";
+  if (!plan.omitted.empty()) {
+    out += "left out:\n";
+    for (const auto& o : plan.omitted) out += "  - " + o.name + ": " + o.reason + "\n";
+  }
+  if (!plan.unavailable.empty()) {
+    out += "not available yet:\n";
+    for (const auto& o : plan.unavailable) out += "  - " + o.name + ": " + o.reason + "\n";
+  }
+  return out;
+}
+
+}  // namespace firmament
