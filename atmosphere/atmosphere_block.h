@@ -21,7 +21,7 @@ struct AtmosphereBlock {
   float skyRadianceToRgb[3][4];     // columns
   float sunRadianceToRgb[3][4];     // columns
 };
-static_assert(sizeof(AtmosphereBlock) == 25 * 16, "std140 layout: 25 vec4");
+static_assert(sizeof(AtmosphereBlock) == 21 * 16, "std140 layout: 21 vec4");
 
 // radianceToRgb matrices map radiance at the three wavelengths to linear Rec.709 in cd m^-2.
 AtmosphereBlock packAtmosphereBlock(const shared::AtmosphereParameters& atmosphere, const glm::dmat3& skyRadianceToRgb,

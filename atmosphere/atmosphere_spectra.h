@@ -1,0 +1,25 @@
+#pragma once
+// Spectral inputs of the atmosphere (from core/spectrum) and the conversion of radiance at three
+// wavelengths to linear Rec.709 luminance units, as in Bruneton 2017's demo: each channel c
+// assumes the spectrum around it is shaped like L(lambda_c) * E_sun(lambda)/E_sun(lambda_c) *
+// (lambda/lambda_c)^p, with p = -3 for sky light (Rayleigh-dominated, lambda^-4 scattering of a
+// lambda^+1-ish weighting) and p = 0 for the sun's direct light, and integrates the CIE matching
+// functions over 360-830 nm against it.
+#include <glm/glm.hpp>
+
+namespace firmament {
+
+// Bruneton's representative wavelengths for the three-wavelength fast path (nm).
+inline constexpr glm::dvec3 kDefaultWavelengthsNm{680.0, 550.0, 440.0};
+// Spectral exponents of that conversion.
+inline constexpr double kSkyLambdaPower = -3.0;
+inline constexpr double kSunLambdaPower = 0.0;
+
+double solarIrradiance(double wavelengthNm);    // W m^-2 nm^-1 at the top of the atmosphere
+double ozoneCrossSection(double wavelengthNm);  // m^2 per molecule
+
+// Diagonal matrix: linear Rec.709 (cd m^-2) per unit spectral radiance (W m^-2 sr^-1 nm^-1) at each
+// of the three wavelengths.
+glm::dmat3 threeWavelengthRadianceToRgb(glm::dvec3 wavelengthsNm, double lambdaPower);
+
+}  // namespace firmament
