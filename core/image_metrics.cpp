@@ -66,9 +66,11 @@ ErrorStats finish(const Accumulator& acc, double weightSum) {
   return s;
 }
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+using Json = nlohmann::ordered_json;  // keys in the documented order, not sorted
 
-nlohmann::json toJson(const ErrorStats& s) {
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json toJson(const ErrorStats& s) {
   return {{"rmse", number(s.rmse)},
           {"relative_rmse", number(s.relativeRmse)},
           {"max_abs_error", number(s.maxAbsError)},
@@ -200,7 +202,7 @@ void writeErrorHeatmapPng(const std::filesystem::path& path, const Image& test, 
 }
 
 std::string metricsToJson(const ImageMetrics& m) {
-  nlohmann::json j;
+  Json j;
   j["width"] = m.width;
   j["height"] = m.height;
   j["compared_pixels"] = m.comparedPixels;

@@ -2,7 +2,10 @@
 // optional relative-error heat map and a JSON copy of the metrics (definitions: docs/formats.md).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -57,8 +60,20 @@ int runCompare(const Args& args) {
   const double scale = args.number("scale", 0.1);
   if (!(scale > 0.0)) throw InputError("option --scale: must be > 0, got " + formatValue(scale));
 
+  // Fail on an unwritable output before spending time on the comparison.
+  for (const char* option : {"heatmap", "json"})
+    if (auto out = args.get(option)) {
+      const std::filesystem::path folder = std::filesystem::path(*out).parent_path();
+      if (!folder.empty() && !std::filesystem::is_directory(folder))
+        throw InputError("option --" + std::string(option) + ": folder '" + folder.string() + "' does not exist");
+    }
+
   const Image test = readExr(testPath);
   const Image reference = readExr(referencePath);
+  if (test.width != reference.width || test.height != reference.height)
+    throw InputError("image sizes differ: '" + testPath + "' is " + std::to_string(test.width) + "x" +
+                     std::to_string(test.height) + ", reference '" + referencePath + "' is " +
+                     std::to_string(reference.width) + "x" + std::to_string(reference.height));
   const ImageMetrics metrics = compareImages(test, reference);
   printMetrics(testPath, referencePath, metrics);
 
@@ -68,7 +83,11 @@ int runCompare(const Args& args) {
                 formatPercent(scale).c_str());
   }
   if (auto json = args.get("json")) {
-    writeTextFileAtomically(*json, metricsToJson(metrics));
+    nlohmann::ordered_json document = nlohmann::ordered_json::parse(metricsToJson(metrics));
+    document["test"] = testPath;
+    document["reference"] = referencePath;
+    if (args.has("heatmap")) document["heatmap_scale"] = scale;
+    writeTextFileAtomically(*json, document.dump(2) + "\n");
     std::printf("metrics:   %s\n", json->c_str());
   }
   return kExitOk;
