@@ -75,7 +75,8 @@ void applyToneMap(ToneMap toneMap, const float exposedRgb[3], float displayRgb[3
   switch (toneMap) {
     case ToneMap::Aces:
       // Narkowicz 2015: x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14). Its derivative's numerator is
-      // 1.408x² + 0.7028x + 0.0042 > 0, so it increases on x ≥ 0; it passes 1 near x ≈ 7.24 and is clipped there.
+      // 1.408x² + 0.7028x + 0.0042 > 0, so it increases on x ≥ 0; it passes 1 near x ≈ 7.24 and is
+      // clipped there.
       for (double& x : out) x = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
       break;
     case ToneMap::Reinhard: {
