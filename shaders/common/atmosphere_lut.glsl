@@ -12,22 +12,22 @@
 
 SHARED_BEGIN
 
-Real safeSqrt(Real a) { return sqrt(max(a, 0.0)); }
-Real clampCosine(Real mu) { return clamp(mu, -1.0, 1.0); }
+SHARED_INLINE Real safeSqrt(Real a) { return sqrt(max(a, 0.0)); }
+SHARED_INLINE Real clampCosine(Real mu) { return clamp(mu, -1.0, 1.0); }
 
 // A ray from radius r with direction cosine mu meets the sphere of radius R where
 //   t^2 + 2 r mu t + (r^2 - R^2) = 0,  t = -r mu +- sqrt(r^2 (mu^2 - 1) + R^2).
 // The discriminant is formed as (R - r)(R + r) + (r mu)^2 to avoid cancelling two ~4e13 m^2 terms,
 // and the smaller-magnitude root comes from c / q (q = -r mu - sign(r mu) sqrt(disc)) so grazing
 // rays keep their precision.
-Real sphereDiscriminant(Real r, Real mu, Real R) {
+SHARED_INLINE Real sphereDiscriminant(Real r, Real mu, Real R) {
   Real rmu = r * mu;
   return (R - r) * (R + r) + rmu * rmu;
 }
 
 // Distance along the ray to the far intersection with a sphere that contains the origin (r <= R),
 // Bruneton's DistanceToTopAtmosphereBoundary. Returns 0 outside.
-Real distanceToSphereFar(Real r, Real mu, Real R) {
+SHARED_INLINE Real distanceToSphereFar(Real r, Real mu, Real R) {
   Real disc = sphereDiscriminant(r, mu, R);
   Real rmu = r * mu;
   Real s = safeSqrt(disc);
@@ -38,7 +38,7 @@ Real distanceToSphereFar(Real r, Real mu, Real R) {
 
 // Distance to the near intersection with a sphere the origin is outside of (r >= R), for a ray that
 // hits it (see rayIntersectsSphere); Bruneton's DistanceToBottomAtmosphereBoundary.
-Real distanceToSphereNear(Real r, Real mu, Real R) {
+SHARED_INLINE Real distanceToSphereNear(Real r, Real mu, Real R) {
   Real disc = sphereDiscriminant(r, mu, R);
   Real rmu = r * mu;
   Real s = safeSqrt(disc);
@@ -48,39 +48,39 @@ Real distanceToSphereNear(Real r, Real mu, Real R) {
 }
 
 // True when the ray from r (>= R) going down with cosine mu hits the sphere of radius R.
-bool rayIntersectsSphere(Real r, Real mu, Real R) {
+SHARED_INLINE bool rayIntersectsSphere(Real r, Real mu, Real R) {
   return mu < 0.0 && sphereDiscriminant(r, mu, R) >= 0.0;
 }
 
-Real distanceToTopAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
+SHARED_INLINE Real distanceToTopAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
   return distanceToSphereFar(r, mu, atmosphere.top_radius);
 }
 
-Real distanceToBottomAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
+SHARED_INLINE Real distanceToBottomAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
   return distanceToSphereNear(r, mu, atmosphere.bottom_radius);
 }
 
-bool rayIntersectsGround(AtmosphereParameters atmosphere, Real r, Real mu) {
+SHARED_INLINE bool rayIntersectsGround(AtmosphereParameters atmosphere, Real r, Real mu) {
   return rayIntersectsSphere(r, mu, atmosphere.bottom_radius);
 }
 
 // Distance to the nearest atmosphere boundary along (r, mu): the ground if the ray hits it, else the
 // top. Bruneton's DistanceToNearestAtmosphereBoundary.
-Real distanceToNearestAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
+SHARED_INLINE Real distanceToNearestAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
   return rayIntersectsGround(atmosphere, r, mu) ? distanceToBottomAtmosphereBoundary(atmosphere, r, mu)
                                                 : distanceToTopAtmosphereBoundary(atmosphere, r, mu);
 }
 
 // Radius and cosine after travelling d along (r, mu): r_d = sqrt(d^2 + 2 r mu d + r^2),
 // mu_d = (r mu + d) / r_d (law of cosines).
-Real radiusAfter(Real r, Real mu, Real d) {
+SHARED_INLINE Real radiusAfter(Real r, Real mu, Real d) {
   return sqrt(max(d * d + 2.0 * r * mu * d + r * r, 0.0));
 }
 
 // Optical depth (sigma_t integrated, dimensionless per wavelength) from (r, mu) to the top of the
 // atmosphere, by the trapezoidal rule with `steps` intervals (the transmittance LUT's integrator;
 // the reference uses its own adaptive quadrature).
-vec3 opticalDepthToTop(AtmosphereParameters atmosphere, Real r, Real mu, int steps) {
+SHARED_INLINE vec3 opticalDepthToTop(AtmosphereParameters atmosphere, Real r, Real mu, int steps) {
   Real d = distanceToTopAtmosphereBoundary(atmosphere, r, mu);
   Real dx = d / Real(steps);
   vec3 sum = vec3(0.0);
@@ -95,11 +95,11 @@ vec3 opticalDepthToTop(AtmosphereParameters atmosphere, Real r, Real mu, int ste
 
 // Texture coordinate of the centre of the first/last texel for x in [0, 1] (Bruneton
 // GetTextureCoordFromUnitRange): keeps lookups off the clamped border.
-Real textureCoordFromUnitRange(Real x, int size) {
+SHARED_INLINE Real textureCoordFromUnitRange(Real x, int size) {
   return 0.5 / Real(size) + x * (1.0 - 1.0 / Real(size));
 }
 
-Real unitRangeFromTextureCoord(Real u, int size) {
+SHARED_INLINE Real unitRangeFromTextureCoord(Real u, int size) {
   return (u - 0.5 / Real(size)) / (1.0 - 1.0 / Real(size));
 }
 
@@ -107,7 +107,7 @@ Real unitRangeFromTextureCoord(Real u, int size) {
 //   x_r  = rho / H,  rho = sqrt(r^2 - r_bottom^2),  H = sqrt(r_top^2 - r_bottom^2)
 //   x_mu = (d - d_min) / (d_max - d_min),  d = distance to the top,  d_min = r_top - r,  d_max = rho + H
 // which spends texels near the horizon where transmittance changes fastest.
-vec2 transmittanceUvFromRMu(AtmosphereParameters atmosphere, Real r, Real mu, ivec2 size) {
+SHARED_INLINE vec2 transmittanceUvFromRMu(AtmosphereParameters atmosphere, Real r, Real mu, ivec2 size) {
   Real H = sqrt(max(atmosphere.top_radius * atmosphere.top_radius - atmosphere.bottom_radius * atmosphere.bottom_radius, 0.0));
   Real rho = safeSqrt((r - atmosphere.bottom_radius) * (r + atmosphere.bottom_radius));
   Real d = distanceToTopAtmosphereBoundary(atmosphere, r, mu);
@@ -120,7 +120,7 @@ vec2 transmittanceUvFromRMu(AtmosphereParameters atmosphere, Real r, Real mu, iv
 }
 
 // Inverse of transmittanceUvFromRMu: the (r, mu) a texel stores.
-void rMuFromTransmittanceUv(AtmosphereParameters atmosphere, vec2 uv, ivec2 size, OUT(Real) r, OUT(Real) mu) {
+SHARED_INLINE void rMuFromTransmittanceUv(AtmosphereParameters atmosphere, vec2 uv, ivec2 size, OUT(Real) r, OUT(Real) mu) {
   Real x_mu = unitRangeFromTextureCoord(uv.x, size.x);
   Real x_r = unitRangeFromTextureCoord(uv.y, size.y);
   Real H = sqrt(max(atmosphere.top_radius * atmosphere.top_radius - atmosphere.bottom_radius * atmosphere.bottom_radius, 0.0));
@@ -136,14 +136,14 @@ void rMuFromTransmittanceUv(AtmosphereParameters atmosphere, vec2 uv, ivec2 size
 
 // Multiple-scattering LUT parametrization (Hillaire 2020, section 5.5): u = mu_s mapped from [-1, 1],
 // v = altitude fraction in [0, 1], both through texel centres.
-vec2 multipleScatteringUv(AtmosphereParameters atmosphere, Real r, Real mu_s, ivec2 size) {
+SHARED_INLINE vec2 multipleScatteringUv(AtmosphereParameters atmosphere, Real r, Real mu_s, ivec2 size) {
   Real x_mu_s = 0.5 + 0.5 * mu_s;
   Real x_h = (r - atmosphere.bottom_radius) / (atmosphere.top_radius - atmosphere.bottom_radius);
   return vec2(textureCoordFromUnitRange(clamp(x_mu_s, 0.0, 1.0), size.x),
               textureCoordFromUnitRange(clamp(x_h, 0.0, 1.0), size.y));
 }
 
-void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere, vec2 uv, ivec2 size, OUT(Real) r, OUT(Real) mu_s) {
+SHARED_INLINE void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere, vec2 uv, ivec2 size, OUT(Real) r, OUT(Real) mu_s) {
   Real x_mu_s = clamp(unitRangeFromTextureCoord(uv.x, size.x), 0.0, 1.0);
   Real x_h = clamp(unitRangeFromTextureCoord(uv.y, size.y), 0.0, 1.0);
   mu_s = 2.0 * x_mu_s - 1.0;

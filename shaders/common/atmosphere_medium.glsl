@@ -52,30 +52,30 @@ struct AtmosphereParameters {
   Real mu_s_min;             // cosine of the largest sun zenith angle the LUTs cover
 };
 
-Real layerDensity(DensityLayer layer, Real altitude) {
+SHARED_INLINE Real layerDensity(DensityLayer layer, Real altitude) {
   Real d = layer.exp_term * exp(layer.exp_scale * altitude) + layer.linear_term * altitude + layer.constant_term;
   return clamp(d, 0.0, 1.0);
 }
 
-Real profileDensity(DensityProfile profile, Real altitude) {
+SHARED_INLINE Real profileDensity(DensityProfile profile, Real altitude) {
   return altitude < profile.layer0.width ? layerDensity(profile.layer0, altitude)
                                          : layerDensity(profile.layer1, altitude);
 }
 
 // Scattering and extinction coefficients (m^-1) at radius r (m from the planet centre). Above the
 // top radius the medium is empty by definition, which keeps the LUT domain and the reference equal.
-vec3 rayleighScatteringAt(AtmosphereParameters atmosphere, Real r) {
+SHARED_INLINE vec3 rayleighScatteringAt(AtmosphereParameters atmosphere, Real r) {
   Real h = r - atmosphere.bottom_radius;
   return r > atmosphere.top_radius ? vec3(0.0) : atmosphere.rayleigh_scattering * profileDensity(atmosphere.rayleigh_density, h);
 }
 
-vec3 mieScatteringAt(AtmosphereParameters atmosphere, Real r) {
+SHARED_INLINE vec3 mieScatteringAt(AtmosphereParameters atmosphere, Real r) {
   Real h = r - atmosphere.bottom_radius;
   return r > atmosphere.top_radius ? vec3(0.0) : atmosphere.mie_scattering * profileDensity(atmosphere.mie_density, h);
 }
 
 // sigma_t = beta_R d_R + beta_M^e d_M + beta_O d_O.
-vec3 extinctionAt(AtmosphereParameters atmosphere, Real r) {
+SHARED_INLINE vec3 extinctionAt(AtmosphereParameters atmosphere, Real r) {
   if (r > atmosphere.top_radius) return vec3(0.0);
   Real h = r - atmosphere.bottom_radius;
   return atmosphere.rayleigh_scattering * profileDensity(atmosphere.rayleigh_density, h) +
@@ -84,20 +84,20 @@ vec3 extinctionAt(AtmosphereParameters atmosphere, Real r) {
 }
 
 // Rayleigh phase function, normalised over the sphere (1/sr): 3/(16 pi) (1 + nu^2), nu = cos(angle).
-Real rayleighPhase(Real nu) {
+SHARED_INLINE Real rayleighPhase(Real nu) {
   return 3.0 / (16.0 * kPi) * (1.0 + nu * nu);
 }
 
 // Cornette-Shanks (1992) phase function, an improved Henyey-Greenstein that tends to Rayleigh as
 // g -> 0: 3/(8 pi) (1 - g^2)(1 + nu^2) / ((2 + g^2)(1 + g^2 - 2 g nu)^(3/2)). Normalised (1/sr).
-Real cornetteShanksPhase(Real g, Real nu) {
+SHARED_INLINE Real cornetteShanksPhase(Real g, Real nu) {
   Real k = 3.0 / (8.0 * kPi) * (1.0 - g * g) / (2.0 + g * g);
   Real denominator = max(1.0 + g * g - 2.0 * g * nu, 1e-12);
   return k * (1.0 + nu * nu) / (denominator * sqrt(denominator));
 }
 
 // Henyey-Greenstein (1941): (1 - g^2) / (4 pi (1 + g^2 - 2 g nu)^(3/2)). Normalised (1/sr).
-Real henyeyGreensteinPhase(Real g, Real nu) {
+SHARED_INLINE Real henyeyGreensteinPhase(Real g, Real nu) {
   Real denominator = max(1.0 + g * g - 2.0 * g * nu, 1e-12);
   return (1.0 - g * g) / (4.0 * kPi * denominator * sqrt(denominator));
 }

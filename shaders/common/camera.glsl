@@ -24,7 +24,7 @@ struct CameraParameters {
 };
 
 // Basis from yaw (clockwise from north), pitch (above horizontal) and roll (about forward), radians.
-void cameraBasis(Real yaw, Real pitch, Real roll, OUT(vec3) forward, OUT(vec3) right, OUT(vec3) up) {
+SHARED_INLINE void cameraBasis(Real yaw, Real pitch, Real roll, OUT(vec3) forward, OUT(vec3) right, OUT(vec3) up) {
   forward = vec3(sin(yaw) * cos(pitch), cos(yaw) * cos(pitch), sin(pitch));
   vec3 level_right = vec3(cos(yaw), -sin(yaw), 0.0);
   vec3 level_up = cross(level_right, forward);
@@ -34,7 +34,7 @@ void cameraBasis(Real yaw, Real pitch, Real roll, OUT(vec3) forward, OUT(vec3) r
 
 // Direction through the point `pixel` (pixel units, (0.5, 0.5) = centre of the top-left pixel).
 // `valid` is false outside a fisheye's image circle.
-vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(bool) valid) {
+SHARED_INLINE vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(bool) valid) {
   valid = true;
   Real w = Real(camera.width);
   Real h = Real(camera.height);

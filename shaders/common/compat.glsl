@@ -4,6 +4,8 @@
 //   - wrap the body in SHARED_BEGIN / SHARED_END (a C++ namespace, nothing in GLSL);
 //   - scalars are `Real`; vectors vec2/vec3/vec4 (double in C++); write every literal with a point
 //     (2.0, not 2), since C++ templates do not convert int to double;
+//   - prefix every function with SHARED_INLINE (`inline` in C++: headers are included by many
+//     translation units);
 //   - out/inout parameters through OUT(T) / INOUT(T); no swizzles (v.xy) and no struct constructors:
 //     build vectors with vec2(v.x, v.y) and fill structs field by field;
 //   - only GLSL built-ins that GLM also has (exp, sqrt, max, min, clamp, mix, dot, cross, length,
@@ -31,12 +33,14 @@ using glm::sin; using glm::smoothstep; using glm::sqrt; using glm::step; using g
 using glm::exp2; using glm::log2; using glm::distance; using glm::reflect;
 }  // namespace firmament::shared
 
+#define SHARED_INLINE inline
 #define SHARED_BEGIN namespace firmament::shared {
 #define SHARED_END }
 #define OUT(T) T&
 #define INOUT(T) T&
 #else
 #define Real float
+#define SHARED_INLINE
 #define SHARED_BEGIN
 #define SHARED_END
 #define OUT(T) out T
