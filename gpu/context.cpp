@@ -319,7 +319,8 @@ void Context::createDevice() {
 
   // Enable the optional features the device has; nothing here costs speed (robustBufferAccess does,
   // so it stays off).
-  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &supported13};
   VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
   vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported);
   features_.scalarBlockLayout = supported12.scalarBlockLayout;
@@ -328,7 +329,11 @@ void Context::createDevice() {
   features_.storageImageWithoutFormat = supported.features.shaderStorageImageReadWithoutFormat &&
                                         supported.features.shaderStorageImageWriteWithoutFormat;
 
-  VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  // maintenance4 is mandatory in Vulkan 1.3 and needed: glslang's vulkan1.3 target emits LocalSizeId.
+  VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  enable13.maintenance4 = VK_TRUE;
+  enable13.synchronization2 = supported13.synchronization2;
+  VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable13};
   enable12.scalarBlockLayout = supported12.scalarBlockLayout;
   enable12.hostQueryReset = supported12.hostQueryReset;
   VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable12};

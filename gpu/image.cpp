@@ -155,6 +155,21 @@ Image& Image::operator=(Image&& other) noexcept {
 }
 
 namespace {
+// Layout change with a full memory dependency (transfers want their own layouts for speed on GPUs).
+void transition(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkImageLayout to) {
+  VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
+                       nullptr, 0, nullptr, 1, &barrier);
+}
+
 VkBufferImageCopy wholeImageRegion(const ImageDesc& desc) {
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -172,9 +187,9 @@ void Image::upload(const void* data, size_t bytes) {
   std::memcpy(staging.mapped(), data, bytes);
   VkBufferImageCopy region = wholeImageRegion(desc_);
   context_->submitOneShot([&](VkCommandBuffer commands) {
-    fullMemoryBarrier(commands);
-    vkCmdCopyBufferToImage(commands, staging.handle(), image_, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
-    fullMemoryBarrier(commands);
+    transition(commands, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    vkCmdCopyBufferToImage(commands, staging.handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    transition(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
   });
 }
 
@@ -186,9 +201,10 @@ void Image::download(void* data, size_t bytes) const {
   Buffer staging(*context_, bytes, BufferUsage::Storage, MemoryLocation::Host);
   VkBufferImageCopy region = wholeImageRegion(desc_);
   context_->submitOneShot([&](VkCommandBuffer commands) {
-    fullMemoryBarrier(commands);
-    vkCmdCopyImageToBuffer(commands, image_, VK_IMAGE_LAYOUT_GENERAL, staging.handle(), 1, &region);
-    fullMemoryBarrier(commands);
+    transition(commands, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    vkCmdCopyImageToBuffer(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
+    transition(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    fullMemoryBarrier(commands);  // the staging copy is visible to the host after the fence
   });
   std::memcpy(data, staging.mapped(), bytes);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A 2D or 3D VkImage with its own memory and a view, usable as a storage image and a sampled texture.
-// It lives in VK_IMAGE_LAYOUT_GENERAL for its whole life: compute writes, sampling and transfers are
-// all legal there, so passes never track layouts.
+// Between operations it is always in VK_IMAGE_LAYOUT_GENERAL, where compute writes and sampling are
+// both legal, so passes never track layouts (upload/download switch to transfer layouts and back).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>

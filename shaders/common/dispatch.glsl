@@ -19,6 +19,16 @@
 
 #include "common/compat.glsl"
 
+// C++ needs `inline` on functions defined in a header included by several files (one definition
+// rule); GLSL has no such keyword. (Candidate for compat.glsl; guarded so it can move there.)
+#ifndef SHARED_INLINE
+#ifdef __cplusplus
+#define SHARED_INLINE inline
+#else
+#define SHARED_INLINE
+#endif
+#endif
+
 #define FIRMAMENT_TILE_SIZE 8
 
 SHARED_BEGIN
@@ -32,12 +42,12 @@ struct TileDispatch {
                    // maxComputeWorkGroupCount[0]); extra groups in the last row do nothing
 };
 
-uint tileCountX(TileDispatch d) { return (d.width + uint(FIRMAMENT_TILE_SIZE) - 1u) / uint(FIRMAMENT_TILE_SIZE); }
-uint tileCountY(TileDispatch d) { return (d.height + uint(FIRMAMENT_TILE_SIZE) - 1u) / uint(FIRMAMENT_TILE_SIZE); }
-uint tileCount(TileDispatch d) { return tileCountX(d) * tileCountY(d); }
+SHARED_INLINE uint tileCountX(TileDispatch d) { return (d.width + uint(FIRMAMENT_TILE_SIZE) - 1u) / uint(FIRMAMENT_TILE_SIZE); }
+SHARED_INLINE uint tileCountY(TileDispatch d) { return (d.height + uint(FIRMAMENT_TILE_SIZE) - 1u) / uint(FIRMAMENT_TILE_SIZE); }
+SHARED_INLINE uint tileCount(TileDispatch d) { return tileCountX(d) * tileCountY(d); }
 
 // The tile (column, row) that workgroup number `group` (< tileCount) works on.
-uvec2 tileOfGroup(TileDispatch d, uint group) {
+SHARED_INLINE uvec2 tileOfGroup(TileDispatch d, uint group) {
   uint tile = (group * d.stride) % tileCount(d);
   uint columns = tileCountX(d);
   return uvec2(tile % columns, tile / columns);

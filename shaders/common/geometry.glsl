@@ -19,18 +19,28 @@
 
 #include "common/compat.glsl"
 
+// C++ needs `inline` on functions defined in a header included by several files (one definition
+// rule); GLSL has no such keyword. (Candidate for compat.glsl; guarded so it can move there.)
+#ifndef SHARED_INLINE
+#ifdef __cplusplus
+#define SHARED_INLINE inline
+#else
+#define SHARED_INLINE
+#endif
+#endif
+
 SHARED_BEGIN
 
 // Δ (a quarter of the textbook b² − 4ac, for the half-b form above); ≥ 0 iff the ray's line meets the
 // sphere. Not clamped: its sign is the answer to "does it hit".
-Real sphereDiscriminant(Real r, Real mu, Real radius) {
+SHARED_INLINE Real sphereDiscriminant(Real r, Real mu, Real radius) {
   Real rmu = r * mu;
   return (radius - r) * (radius + r) + rmu * rmu;
 }
 
 // Both signed distances tNear ≤ tFar at which the ray's line crosses the sphere (negative = behind the
 // start); false, with both 0, when it misses. Each root is formed without cancellation (see top).
-bool raySphereRoots(Real r, Real mu, Real radius, OUT(Real) tNear, OUT(Real) tFar) {
+SHARED_INLINE bool raySphereRoots(Real r, Real mu, Real radius, OUT(Real) tNear, OUT(Real) tFar) {
   Real b = r * mu;
   Real c = (r - radius) * (r + radius);
   Real discriminant = (radius - r) * (radius + r) + b * b;
@@ -52,7 +62,7 @@ bool raySphereRoots(Real r, Real mu, Real radius, OUT(Real) tNear, OUT(Real) tFa
 // ray leaves the sphere, the far root. Δ ≥ (R − r)(R + r) ≥ 0 inside; the clamp absorbs rounding
 // for r a hair above the top. Looking up (b > 0) the far root is c / q = (R² − r²) / (r mu + √Δ),
 // which stays accurate when r is close to R (−b + √Δ would cancel there).
-Real distanceToTopAtmosphereBoundary(Real r, Real mu, Real topRadius) {
+SHARED_INLINE Real distanceToTopAtmosphereBoundary(Real r, Real mu, Real topRadius) {
   Real b = r * mu;
   Real s = sqrt(max(sphereDiscriminant(r, mu, topRadius), 0.0));
   Real exitDistance = b <= 0.0 ? s - b : (topRadius - r) * (topRadius + r) / (b + s);
@@ -63,7 +73,7 @@ Real distanceToTopAtmosphereBoundary(Real r, Real mu, Real topRadius) {
 // bottomRadius) to the ground, the near root, meaningful when rayIntersectsGround. Looking down
 // (b < 0) it is c / q = (r² − Rb²) / (−r mu + √Δ): for a grazing ray −r mu ≈ √Δ and the textbook
 // −r mu − √Δ would lose every digit. Looking up the near root is behind: 0.
-Real distanceToBottomAtmosphereBoundary(Real r, Real mu, Real bottomRadius) {
+SHARED_INLINE Real distanceToBottomAtmosphereBoundary(Real r, Real mu, Real bottomRadius) {
   Real b = r * mu;
   if (b >= 0.0) return 0.0;
   Real s = sqrt(max(sphereDiscriminant(r, mu, bottomRadius), 0.0));
@@ -71,12 +81,12 @@ Real distanceToBottomAtmosphereBoundary(Real r, Real mu, Real bottomRadius) {
 }
 
 // Bruneton 2017, RayIntersectsGround: looking down, and the line meets the ground sphere.
-bool rayIntersectsGround(Real r, Real mu, Real bottomRadius) {
+SHARED_INLINE bool rayIntersectsGround(Real r, Real mu, Real bottomRadius) {
   return mu < 0.0 && sphereDiscriminant(r, mu, bottomRadius) >= 0.0;
 }
 
 // Bruneton 2017, DistanceToNearestAtmosphereBoundary: the ground if the ray hits it, else the top.
-Real distanceToNearestAtmosphereBoundary(Real r, Real mu, Real bottomRadius, Real topRadius,
+SHARED_INLINE Real distanceToNearestAtmosphereBoundary(Real r, Real mu, Real bottomRadius, Real topRadius,
                                          bool intersectsGround) {
   return intersectsGround ? distanceToBottomAtmosphereBoundary(r, mu, bottomRadius)
                           : distanceToTopAtmosphereBoundary(r, mu, topRadius);
@@ -86,7 +96,7 @@ Real distanceToNearestAtmosphereBoundary(Real r, Real mu, Real bottomRadius, Rea
 // innerRadius ≤ radius ≤ outerRadius, e.g. a cloud layer; false if the ray never enters it ahead.
 // From above the shell, a ray can cross it, pass over the inner sphere and cross it again: this is the
 // first crossing (march again from tExit for the second).
-bool rayShellSegment(Real r, Real mu, Real innerRadius, Real outerRadius, OUT(Real) tEnter, OUT(Real) tExit) {
+SHARED_INLINE bool rayShellSegment(Real r, Real mu, Real innerRadius, Real outerRadius, OUT(Real) tEnter, OUT(Real) tExit) {
   Real outerNear;
   Real outerFar;
   Real innerNear;
@@ -113,7 +123,7 @@ bool rayShellSegment(Real r, Real mu, Real innerRadius, Real outerRadius, OUT(Re
 }
 
 // r and mu of a ray from `origin` (planet-centred, metres) along the unit vector `direction`.
-void rayRadiusAndCosine(vec3 origin, vec3 direction, OUT(Real) r, OUT(Real) mu) {
+SHARED_INLINE void rayRadiusAndCosine(vec3 origin, vec3 direction, OUT(Real) r, OUT(Real) mu) {
   r = length(origin);
   mu = r > 0.0 ? clamp(dot(origin, direction) / r, -1.0, 1.0) : 1.0;
 }
