@@ -1,7 +1,7 @@
 // atmosphere_lut.glsl: ray geometry in the spherical atmosphere and the parametrizations of the
 // lookup tables, shared by the GPU passes, the CPU reference and the tests (see compat.glsl).
-// Formulas follow Bruneton 2017 ("Precomputed Atmospheric Scattering: a New Implementation", the
-// functions of functions.glsl), rewritten in numerically stable forms for float.
+// Formulas follow Bruneton 2017 ("Precomputed Atmospheric Scattering: a New Implementation"); the
+// numerically stable sphere intersections are in common/geometry.glsl.
 //
 // Notation: r = distance from the planet centre (m); mu = cosine of the view zenith angle at r;
 // mu_s = cosine of the sun zenith angle; nu = cosine of the view-sun angle.
@@ -9,59 +9,23 @@
 #define FIRMAMENT_ATMOSPHERE_LUT_GLSL
 
 #include "common/atmosphere_medium.glsl"
+#include "common/geometry.glsl"
 
 SHARED_BEGIN
 
 SHARED_INLINE Real safeSqrt(Real a) { return sqrt(max(a, 0.0)); }
 SHARED_INLINE Real clampCosine(Real mu) { return clamp(mu, -1.0, 1.0); }
 
-// A ray from radius r with direction cosine mu meets the sphere of radius R where
-//   t^2 + 2 r mu t + (r^2 - R^2) = 0,  t = -r mu +- sqrt(r^2 (mu^2 - 1) + R^2).
-// The discriminant is formed as (R - r)(R + r) + (r mu)^2 to avoid cancelling two ~4e13 m^2 terms,
-// and the smaller-magnitude root comes from c / q (q = -r mu - sign(r mu) sqrt(disc)) so grazing
-// rays keep their precision.
-SHARED_INLINE Real sphereDiscriminant(Real r, Real mu, Real R) {
-  Real rmu = r * mu;
-  return (R - r) * (R + r) + rmu * rmu;
-}
-
-// Distance along the ray to the far intersection with a sphere that contains the origin (r <= R),
-// Bruneton's DistanceToTopAtmosphereBoundary. Returns 0 outside.
-SHARED_INLINE Real distanceToSphereFar(Real r, Real mu, Real R) {
-  Real disc = sphereDiscriminant(r, mu, R);
-  Real rmu = r * mu;
-  Real s = safeSqrt(disc);
-  // far root: -rmu + s; when rmu > 0 this cancels, so use (R^2 - r^2) / (rmu + s) instead.
-  Real t = rmu <= 0.0 ? -rmu + s : (R - r) * (R + r) / max(rmu + s, 1e-30);
-  return max(t, 0.0);
-}
-
-// Distance to the near intersection with a sphere the origin is outside of (r >= R), for a ray that
-// hits it (see rayIntersectsSphere); Bruneton's DistanceToBottomAtmosphereBoundary.
-SHARED_INLINE Real distanceToSphereNear(Real r, Real mu, Real R) {
-  Real disc = sphereDiscriminant(r, mu, R);
-  Real rmu = r * mu;
-  Real s = safeSqrt(disc);
-  // near root: -rmu - s (rmu < 0 for a hit); as -rmu - s cancels at grazing, use (r^2 - R^2) / (s - rmu).
-  Real t = (r - R) * (r + R) / max(s - rmu, 1e-30);
-  return max(t, 0.0);
-}
-
-// True when the ray from r (>= R) going down with cosine mu hits the sphere of radius R.
-SHARED_INLINE bool rayIntersectsSphere(Real r, Real mu, Real R) {
-  return mu < 0.0 && sphereDiscriminant(r, mu, R) >= 0.0;
-}
-
 SHARED_INLINE Real distanceToTopAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
-  return distanceToSphereFar(r, mu, atmosphere.top_radius);
+  return distanceToTopAtmosphereBoundary(r, mu, atmosphere.top_radius);
 }
 
 SHARED_INLINE Real distanceToBottomAtmosphereBoundary(AtmosphereParameters atmosphere, Real r, Real mu) {
-  return distanceToSphereNear(r, mu, atmosphere.bottom_radius);
+  return distanceToBottomAtmosphereBoundary(r, mu, atmosphere.bottom_radius);
 }
 
 SHARED_INLINE bool rayIntersectsGround(AtmosphereParameters atmosphere, Real r, Real mu) {
-  return rayIntersectsSphere(r, mu, atmosphere.bottom_radius);
+  return rayIntersectsGround(r, mu, atmosphere.bottom_radius);
 }
 
 // Distance to the nearest atmosphere boundary along (r, mu): the ground if the ray hits it, else the

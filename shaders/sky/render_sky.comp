@@ -10,8 +10,9 @@
 // form), and samples are spaced quadratically to resolve the dense air near the camera.
 #include "atmosphere/atmosphere_sampling.glsl"
 #include "common/camera.glsl"
+#include "common/dispatch.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D outputImage;
@@ -22,8 +23,8 @@ layout(std140, set = 0, binding = 4) uniform FrameBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz, unit
   ivec4 image;           // width, height, projection, view march steps
-  uvec4 tiles;           // tiles x, tile count, interleave stride S, Q = ceil(count / S)
 } frame;
+layout(push_constant) uniform Push { TileDispatch tiles; } push;
 
 // Limb darkening I(mu)/I(1) = mu^alpha (a power law, Hestroffer & Magnan 1998) with alpha ~ 0.5 at
 // visible wavelengths; the disc radiance is normalised so the disc integrates to E_sun:
@@ -42,15 +43,10 @@ vec3 sunDiscRadiance(AtmosphereParameters atmosphere, float cos_angle) {
 }
 
 void main() {
-  // Interleaved tile order: lavapipe gives each thread a contiguous block of workgroups, so workgroup
-  // i renders tile (i mod S) * Q + i / S, spreading every block over the whole image and balancing
-  // cheap (space, ground) and expensive (sky) tiles. S = 1 is the identity (GPUs).
-  uint i = gl_WorkGroupID.x;
-  uint tile = (i % frame.tiles.z) * frame.tiles.w + i / frame.tiles.z;
-  if (tile >= frame.tiles.y) return;
-  ivec2 pixel = ivec2(int(tile % frame.tiles.x) * 8 + int(gl_LocalInvocationID.x),
-                      int(tile / frame.tiles.x) * 8 + int(gl_LocalInvocationID.y));
-  if (pixel.x >= frame.image.x || pixel.y >= frame.image.y) return;
+  // Tiles in interleaved order on lavapipe (balances sky against ground), row order on GPUs.
+  uvec2 tile_pixel;
+  if (!tilePixel(push.tiles, tile_pixel)) return;
+  ivec2 pixel = ivec2(tile_pixel);
 
   AtmosphereParameters atmosphere = atmosphereFromBlock();
   CameraParameters camera;
@@ -75,15 +71,19 @@ void main() {
   float r = length(origin);
   float mu = dot(origin, dir) / r;
   vec3 sky = vec3(0.0);
+  // Light with a solar spectrum (aerosol single scattering, which is nearly grey for Angstrom alpha
+  // near 0, and the ground's reflection of sunlight) is converted with the sun's factors; Rayleigh and
+  // multiple scattering with the sky's (see atmosphere/atmosphere_spectra.h).
+  vec3 sunlike = vec3(0.0);
   vec3 throughput = vec3(1.0);
   bool hits_ground = false;
   bool in_atmosphere = true;
   if (r > atmosphere.top_radius) {
     // From space: jump to where the ray enters the atmosphere, if it does.
-    if (!rayIntersectsSphere(r, mu, atmosphere.top_radius)) {
+    if (!rayIntersectsGround(r, mu, atmosphere.top_radius)) {
       in_atmosphere = false;
     } else {
-      origin += dir * distanceToSphereNear(r, mu, atmosphere.top_radius);
+      origin += dir * distanceToBottomAtmosphereBoundary(r, mu, atmosphere.top_radius);
       r = atmosphere.top_radius;
       mu = dot(origin, dir) / length(origin);
     }
@@ -111,12 +111,14 @@ void main() {
       vec3 mie = mieScatteringAt(atmosphere, r_p);
       vec3 extinction = extinctionAt(atmosphere, r_p);
       vec3 sun_light = transmittanceToSun(transmittanceLut, atmosphere, r_p, mu_s_p) * atmosphere.solar_irradiance;
-      vec3 source = (rayleigh * phase_r + mie * phase_m) * sun_light +
-                    (rayleigh + mie) * multipleScattering(multipleScatteringLut, atmosphere, r_p, mu_s_p);
+      vec3 sky_source = rayleigh * phase_r * sun_light +
+                        (rayleigh + mie) * multipleScattering(multipleScatteringLut, atmosphere, r_p, mu_s_p);
+      vec3 sunlike_source = mie * phase_m * sun_light;
       vec3 step_transmittance = exp(-extinction * dt);
       vec3 k = extinction * dt;
       vec3 integral = mix(dt * (1.0 - step_transmittance) / max(k, vec3(1e-12)), vec3(dt), lessThan(k, vec3(1e-4)));
-      sky += throughput * source * integral;
+      sky += throughput * sky_source * integral;
+      sunlike += throughput * sunlike_source * integral;
       throughput *= step_transmittance;
     }
     if (hits_ground) {
@@ -124,10 +126,10 @@ void main() {
       float r_g = length(p);
       float mu_s_g = dot(p, sun) / r_g;
       vec3 sun_light = transmittanceToSun(transmittanceLut, atmosphere, r_g, mu_s_g) * atmosphere.solar_irradiance;
-      sky += throughput * atmosphere.ground_albedo / kPi * sun_light * max(mu_s_g, 0.0);
+      sunlike += throughput * atmosphere.ground_albedo / kPi * sun_light * max(mu_s_g, 0.0);
     }
   }
-  vec3 rgb = skyRadianceToRgb() * sky;
+  vec3 rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
   if (!hits_ground) rgb += sunRadianceToRgb() * (throughput * sunDiscRadiance(atmosphere, nu));
   imageStore(outputImage, pixel, vec4(max(rgb, vec3(0.0)), 1.0));
 }

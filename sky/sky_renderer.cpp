@@ -1,0 +1,182 @@
+#include "sky/sky_renderer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/color.h"
+#include "core/exr_io.h"
+#include "core/tonemap.h"
+
+namespace firmament {
+namespace {
+
+// std140 mirror of FrameBlock in shaders/sky/render_sky.comp.
+struct FrameBlock {
+  float cameraPosition[4];
+  float cameraForward[4];  // w = fov
+  float cameraRight[4];    // w = yaw
+  float cameraUp[4];
+  float sunDirection[4];
+  int32_t image[4];  // width, height, projection, view steps
+};
+static_assert(sizeof(FrameBlock) == 6 * 16);
+
+void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
+  out[0] = float(v.x);
+  out[1] = float(v.y);
+  out[2] = float(v.z);
+  out[3] = float(w);
+}
+
+std::string formatVector(const glm::dvec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof(text), "%.9f %.9f %.9f", v.x, v.y, v.z);
+  return text;
+}
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+}  // namespace
+
+SkyRenderer::SkyRenderer(gpu::Context& context)
+    : context_(context),
+      luts_(context),
+      skyPipeline_(context, {"sky/render_sky",
+                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                              gpu::BindingType::UniformBuffer},
+                             sizeof(gpu::TileDispatch)}),
+      frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
+
+RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
+  RenderResult result;
+  result.plan = planRender(scene);
+  result.view = makeSceneView(scene);
+  const SceneView& view = result.view;
+  const int width = view.camera.width;
+  const int height = view.camera.height;
+
+  // Tables first, in their own submission, so their cost is reported apart from the frame's.
+  gpu::CommandList precompute(context_);
+  if (luts_.update(view.atmosphere, options.luts, precompute)) {
+    precompute.submitAndWait();
+    for (const auto& t : precompute.passTimings()) {
+      result.timings.push_back(t);
+      result.precomputeMilliseconds += t.milliseconds;
+    }
+  } else {
+    result.tablesReused = true;
+  }
+
+  FrameBlock frame{};
+  put(frame.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
+  put(frame.cameraForward, view.camera.forward, view.camera.fov);
+  put(frame.cameraRight, view.camera.right, view.camera.yaw);
+  put(frame.cameraUp, view.camera.up);
+  put(frame.sunDirection, view.sunDirection);
+  frame.image[0] = width;
+  frame.image[1] = height;
+  frame.image[2] = view.camera.projection;
+  frame.image[3] = options.viewSteps;
+  frameBlock_.upload(&frame, sizeof(frame));
+
+  gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
+  gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
+  gpu::CommandList commands(context_);
+  commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
+                               {luts_.transmittance(), luts_.linearClamp()},
+                               {luts_.multipleScattering(), luts_.linearClamp()},
+                               output,
+                               frameBlock_});
+  commands.pushConstants(tiles);
+  commands.dispatchTiles(tiles, "sky/render_sky");
+  commands.submitAndWait();
+  for (const auto& t : commands.passTimings()) {
+    result.timings.push_back(t);
+    result.frameMilliseconds += t.milliseconds;
+  }
+  result.timingNote = commands.timingNote();
+
+  result.image = Image(width, height, 4);
+  result.image.pixels = output.downloadFloats();
+  Image& image = result.image;
+  image.metadata["firmament.scene_hash"] = scene.hash();
+  image.metadata["firmament.device"] = context_.description();
+  image.metadata["firmament.sun_direction_enu"] = formatVector(view.sunDirection);
+  char sun[64];
+  std::snprintf(sun, sizeof(sun), "zenith %.6f deg, azimuth %.6f deg", view.sunZenith * kRadToDeg,
+                view.sunAzimuth * kRadToDeg);
+  image.metadata["firmament.sun"] = sun;
+  image.metadata["firmament.camera"] = scene.at("/camera").dump();
+  image.metadata["firmament.units"] = "linear Rec.709, cd/m^2";
+  for (const auto& t : result.timings) {
+    char ms[32];
+    std::snprintf(ms, sizeof(ms), "%.4f", t.milliseconds);
+    image.metadata["firmament.timing." + t.label + "_ms"] = ms;
+  }
+  return result;
+}
+
+double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const RenderResult& result,
+                          const std::string& deviceDescription) {
+  namespace fs = std::filesystem;
+  fs::path exr(exrPath);
+  fs::path png = fs::path(exr).replace_extension(".png");
+  fs::path stats = fs::path(exr).replace_extension(".json");
+
+  ExposureSettings exposure;
+  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
+                                                                   : ExposureSettings::Mode::Auto;
+  exposure.ev100 = scene.number("/camera/exposure/ev100");
+  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
+  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+
+  writeExr(exr, result.image);
+  double ev100 = writePngPreview(png, result.image, exposure);
+
+  // Luminance statistics of the image, for quick checks without opening the EXR.
+  const Image& image = result.image;
+  double sum = 0.0, maxY = 0.0, logSum = 0.0;
+  size_t nonFinite = 0, counted = 0;
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    const float* p = image.pixels.data() + i * size_t(image.channels);
+    double y = luminanceRec709(p);
+    if (!std::isfinite(y)) {
+      ++nonFinite;
+      continue;
+    }
+    sum += y;
+    maxY = std::max(maxY, y);
+    logSum += std::log(std::max(y, 1e-6));
+    ++counted;
+  }
+  nlohmann::json j;
+  j["scene"] = scene.source();
+  j["scene_hash"] = scene.hash();
+  j["device"] = deviceDescription;
+  j["width"] = image.width;
+  j["height"] = image.height;
+  j["sun"] = {{"zenith_deg", result.view.sunZenith * kRadToDeg},
+              {"azimuth_deg", result.view.sunAzimuth * kRadToDeg},
+              {"source", result.view.sunSource}};
+  j["passes"] = nlohmann::json::array();
+  for (const auto& t : result.timings) j["passes"].push_back({{"name", t.label}, {"gpu_ms", t.milliseconds}});
+  j["precompute_ms"] = result.precomputeMilliseconds;
+  j["frame_ms"] = result.frameMilliseconds;
+  j["tables_reused"] = result.tablesReused;
+  if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
+  j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
+                          {"max", maxY},
+                          {"log_average", counted ? std::exp(logSum / double(counted)) : 0.0}};
+  j["non_finite_pixels"] = nonFinite;
+  j["preview"] = {{"ev100", ev100}, {"tonemap", exposure.tonemap}};
+  j["outputs"] = {{"exr", exr.string()}, {"png", png.string()}, {"stats", stats.string()}};
+  writeTextFileAtomically(stats, j.dump(2) + "\n");
+  return ev100;
+}
+
+}  // namespace firmament
