@@ -53,6 +53,10 @@ void applyOverride(nlohmann::json& document, const std::string& override);
 // message starts with "<source>: <pointer>: ".
 void validateScene(nlohmann::json& document, const std::string& source);
 
+// scenes/default.json as built into the program (what `render` uses when given no scene).
+std::string_view defaultSceneText();
+inline constexpr const char* kDefaultSceneName = "scenes/default.json (built in)";
+
 // The embedded schema and its Markdown rendering (docs/scene.md is generated from it).
 const nlohmann::json& sceneSchema();
 std::string sceneSchemaMarkdown();

@@ -15,11 +15,13 @@ namespace firmament::cli {
 namespace {
 
 int runRender(const Args& args) {
+  // No scene: the default scene built into the program (the same as scenes/default.json).
   std::string scenePath = args.positionals.empty() ? "scenes/default.json" : args.positionals[0];
   std::vector<std::string> overrides = args.all("set");
   if (auto w = args.get("width")) overrides.push_back("/camera/width=" + *w);
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
-  Scene scene = Scene::load(scenePath, overrides);
+  Scene scene = args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
+                                         : Scene::load(scenePath, overrides);
   RenderPlan plan = planRender(scene);
   if (args.has("explain")) {
     std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),

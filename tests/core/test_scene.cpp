@@ -141,3 +141,13 @@ TEST(Scene, EverySchemaFieldHasDefaultAndDescription) {
 
 }  // namespace
 }  // namespace firmament
+
+namespace firmament {
+namespace {
+TEST(Scene, BuiltInDefaultMatchesTheFile) {
+  Scene file = Scene::load(test::sourceDir() / "scenes" / "default.json");
+  Scene builtIn = Scene::parse(defaultSceneText(), kDefaultSceneName);
+  EXPECT_EQ(file.hash(), builtIn.hash());
+}
+}  // namespace
+}  // namespace firmament

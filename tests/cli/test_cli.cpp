@@ -1,0 +1,122 @@
+// The `firmament` tool as a user meets it: exit codes (0 ok, 2 bad input, 3 runtime), messages that
+// name the file and JSON pointer, and the files a render writes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "core/exr_io.h"
+#include "tests/support/test_paths.h"
+
+namespace firmament {
+namespace {
+
+struct CommandRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CommandRun firmament(const std::string& arguments) {
+  std::string command = std::string(FIRMAMENT_EXE) + " " + arguments + " 2>&1";
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::filesystem::path writeScene(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  auto path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, HelpAndVersion) {
+  EXPECT_EQ(firmament("--version").exitCode, 0);
+  CommandRun help = firmament("--help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.output.find("render"), std::string::npos);
+  EXPECT_NE(help.output.find("compare"), std::string::npos);
+  for (const char* command : {"render", "compare", "check", "sun"}) {
+    CommandRun r = firmament(std::string(command) + " --help");
+    EXPECT_EQ(r.exitCode, 0) << command;
+    EXPECT_NE(r.output.find("usage: firmament"), std::string::npos) << command;
+  }
+  EXPECT_EQ(firmament("no-such-command").exitCode, 2);
+  EXPECT_EQ(firmament("render --no-such-option").exitCode, 2);
+}
+
+// Every kind of bad scene file the issue names: exit 2 and a message naming the file and the place.
+TEST(Cli, BadScenesExitTwoWithAClearMessage) {
+  auto dir = test::scratchDir("cli_bad_scenes");
+  struct Case {
+    std::string name, text;
+    std::vector<std::string> fragments;
+  };
+  const std::vector<Case> cases = {
+      {"unknown_key.json", R"({"camera": {"fov": 60}})", {"unknown_key.json", "/camera/fov", "unknown key"}},
+      {"wrong_type.json", R"({"camera": {"width": "wide"}})", {"wrong_type.json", "/camera/width", "integer"}},
+      {"out_of_range.json", R"({"clouds": {"layers": [{"bottom_m": -5}]}})",
+       {"out_of_range.json", "/clouds/layers/0/bottom_m", "[0, 20000]"}},
+      {"malformed.json", "{\"camera\": {", {"malformed.json", "malformed JSON", "line 1"}},
+      {"empty.json", "", {"empty.json", "empty"}},
+  };
+  for (const auto& c : cases) {
+    auto path = writeScene(dir, c.name, c.text);
+    CommandRun r = firmament("render " + path.string() + " -o " + (dir / "x.exr").string());
+    EXPECT_EQ(r.exitCode, 2) << c.name << ": " << r.output;
+    for (const auto& f : c.fragments) EXPECT_NE(r.output.find(f), std::string::npos) << c.name << ": " << r.output;
+  }
+  CommandRun missing = firmament("render " + (dir / "missing.json").string());
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_NE(missing.output.find("missing.json"), std::string::npos);
+  CommandRun badSet = firmament("render --set /camera/fov_deg=500 --explain");
+  EXPECT_EQ(badSet.exitCode, 2);
+  EXPECT_NE(badSet.output.find("/camera/fov_deg"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));  // nothing written on bad input
+}
+
+TEST(Cli, RenderWritesExrPngAndStats) {
+  auto dir = test::scratchDir("cli_render");
+  auto scene = test::sourceDir() / "scenes" / "default.json";
+  CommandRun r = firmament("render " + scene.string() + " --width 40 --height 24 -o " + (dir / "sky.exr").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(dir / "sky.exr"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "sky.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "sky.json"));
+  Image image = readExr(dir / "sky.exr");
+  EXPECT_EQ(image.width, 40);
+  EXPECT_EQ(image.height, 24);
+  EXPECT_FALSE(image.metadata["firmament.device"].empty());
+  EXPECT_FALSE(image.metadata["firmament.scene_hash"].empty());
+  for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  // No temporary files left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+
+  // compare: identical images -> exit 0 and an infinite PSNR.
+  CommandRun same = firmament("compare " + (dir / "sky.exr").string() + " " + (dir / "sky.exr").string());
+  EXPECT_EQ(same.exitCode, 0) << same.output;
+  CommandRun mismatch = firmament("compare " + (dir / "sky.exr").string() + " " + (dir / "nope.exr").string());
+  EXPECT_EQ(mismatch.exitCode, 2);
+}
+
+TEST(Cli, ExplainListsOnlyNeededPasses) {
+  CommandRun r = firmament("render --explain");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("sky/render_sky"), std::string::npos);
+  EXPECT_EQ(r.output.find("clouds/"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace firmament

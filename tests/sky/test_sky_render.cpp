@@ -1,0 +1,90 @@
+// The clear-sky fast path on the GPU (lavapipe in CI) over the stability cases of the atmosphere
+// issue: every pixel finite and non-negative for any camera altitude and sun angle, and zero
+// validation messages (GpuTest).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/color.h"
+#include "sky/sky_renderer.h"
+#include "tests/support/gpu_test.h"
+
+namespace firmament {
+namespace {
+
+class SkyRenderTest : public test::GpuTest {
+ protected:
+  static SkyRenderer& renderer() {
+    static SkyRenderer r(context());
+    return r;
+  }
+  // Renders a small image of the default scene with the given overrides.
+  static RenderResult render(std::vector<std::string> overrides, int width = 48, int height = 32) {
+    overrides.push_back("/camera/width=" + std::to_string(width));
+    overrides.push_back("/camera/height=" + std::to_string(height));
+    Scene scene = Scene::parse("{}", "<test>", overrides);
+    return renderer().render(scene);
+  }
+  static void expectFiniteNonNegative(const Image& image, const std::string& what) {
+    size_t bad = 0;
+    for (float v : image.pixels) bad += !(std::isfinite(v) && v >= 0.0f);
+    EXPECT_EQ(bad, 0u) << what;
+  }
+  static double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (size_t i = 0; i < image.pixelCount(); ++i) sum += luminanceRec709(image.pixels.data() + i * 4);
+    return sum / double(image.pixelCount());
+  }
+};
+
+TEST_F(SkyRenderTest, DefaultSceneIsBrightDaylight) {
+  RenderResult r = render({"/sun/zenith_deg=30"});
+  expectFiniteNonNegative(r.image, "noon");
+  // A clear daytime sky is thousands of cd/m² (about 2000-10000 away from the sun).
+  double mean = meanLuminance(r.image);
+  EXPECT_GT(mean, 1000.0);
+  EXPECT_LT(mean, 20000.0);
+  EXPECT_FALSE(r.timings.empty());
+}
+
+TEST_F(SkyRenderTest, EverySunZenithIsFiniteAndDarkensAtNight) {
+  double previous = 1e30;
+  for (int zenith = 0; zenith <= 180; zenith += 15) {
+    RenderResult r = render({"/sun/zenith_deg=" + std::to_string(zenith), "/sun/azimuth_deg=90",
+                             "/camera/projection=equirectangular"}, 32, 16);
+    expectFiniteNonNegative(r.image, "sun zenith " + std::to_string(zenith));
+    double mean = meanLuminance(r.image);
+    // The whole-sphere mean falls as the sun sinks (a small tolerance for the sun at the horizon).
+    EXPECT_LE(mean, previous * 1.02 + 1e-6) << "sun zenith " << zenith;
+    previous = mean;
+  }
+  EXPECT_LT(previous, 1e-3);  // sun 90 degrees below the horizon: no single or multiple scattering
+}
+
+TEST_F(SkyRenderTest, AnyCameraAltitudeIsFinite) {
+  for (const char* height : {"-100", "0", "1", "10000", "100000", "1000000", "100000000"}) {
+    RenderResult r = render({std::string("/camera/height_above_ground_m=") + height, "/camera/pitch_deg=-30",
+                             "/camera/projection=equirectangular", "/sun/zenith_deg=60"}, 32, 16);
+    expectFiniteNonNegative(r.image, std::string("camera height ") + height);
+  }
+}
+
+TEST_F(SkyRenderTest, TablesAreReusedWhileTheAtmosphereIsUnchanged) {
+  render({"/atmosphere/ground_albedo=0.3"});
+  RenderResult again = render({"/atmosphere/ground_albedo=0.3", "/camera/yaw_deg=10"});
+  EXPECT_TRUE(again.tablesReused);
+  RenderResult changed = render({"/atmosphere/ground_albedo=0.2"});
+  EXPECT_FALSE(changed.tablesReused);
+}
+
+TEST_F(SkyRenderTest, EmptyAtmosphereShowsOnlySunAndGround) {
+  RenderResult r = render({"/atmosphere/rayleigh_scattering_um4=0", "/atmosphere/mie/angstrom_beta=0",
+                           "/atmosphere/ozone/column_dobson=0", "/sun/zenith_deg=30", "/camera/pitch_deg=60"});
+  expectFiniteNonNegative(r.image, "empty atmosphere");
+  // Looking up, away from the sun, into an empty atmosphere: black.
+  const float* p = r.image.at(r.image.width / 2, 0);
+  EXPECT_EQ(p[0] + p[1] + p[2], 0.0f);
+}
+
+}  // namespace
+}  // namespace firmament
