@@ -56,6 +56,19 @@ case "$action" in
     ;;
   test)
     ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
+    # The same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (optimised, so the
+    # numeric tests stay quick). FIRMAMENT_SKIP_SANITIZERS=1 skips it.
+    if [ "${FIRMAMENT_SKIP_SANITIZERS:-0}" != 1 ]; then
+      asan=${build}-sanitize
+      if [ ! -f "$asan/build.ninja" ]; then
+        cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIRMAMENT_SANITIZE=ON >/dev/null
+      fi
+      cmake --build "$asan" -j "$jobs"
+      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+      LSAN_OPTIONS=suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0 \
+      UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        ctest --test-dir "$asan" --output-on-failure -j "$jobs" "$@"
+    fi
     ;;
   *)
     echo "usage: scripts/run.sh build|render [SCENE] [options]|test [ctest options]" >&2

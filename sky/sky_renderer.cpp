@@ -21,9 +21,10 @@ struct FrameBlock {
   float cameraRight[4];    // w = yaw
   float cameraUp[4];
   float sunDirection[4];
-  int32_t image[4];  // width, height, projection, view steps
+  int32_t image[4];    // width, height, projection, view steps
+  int32_t options[4];  // x: read the sky-view LUT
 };
-static_assert(sizeof(FrameBlock) == 6 * 16);
+static_assert(sizeof(FrameBlock) == 7 * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -45,10 +46,14 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 SkyRenderer::SkyRenderer(gpu::Context& context)
     : context_(context),
       luts_(context),
+      skyViewPipeline_(context, {"sky/sky_view_lut",
+                                 {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
+                                 3 * sizeof(float)}),
       skyPipeline_(context, {"sky/render_sky",
                              {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                               gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                              gpu::BindingType::UniformBuffer},
+                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage},
                              sizeof(gpu::TileDispatch)}),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
 
@@ -82,16 +87,40 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   frame.image[1] = height;
   frame.image[2] = view.camera.projection;
   frame.image[3] = options.viewSteps;
+  // The sky-view table holds the sky seen from inside the atmosphere; from above its top every
+  // pixel is marched (the same integral, so there is no seam at the switch).
+  const bool useSkyView = options.method == SkyMethod::SkyViewLut && view.cameraRadius <= luts_.parameters().top_radius;
+  result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
+  frame.options[0] = useSkyView ? 1 : 0;
   frameBlock_.upload(&frame, sizeof(frame));
+  if (!skyView_ || int(skyView_.width()) != options.skyViewWidth || int(skyView_.height()) != options.skyViewHeight)
+    skyView_ = gpu::Image(context_, {uint32_t(options.skyViewWidth), uint32_t(options.skyViewHeight), 1,
+                                     gpu::Format::RGBA32F, true, true, "sky-view LUT"});
 
   gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
+  if (useSkyView) {
+    struct {
+      float cameraRadius;
+      float muS;
+      int32_t steps;
+    } push{float(view.cameraRadius), float(view.sunDirection.z), options.viewSteps};
+    commands.bind(skyViewPipeline_, {luts_.atmosphereBlock(),
+                                     {luts_.transmittance(), luts_.linearClamp()},
+                                     {luts_.multipleScattering(), luts_.linearClamp()},
+                                     skyView_});
+    commands.pushConstants(push);
+    commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
+                      "sky/sky_view_lut");
+    commands.barrier();
+  }
   commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
                                {luts_.transmittance(), luts_.linearClamp()},
                                {luts_.multipleScattering(), luts_.linearClamp()},
                                output,
-                               frameBlock_});
+                               frameBlock_,
+                               {skyView_, luts_.linearClamp()}});
   commands.pushConstants(tiles);
   commands.dispatchTiles(tiles, "sky/render_sky");
   commands.submitAndWait();

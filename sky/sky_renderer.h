@@ -17,9 +17,18 @@
 
 namespace firmament {
 
+// How the sky's in-scattering reaches the pixels.
+enum class SkyMethod {
+  SkyViewLut,  // march a 192x108 sky-view table per frame, read it per pixel (Hillaire 2020)
+  PerPixel,    // march every pixel (slower; used automatically for cameras above the atmosphere)
+};
+
 struct SkyRenderOptions {
   AtmosphereLutSettings luts;
-  int viewSteps = 32;  // march steps along each view ray
+  SkyMethod method = SkyMethod::SkyViewLut;
+  int viewSteps = 32;      // march steps along each view ray (per pixel, or per sky-view texel)
+  int skyViewWidth = 192;  // azimuth samples
+  int skyViewHeight = 108; // zenith samples
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
 };
 
@@ -31,6 +40,7 @@ struct RenderResult {
   double frameMilliseconds = 0.0;        // GPU time of the per-frame passes
   double precomputeMilliseconds = 0.0;   // GPU time of the tables (0 when cached)
   bool tablesReused = false;
+  SkyMethod methodUsed = SkyMethod::SkyViewLut;
   std::string timingNote;                // non-empty when timings are wall clock
 };
 
@@ -43,8 +53,10 @@ class SkyRenderer {
  private:
   gpu::Context& context_;
   AtmosphereLuts luts_;
+  gpu::ComputePipeline skyViewPipeline_;
   gpu::ComputePipeline skyPipeline_;
   gpu::Buffer frameBlock_;
+  gpu::Image skyView_;
 };
 
 // Writes <out>.exr, <out>.png (preview with the scene's exposure) and <out>.json (stats), each

@@ -2,6 +2,7 @@
 // EXR, a PNG preview and a stats JSON beside it.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -39,14 +40,28 @@ int runRender(const Args& args) {
 
   SkyRenderOptions options;
   options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
+  std::string method = args.getOr("sky", "lut");
+  if (method == "lut") {
+    options.method = SkyMethod::SkyViewLut;
+  } else if (method == "march") {
+    options.method = SkyMethod::PerPixel;
+  } else {
+    throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
+  }
 
+  // Phases: device, render (tables + frame), write. The bar appears only past one second.
+  auto progress = std::make_unique<Progress>("render", 3);
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
   logInfo("device: " + context.description());
   SkyRenderer renderer(context);
+  progress->advance();
   RenderResult result = renderer.render(scene, options);
+  progress->advance();
   double ev100 = writeRenderOutputs(out.string(), scene, result, context.description());
+  progress->advance();
+  progress.reset();  // ends the bar's line before the summary
 
   for (const auto& t : result.timings) {
     char line[160];
@@ -72,6 +87,7 @@ const CommandRegistration reg{{"render",
                                 {"explain", "", "print the passes this scene needs (and those it leaves out); "
                                                 "with -o also render"},
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
+                                {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
                                 deviceOption()},
                                0,
                                1,

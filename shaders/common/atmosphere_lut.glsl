@@ -114,6 +114,41 @@ SHARED_INLINE void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere,
   r = atmosphere.bottom_radius + x_h * (atmosphere.top_radius - atmosphere.bottom_radius);
 }
 
+
+// Sky-view LUT parametrization (after Hillaire 2020, section 5.3): for a camera at radius r, a view
+// direction is given by its zenith angle theta and its azimuth phi relative to the sun (0..pi, the
+// sky is symmetric about the sun's vertical plane). v puts the horizon (theta_h, the tangent to the
+// ground, pi - asin(r_ground / r)) at exactly 0.5 and packs texels towards it with a square root on
+// each side, where the sky changes fastest; u is linear in phi.
+SHARED_INLINE Real horizonZenithAngle(AtmosphereParameters atmosphere, Real r) {
+  return kPi - asin(clamp(atmosphere.bottom_radius / max(r, atmosphere.bottom_radius), 0.0, 1.0));
+}
+
+SHARED_INLINE vec2 skyViewUvFromAngles(AtmosphereParameters atmosphere, Real r, Real theta, Real phi) {
+  Real theta_h = horizonZenithAngle(atmosphere, r);
+  Real v;
+  if (theta < theta_h) {
+    Real x = clamp(1.0 - theta / theta_h, 0.0, 1.0);  // 0 at the horizon, 1 at the zenith
+    v = 0.5 + 0.5 * sqrt(x);
+  } else {
+    Real x = clamp((theta - theta_h) / max(kPi - theta_h, 1e-6), 0.0, 1.0);  // 0 at the horizon, 1 at the nadir
+    v = 0.5 - 0.5 * sqrt(x);
+  }
+  return vec2(clamp(phi / kPi, 0.0, 1.0), v);
+}
+
+SHARED_INLINE void anglesFromSkyViewUv(AtmosphereParameters atmosphere, Real r, vec2 uv, OUT(Real) theta, OUT(Real) phi) {
+  Real theta_h = horizonZenithAngle(atmosphere, r);
+  if (uv.y >= 0.5) {
+    Real s = 2.0 * uv.y - 1.0;
+    theta = theta_h * (1.0 - s * s);
+  } else {
+    Real s = 1.0 - 2.0 * uv.y;
+    theta = theta_h + s * s * (kPi - theta_h);
+  }
+  phi = uv.x * kPi;
+}
+
 SHARED_END
 
 #endif  // FIRMAMENT_ATMOSPHERE_LUT_GLSL

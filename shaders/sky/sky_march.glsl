@@ -1,0 +1,107 @@
+// sky_march.glsl (GPU only): the clear-sky integral along one view ray, shared by the per-pixel
+// render and the sky-view LUT so both compute exactly the same thing:
+//   L = ∫_0^D T(0,t) [ sigma_s^R(t) p_R(nu) + sigma_s^M(t) p_M(nu) ] E_sun T_sun(t)
+//                  + [ sigma_s^R(t) + sigma_s^M(t) ] Psi_ms(t)  dt
+//     + T(0,D) L_ground                                   (if the ray meets the ground)
+// Each step is integrated analytically for constant coefficients (Hillaire 2016's energy-conserving
+// form), and samples are spaced quadratically to resolve the dense air near the camera.
+#ifndef FIRMAMENT_SKY_MARCH_GLSL
+#define FIRMAMENT_SKY_MARCH_GLSL
+
+#include "atmosphere/atmosphere_sampling.glsl"
+
+struct SkyMarch {
+  vec3 rgb;          // in-scattered light plus the lit ground, linear Rec.709 cd/m² (no sun disc)
+  vec3 throughput;   // transmittance from the camera to where the ray leaves the atmosphere
+  bool hits_ground;
+};
+
+// ∫_0^dt e^(-sigma_t x) dx = (1 - e^(-k)) / sigma_t with k = sigma_t dt, written as dt (1 - e^-k)/k and
+// replaced by dt for k -> 0 so it stays exact for thin media.
+vec3 stepIntegral(vec3 extinction, float dt, vec3 step_transmittance) {
+  vec3 k = extinction * dt;
+  return mix(dt * (1.0 - step_transmittance) / max(k, vec3(1e-12)), vec3(dt), lessThan(k, vec3(1e-4)));
+}
+
+// origin: planet-centred (m); dir, sun: unit vectors in the same frame.
+SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, sampler2D multiple_scattering_lut,
+                  vec3 origin, vec3 dir, vec3 sun, int steps) {
+  SkyMarch result;
+  result.rgb = vec3(0.0);
+  result.throughput = vec3(1.0);
+  result.hits_ground = false;
+  float r = length(origin);
+  float mu = dot(origin, dir) / r;
+  if (r > atmosphere.top_radius) {
+    // From space: jump to where the ray enters the atmosphere, if it does.
+    if (!rayIntersectsGround(r, mu, atmosphere.top_radius)) return result;
+    origin += dir * distanceToBottomAtmosphereBoundary(r, mu, atmosphere.top_radius);
+    r = atmosphere.top_radius;
+    mu = dot(origin, dir) / length(origin);
+  }
+  // A camera below the ground sphere sees from the ground (there is nothing to render below it).
+  r = max(r, atmosphere.bottom_radius + 0.01);
+  vec3 start = normalize(origin) * r;
+  float nu = dot(dir, sun);
+  // Light with a solar spectrum (aerosol single scattering, nearly grey for Angstrom alpha near 0,
+  // and the ground's reflection of sunlight) is converted with the sun's factors; Rayleigh and
+  // multiple scattering with the sky's (see atmosphere/atmosphere_spectra.h).
+  vec3 sky = vec3(0.0);
+  vec3 sunlike = vec3(0.0);
+  result.hits_ground = rayIntersectsGround(atmosphere, r, mu);
+  float path_length = distanceToNearestAtmosphereBoundary(atmosphere, r, mu);
+  steps = max(steps, 1);
+  float phase_r = rayleighPhase(nu);
+  float phase_m = cornetteShanksPhase(atmosphere.mie_phase_g, nu);
+  float t_previous = 0.0;
+  for (int i = 1; i <= steps; ++i) {
+    // quadratic spacing t_i = D (i/N)^2; the step's coefficients are taken at its midpoint
+    float f = float(i) / float(steps);
+    float t_next = path_length * f * f;
+    float dt = t_next - t_previous;
+    vec3 p = start + dir * (0.5 * (t_previous + t_next));
+    t_previous = t_next;
+    float r_p = length(p);
+    float mu_s_p = dot(p, sun) / r_p;
+    vec3 rayleigh = rayleighScatteringAt(atmosphere, r_p);
+    vec3 mie = mieScatteringAt(atmosphere, r_p);
+    vec3 extinction = extinctionAt(atmosphere, r_p);
+    vec3 sun_light = transmittanceToSun(transmittance_lut, atmosphere, r_p, mu_s_p) * atmosphere.solar_irradiance;
+    vec3 sky_source = rayleigh * phase_r * sun_light +
+                      (rayleigh + mie) * multipleScattering(multiple_scattering_lut, atmosphere, r_p, mu_s_p);
+    vec3 sunlike_source = mie * phase_m * sun_light;
+    vec3 step_transmittance = exp(-extinction * dt);
+    vec3 integral = stepIntegral(extinction, dt, step_transmittance);
+    sky += result.throughput * sky_source * integral;
+    sunlike += result.throughput * sunlike_source * integral;
+    result.throughput *= step_transmittance;
+  }
+  if (result.hits_ground) {
+    // Lambertian ground lit by the sun: albedo / pi * E_sun T_sun max(mu_s, 0).
+    vec3 p = start + dir * path_length;
+    float r_g = length(p);
+    float mu_s_g = dot(p, sun) / r_g;
+    vec3 sun_light = transmittanceToSun(transmittance_lut, atmosphere, r_g, mu_s_g) * atmosphere.solar_irradiance;
+    sunlike += result.throughput * atmosphere.ground_albedo / kPi * sun_light * max(mu_s_g, 0.0);
+  }
+  result.rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
+  return result;
+}
+
+// Limb darkening I(mu)/I(1) = mu^alpha (a power law, Hestroffer & Magnan 1998) with alpha ~ 0.5 at
+// visible wavelengths; the disc radiance is normalised so the disc integrates to E_sun:
+// ∫ I dOmega = I(1) pi a^2 * 2/(alpha+2)  =>  I(1) = E_sun (alpha+2) / (2 pi a^2).
+const float kLimbDarkeningAlpha = 0.5;
+
+// Spectral radiance of the sun's disc at the top of the atmosphere, 0 outside it.
+vec3 sunDiscRadiance(AtmosphereParameters atmosphere, float cos_angle) {
+  float a = atmosphere.sun_angular_radius;
+  if (cos_angle < cos(a)) return vec3(0.0);
+  float angle = acos(clamp(cos_angle, -1.0, 1.0));
+  float rho = clamp(angle / a, 0.0, 1.0);  // fraction of the disc radius
+  float mu = sqrt(max(1.0 - rho * rho, 0.0));
+  float centre = (kLimbDarkeningAlpha + 2.0) / (2.0 * kPi * a * a);
+  return atmosphere.solar_irradiance * centre * pow(mu, kLimbDarkeningAlpha);
+}
+
+#endif  // FIRMAMENT_SKY_MARCH_GLSL
