@@ -3,8 +3,21 @@
 #include <cstdio>
 
 #include "atmosphere/atmosphere_spectra.h"
+#include "atmosphere/table_file.h"
 
 namespace firmament {
+namespace {
+std::string fnv1aHex(const std::string& text) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char out[17];
+  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+}  // namespace
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
@@ -26,10 +39,11 @@ AtmosphereLuts::AtmosphereLuts(gpu::Context& context)
       block_(context, sizeof(AtmosphereBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "atmosphere block"),
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {}
 
-bool AtmosphereLuts::update(const AtmosphereSettings& atmosphere, const AtmosphereLutSettings& settings,
-                            gpu::CommandList& commands) {
-  std::string key = atmosphere.hash() + "/" + settings.hash();
-  if (key == key_) return false;
+AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphere,
+                                              const AtmosphereLutSettings& settings) {
+  std::string key = "atmosphere-luts-v1/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description();
+  Update result;
+  if (key == key_) return result;
 
   parameters_ = atmosphereParametersAt(atmosphere, settings.wavelengthsNm);
   AtmosphereBlock block = packAtmosphereBlock(parameters_,
@@ -45,6 +59,23 @@ bool AtmosphereLuts::update(const AtmosphereSettings& atmosphere, const Atmosphe
     multipleScattering_ = gpu::Image(context_, {uint32_t(settings.multipleScatteringSize), uint32_t(settings.multipleScatteringSize),
                                                 1, gpu::Format::RGBA32F, true, true, "multiple-scattering LUT"});
 
+  std::filesystem::path file;
+  if (!context_.cacheDir().empty())
+    file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + fnv1aHex(key) + ".bin");
+  if (!file.empty()) {
+    auto tables = readTableFile(file, key);
+    if (tables && tables->size() == 2 && (*tables)[0].width == transmittance_.width() &&
+        (*tables)[0].height == transmittance_.height() && (*tables)[1].width == multipleScattering_.width() &&
+        (*tables)[1].height == multipleScattering_.height()) {
+      transmittance_.uploadFloats((*tables)[0].values);
+      multipleScattering_.uploadFloats((*tables)[1].values);
+      key_ = key;
+      result.source = Source::Disk;
+      return result;
+    }
+  }
+
+  gpu::CommandList commands(context_);
   auto groups = [](int n) { return uint32_t((n + 7) / 8); };
   commands.bind(transmittancePipeline_, {block_, transmittance_});
   commands.pushConstants(int32_t(settings.transmittanceSteps));
@@ -59,9 +90,17 @@ bool AtmosphereLuts::update(const AtmosphereSettings& atmosphere, const Atmosphe
   commands.pushConstants(push);
   commands.dispatch(groups(settings.multipleScatteringSize), groups(settings.multipleScatteringSize), 1,
                     "atmosphere/multiple_scattering_lut");
-  commands.barrier();
+  commands.submitAndWait();
+  result.timings = commands.passTimings();
+  result.source = Source::Computed;
   key_ = key;
-  return true;
+  if (!file.empty()) {
+    writeTableFile(file, key,
+                   {TableData{transmittance_.width(), transmittance_.height(), 1, 4, transmittance_.downloadFloats()},
+                    TableData{multipleScattering_.width(), multipleScattering_.height(), 1, 4,
+                              multipleScattering_.downloadFloats()}});
+  }
+  return result;
 }
 
 }  // namespace firmament

@@ -33,10 +33,16 @@ class AtmosphereLuts {
  public:
   explicit AtmosphereLuts(gpu::Context& context);
 
-  // Makes the tables match `atmosphere` and `settings`, recording their passes into `commands` when
-  // they are stale. Returns true when passes were recorded (the caller submits), false when the cached
-  // tables are current.
-  bool update(const AtmosphereSettings& atmosphere, const AtmosphereLutSettings& settings, gpu::CommandList& commands);
+  enum class Source { Memory, Disk, Computed };
+  struct Update {
+    Source source = Source::Memory;
+    std::vector<gpu::PassTiming> timings;  // GPU time of the passes when computed
+  };
+  // Makes the tables match `atmosphere` and `settings`: kept in memory while the key is unchanged,
+  // else read from the disk cache (Context::cacheDir) when a file for the key exists, else computed
+  // on the GPU (and then written to the disk cache). The key covers every parameter, every table
+  // setting and the device, so cached tables are bit-identical to freshly computed ones.
+  Update update(const AtmosphereSettings& atmosphere, const AtmosphereLutSettings& settings);
 
   const gpu::Buffer& atmosphereBlock() const { return block_; }
   const gpu::Image& transmittance() const { return transmittance_; }

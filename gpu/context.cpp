@@ -142,9 +142,8 @@ Context::Context(const ContextOptions& options) {
     createInstance(options.validation);
     pickPhysicalDevice(options.device);
     createDevice();
-    std::filesystem::path cacheDir;
-    if (options.persistentPipelineCache) cacheDir = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
-    pipelineCache_ = std::make_unique<PipelineCache>(device_, properties_, cacheDir);
+    if (options.persistentPipelineCache) cacheDir_ = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
+    pipelineCache_ = std::make_unique<PipelineCache>(device_, properties_, cacheDir_);
   } catch (...) {
     release();  // the destructor does not run for a half-built object
     throw;

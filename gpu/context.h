@@ -98,6 +98,8 @@ class Context {
   void submit(const VkSubmitInfo& info, VkFence fence);
 
   PipelineCache& pipelineCache() { return *pipelineCache_; }
+  // The folder for files cached across runs (pipelines, precomputed tables); empty = keep nothing.
+  const std::filesystem::path& cacheDir() const { return cacheDir_; }
 
   // Labels a Vulkan object in validation messages and debuggers (no-op without debug utils).
   void setObjectName(VkObjectType type, uint64_t handle, const std::string& name) const;
@@ -131,6 +133,7 @@ class Context {
   bool validationEnabled_ = false;
   PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
   std::unique_ptr<PipelineCache> pipelineCache_;
+  std::filesystem::path cacheDir_;
 
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

@@ -66,16 +66,15 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   const int height = view.camera.height;
 
   // Tables first, in their own submission, so their cost is reported apart from the frame's.
-  gpu::CommandList precompute(context_);
-  if (luts_.update(view.atmosphere, options.luts, precompute)) {
-    precompute.submitAndWait();
-    for (const auto& t : precompute.passTimings()) {
-      result.timings.push_back(t);
-      result.precomputeMilliseconds += t.milliseconds;
-    }
-  } else {
-    result.tablesReused = true;
+  AtmosphereLuts::Update tables = luts_.update(view.atmosphere, options.luts);
+  for (const auto& t : tables.timings) {
+    result.timings.push_back(t);
+    result.precomputeMilliseconds += t.milliseconds;
   }
+  result.tablesReused = tables.source != AtmosphereLuts::Source::Computed;
+  result.tablesSource = tables.source == AtmosphereLuts::Source::Memory ? "memory"
+                        : tables.source == AtmosphereLuts::Source::Disk ? "disk cache"
+                                                                        : "computed";
 
   FrameBlock frame{};
   put(frame.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
@@ -196,7 +195,7 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   for (const auto& t : result.timings) j["passes"].push_back({{"name", t.label}, {"gpu_ms", t.milliseconds}});
   j["precompute_ms"] = result.precomputeMilliseconds;
   j["frame_ms"] = result.frameMilliseconds;
-  j["tables_reused"] = result.tablesReused;
+  j["tables"] = result.tablesSource;
   if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
   j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
                           {"max", maxY},

@@ -39,7 +39,8 @@ struct RenderResult {
   std::vector<gpu::PassTiming> timings;  // GPU time per pass (ms), in execution order
   double frameMilliseconds = 0.0;        // GPU time of the per-frame passes
   double precomputeMilliseconds = 0.0;   // GPU time of the tables (0 when cached)
-  bool tablesReused = false;
+  bool tablesReused = false;     // from memory or the disk cache
+  std::string tablesSource;      // "memory", "disk cache" or "computed"
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
   std::string timingNote;                // non-empty when timings are wall clock
 };

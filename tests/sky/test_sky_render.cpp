@@ -88,3 +88,24 @@ TEST_F(SkyRenderTest, EmptyAtmosphereShowsOnlySunAndGround) {
 
 }  // namespace
 }  // namespace firmament
+
+namespace firmament {
+namespace {
+
+class SkyTableCacheTest : public test::GpuTest {};
+
+// A second renderer (nothing in memory) reads the tables from the disk cache and renders the same
+// bits as the renderer that computed them.
+TEST_F(SkyTableCacheTest, DiskCacheGivesIdenticalPixels) {
+  Scene scene = Scene::parse("{}", "<test>", {"/camera/width=24", "/camera/height=16", "/atmosphere/ground_albedo=0.37"});
+  SkyRenderer first(context());
+  RenderResult a = first.render(scene);
+  EXPECT_EQ(a.tablesSource, "computed");
+  SkyRenderer second(context());
+  RenderResult b = second.render(scene);
+  EXPECT_EQ(b.tablesSource, "disk cache");
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+}
+
+}  // namespace
+}  // namespace firmament
