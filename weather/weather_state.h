@@ -1,0 +1,60 @@
+#pragma once
+// The model's fields on a periodic nx × ny grid of square cells, flat row-major float arrays (j = 0 is
+// the southern row, i = 0 the western column). Water is held as column amounts in kg/m², so a domain
+// total is Σ · cellArea and its conservation is exact to round-off.
+#include <cstddef>
+#include <vector>
+
+namespace firmament::weather {
+
+using Field = std::vector<float>;
+
+// Moves `amount` from one water field value to another so that what the receiver gains is exactly
+// what the giver lost in float arithmetic: the rounding of `from − amount` would otherwise create or
+// destroy water whenever the amount is below half an ulp of the giver (tiny condensation onto a large
+// vapour path).
+inline void transferWater(float& from, float& to, float amount) {
+  float reduced = from - amount;
+  to += from - reduced;
+  from = reduced;
+}
+
+// Σ of a field in double precision.
+double sumField(const Field& f);
+
+struct WeatherState {
+  int nx = 0, ny = 0;
+  double cellSize_m = 200.0;
+  double time_s = 0.0;
+
+  // Prognostic.
+  Field temperature;        // boundary-layer temperature anomaly against the preset's reference (K)
+  Field vapour;             // boundary-layer water vapour path (kg/m²)
+  Field cloudWater;         // cloud liquid water path (kg/m²)
+  Field rain;               // rain water path aloft (kg/m²)
+  Field updraft;            // convective updraft strength (m/s)
+  Field cloudTop;           // cloud-top height above ground (m); 0 where there is no cloud
+  Field convectiveFraction; // share of the cloud water that is convective (0 stratiform … 1 convective)
+
+  // Diagnostic (recomputed every step).
+  Field cloudBase;          // m above ground (lifting condensation level)
+  Field surfaceHeatFlux;    // sensible heat flux (W/m²)
+  Field precipitationRate;  // rain reaching the ground (kg m⁻² s⁻¹ = mm/s)
+  Field windU, windV;       // total wind at cloud base, east and north (m/s)
+  Field lift;               // ascent at the boundary-layer top from convergence and large-scale lifting (m/s)
+
+  // Water that left or entered the domain, integrated (kg).
+  double precipitatedOut_kg = 0.0;
+  double exchangedIn_kg = 0.0;  // surface evaporation minus entrainment drying
+
+  WeatherState() = default;
+  WeatherState(int nx_, int ny_, double cellSize);
+  size_t cells() const { return size_t(nx) * size_t(ny); }
+  double cellArea() const { return cellSize_m * cellSize_m; }
+  size_t index(int i, int j) const { return size_t(j) * size_t(nx) + size_t(i); }
+  // Σ field · cellArea in double.
+  double total_kg(const Field& f) const;
+  double waterTotal_kg() const { return total_kg(vapour) + total_kg(cloudWater) + total_kg(rain); }
+};
+
+}  // namespace firmament::weather
