@@ -82,9 +82,17 @@ void SemiLagrangianAdvection::advectConservingFields(std::initializer_list<Field
 double SemiLagrangianAdvection::restoreTotal(Field& f, double before) {
   double after = sumField(f);
   if (after <= 0.0 || before <= 0.0) return 0.0;
-  // Scale in double: a float factor would quantise the correction itself to ~6e-8.
-  double ratio = before / after;
-  for (float& v : f) v = float(double(v) * ratio);
+  // Scale in double and carry each cell's rounding into the next: a correction far below a float's
+  // resolution (1e-9 relative) would otherwise round away in every cell and never be applied, and the
+  // small, biased round-off of interpolation would accumulate over a day.
+  double ratio = before / after, carry = 0.0;
+  for (float& v : f) {
+    double target = double(v) * ratio + carry;
+    float stored = float(target);
+    if (stored < 0.0f) stored = 0.0f;
+    carry = target - double(stored);
+    v = stored;
+  }
   return ratio - 1.0;
 }
 

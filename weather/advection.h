@@ -6,7 +6,8 @@
 //
 // Semi-Lagrangian interpolation does not conserve mass. For water, a global a-posteriori fixer
 // (Priestley 1993, MWR 121:621) rescales the field to its pre-advection total: q ← q · Σq⁻/Σq⁺, which
-// keeps positive fields positive and makes the domain total exact to round-off.
+// keeps positive fields positive and makes the domain total exact to round-off (the per-cell rounding
+// of the rescale is carried from cell to cell, so the total is right to a float ulp of one cell).
 #include <cstdint>
 #include <initializer_list>
 #include <vector>

@@ -31,7 +31,7 @@ double vapourPressureFromMixingRatio(double mixingRatio, double pressure_Pa) {
 double dewPoint(double vapourPressure_Pa) {
   double x = std::log(std::max(vapourPressure_Pa, 1e-3) / 610.78);
   x = std::min(x, 17.0);  // e far above any real saturation: keep the denominator positive
-  return (4717.3 - 35.85 * x) / (17.27 - x);
+  return (17.27 * 273.15 - 35.85 * x) / (17.27 - x);
 }
 
 double liftingCondensationLevel(double temperature_K, double dewPoint_K) {

@@ -156,18 +156,32 @@ void WeatherModel::substep(double dt, bool windCurrent) {
 
   s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
 
-  // Housekeeping: remnants of cloud and rain below 1e-6 kg/m² evaporate (conservatively, into the
-  // vapour path) instead of decaying forever; tops only where there is cloud; the anomaly within the
-  // parcel table's range.
+  // Housekeeping: remnants of cloud and rain below 1e-4 kg/m² (τ ≈ 0.015) evaporate instead of decaying forever
+  // (they are summed and returned to the vapour field by a double-precision rescale, so no water is
+  // lost to rounding); tops only where there is cloud; the anomaly within the parcel table's range.
+  double remnants = 0.0;
   for (size_t c = 0; c < s.cells(); ++c) {
-    if (s.cloudWater[c] < 1e-6f) transferWater(s.cloudWater[c], s.vapour[c], s.cloudWater[c]);
-    if (s.rain[c] < 1e-6f) transferWater(s.rain[c], s.vapour[c], s.rain[c]);
+    if (s.cloudWater[c] > 0.0f && s.cloudWater[c] < 1e-4f) {
+      remnants += s.cloudWater[c];
+      s.cloudWater[c] = 0.0f;
+    }
+    if (s.rain[c] > 0.0f && s.rain[c] < 1e-4f) {
+      remnants += s.rain[c];
+      s.rain[c] = 0.0f;
+    }
     if (s.cloudWater[c] == 0.0f && s.rain[c] == 0.0f) {
       s.cloudTop[c] = 0.0f;
       s.convectiveFraction[c] = 0.0f;
     }
     s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
     s.convectiveFraction[c] = std::clamp(s.convectiveFraction[c], 0.0f, 1.0f);
+  }
+  if (remnants > 0.0) {
+    double vapour = sumField(s.vapour);
+    if (vapour > 0.0)
+      SemiLagrangianAdvection::restoreTotal(s.vapour, vapour + remnants);
+    else
+      for (float& v : s.vapour) v = float(remnants / double(s.cells()));
   }
   s.time_s += dt;
 }

@@ -9,14 +9,31 @@ namespace firmament::weather {
 
 using Field = std::vector<float>;
 
-// Moves `amount` from one water field value to another so that what the receiver gains is exactly
-// what the giver lost in float arithmetic: the rounding of `from − amount` would otherwise create or
-// destroy water whenever the amount is below half an ulp of the giver (tiny condensation onto a large
-// vapour path).
+// Moves a non-negative `amount` (≤ from) of water from one cell value to another so that the receiver
+// gains exactly what the giver loses in float arithmetic. Plain `from -= a; to += a` creates or destroys
+// water whenever a is below half an ulp of either side (a trace of cloud evaporating into a large vapour
+// path), and such errors are biased, not random. The move is trimmed to what both sides can represent;
+// when nothing can move exactly (a trace far below the receiver's resolution) nothing moves.
 inline void transferWater(float& from, float& to, float amount) {
-  float reduced = from - amount;
-  to += from - reduced;
-  from = reduced;
+  if (!(amount > 0.0f)) return;
+  amount = amount < from ? amount : from;
+  float newTo = to + amount;
+  float gained = newTo - to;
+  if (gained <= from) {
+    float newFrom = from - gained;
+    if (from - newFrom == gained) {
+      from = newFrom;
+      to = newTo;
+      return;
+    }
+  }
+  float newFrom = from - amount;
+  float lost = from - newFrom;
+  newTo = to + lost;
+  if (newTo - to == lost) {
+    from = newFrom;
+    to = newTo;
+  }
 }
 
 // Σ of a field in double precision.
