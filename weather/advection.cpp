@@ -1,5 +1,6 @@
 #include "weather/advection.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace firmament::weather {
@@ -85,14 +86,28 @@ double SemiLagrangianAdvection::restoreTotal(Field& f, double before) {
   // Scale in double and carry each cell's rounding into the next: a correction far below a float's
   // resolution (1e-9 relative) would otherwise round away in every cell and never be applied, and the
   // small, biased round-off of interpolation would accumulate over a day.
-  double ratio = before / after, carry = 0.0;
-  for (float& v : f) {
-    double target = double(v) * ratio + carry;
-    float stored = float(target);
-    if (stored < 0.0f) stored = 0.0f;
-    carry = target - double(stored);
-    v = stored;
+  double ratio = before / after;
+  if (ratio == 1.0) return 0.0;
+  // Four interleaved carry chains (independent, so the loop is not one long dependency chain); their
+  // leftovers, a few ulps, go into the last cell.
+  double carry[4] = {0.0, 0.0, 0.0, 0.0};
+  const size_t n = f.size();
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int k = 0; k < 4; ++k) {
+      double target = double(f[i + k]) * ratio + carry[k];
+      float stored = std::max(float(target), 0.0f);
+      carry[k] = target - double(stored);
+      f[i + k] = stored;
+    }
+  double rest = carry[0] + carry[1] + carry[2] + carry[3];
+  for (; i < n; ++i) {
+    double target = double(f[i]) * ratio + rest;
+    float stored = std::max(float(target), 0.0f);
+    rest = target - double(stored);
+    f[i] = stored;
   }
+  if (n > 0) f[n - 1] = std::max(float(double(f[n - 1]) + rest), 0.0f);
   return ratio - 1.0;
 }
 

@@ -124,6 +124,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   // Mixing is conservative in exact arithmetic; the fixer removes its float round-off from the totals.
   for (Field* f : {&s.vapour, &s.cloudWater}) {
     double before = sumField(*f);
+    if (before == 0.0) continue;
     mixing_.apply(*f, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
     SemiLagrangianAdvection::restoreTotal(*f, before);
   }
