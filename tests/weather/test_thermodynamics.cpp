@@ -1,0 +1,45 @@
+// Saturation, dew point, LCL and moist lapse rate against published values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "weather/physical_constants.h"
+#include "weather/thermodynamics.h"
+
+using namespace firmament::weather;
+
+TEST(Thermodynamics, TetensMatchesTabulatedSaturationPressure) {
+  // Goff–Gratch values (Smithsonian Meteorological Tables; List 1951): 611.2 Pa at 0 °C, 2339 Pa at
+  // 20 °C, 4246 Pa at 30 °C. Tetens is within 0.5 % there.
+  EXPECT_NEAR(saturationVapourPressure(273.15), 611.2, 611.2 * 0.005);
+  EXPECT_NEAR(saturationVapourPressure(293.15), 2339.0, 2339.0 * 0.005);
+  EXPECT_NEAR(saturationVapourPressure(303.15), 4246.0, 4246.0 * 0.005);
+}
+
+TEST(Thermodynamics, DewPointInvertsSaturation) {
+  for (double t = 230.0; t <= 320.0; t += 5.0) EXPECT_NEAR(dewPoint(saturationVapourPressure(t)), t, 1e-6);
+}
+
+TEST(Thermodynamics, EspyLcl) {
+  EXPECT_DOUBLE_EQ(liftingCondensationLevel(303.15, 293.15), 1250.0);
+  EXPECT_DOUBLE_EQ(liftingCondensationLevel(290.0, 295.0), 0.0);  // supersaturated input: at the ground
+}
+
+TEST(Thermodynamics, MoistLapseRateMatchesGlossaryValues) {
+  // AMS Glossary / Wallace & Hobbs: ≈ 4.3 K/km at 20 °C and 1000 hPa, ≈ 6.5 K/km at 0 °C and 1000 hPa,
+  // approaching the dry rate in cold air.
+  EXPECT_NEAR(moistAdiabaticLapseRate(293.15, 100000.0) * 1e3, 4.3, 0.3);
+  EXPECT_NEAR(moistAdiabaticLapseRate(273.15, 100000.0) * 1e3, 6.5, 0.4);
+  EXPECT_NEAR(moistAdiabaticLapseRate(213.15, 20000.0) * 1e3, kDryAdiabaticLapseRate * 1e3, 0.3);
+}
+
+TEST(Thermodynamics, FastTablesMatchFormulas) {
+  for (float t = 160.0f; t < 370.0f; t += 0.37f) {
+    double exact = saturationVapourPressure(t);
+    EXPECT_NEAR(saturationVapourPressureFast(t), exact, exact * 2e-5 + 1e-9) << t;
+  }
+  for (float e = 1.0f; e < 15000.0f; e *= 1.13f) EXPECT_NEAR(dewPointFast(e), dewPoint(e), 0.01) << e;
+  for (float x : {1e-6f, 0.3f, 1.0f, 27.0f, 1234.5f}) EXPECT_NEAR(cbrtFast(x), std::cbrt(x), 1e-5 * std::cbrt(x));
+  EXPECT_EQ(cbrtFast(0.0f), 0.0f);
+  EXPECT_EQ(cbrtFast(-3.0f), 0.0f);
+}

@@ -1,0 +1,120 @@
+#include "weather/advection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace firmament::weather {
+
+void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, int nx, int ny, double cellSize_m,
+                                      double dt_s) {
+  nx_ = nx;
+  ny_ = ny;
+  size_t n = size_t(nx) * ny;
+  i0_.resize(n);
+  j0_.resize(n);
+  fx_.resize(n);
+  fy_.resize(n);
+  const double scale = dt_s / cellSize_m;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      size_t c = size_t(j) * nx + i;
+      // Departure point in cell units, in double so that long steps keep their sub-cell fraction.
+      double x = i - windU[c] * scale, y = j - windV[c] * scale;
+      double fx = std::floor(x), fy = std::floor(y);
+      long long ix = (long long)fx, iy = (long long)fy;
+      if (ix < 0 || ix >= nx) ix = ((ix % nx) + nx) % nx;  // far departures only
+      if (iy < 0 || iy >= ny) iy = ((iy % ny) + ny) % ny;
+      i0_[c] = int32_t(ix);
+      j0_[c] = int32_t(iy);
+      fx_[c] = float(x - fx);
+      fy_[c] = float(y - fy);
+    }
+}
+
+void SemiLagrangianAdvection::advect(Field& f) { advectFields({&f}); }
+
+void SemiLagrangianAdvection::advectFields(std::initializer_list<Field*> fields) {
+  // One pass over the cells for all fields: the departure indices and weights are read once.
+  constexpr size_t kMax = 8;
+  Field* in[kMax];
+  size_t count = 0;
+  for (Field* f : fields)
+    if (count < kMax) in[count++] = f;
+  scratchMany_.resize(count);
+  float* out[kMax];
+  const float* src[kMax];
+  for (size_t k = 0; k < count; ++k) {
+    scratchMany_[k].resize(in[k]->size());
+    out[k] = scratchMany_[k].data();
+    src[k] = in[k]->data();
+  }
+  const int nx = nx_, ny = ny_;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      size_t c = size_t(j) * nx + i;
+      int x0 = i0_[c], y0 = j0_[c];
+      int x1 = x0 + 1 == nx ? 0 : x0 + 1, y1 = y0 + 1 == ny ? 0 : y0 + 1;
+      size_t r0 = size_t(y0) * nx, r1 = size_t(y1) * nx;
+      float tx = fx_[c], ty = fy_[c];
+      float w00 = (1.0f - tx) * (1.0f - ty), w10 = tx * (1.0f - ty), w01 = (1.0f - tx) * ty, w11 = tx * ty;
+      for (size_t k = 0; k < count; ++k) {
+        const float* f = src[k];
+        out[k][c] = w00 * f[r0 + x0] + w10 * f[r0 + x1] + w01 * f[r1 + x0] + w11 * f[r1 + x1];
+      }
+    }
+  for (size_t k = 0; k < count; ++k) in[k]->swap(scratchMany_[k]);
+}
+
+void SemiLagrangianAdvection::advectConservingFields(std::initializer_list<Field*> fields) {
+  double before[8] = {};
+  size_t k = 0;
+  for (Field* f : fields) {
+    before[k] = sumField(*f);
+    if (++k == 8) break;
+  }
+  advectFields(fields);
+  k = 0;
+  for (Field* f : fields) {
+    restoreTotal(*f, before[k]);
+    if (++k == 8) break;
+  }
+}
+
+double SemiLagrangianAdvection::restoreTotal(Field& f, double before) {
+  double after = sumField(f);
+  if (after <= 0.0 || before <= 0.0) return 0.0;
+  // Scale in double and carry each cell's rounding into the next: a correction far below a float's
+  // resolution (1e-9 relative) would otherwise round away in every cell and never be applied, and the
+  // small, biased round-off of interpolation would accumulate over a day.
+  double ratio = before / after;
+  if (ratio == 1.0) return 0.0;
+  // Four interleaved carry chains (independent, so the loop is not one long dependency chain); their
+  // leftovers, a few ulps, go into the last cell.
+  double carry[4] = {0.0, 0.0, 0.0, 0.0};
+  const size_t n = f.size();
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int k = 0; k < 4; ++k) {
+      double target = double(f[i + k]) * ratio + carry[k];
+      float stored = std::max(float(target), 0.0f);
+      carry[k] = target - double(stored);
+      f[i + k] = stored;
+    }
+  double rest = carry[0] + carry[1] + carry[2] + carry[3];
+  for (; i < n; ++i) {
+    double target = double(f[i]) * ratio + rest;
+    float stored = std::max(float(target), 0.0f);
+    rest = target - double(stored);
+    f[i] = stored;
+  }
+  if (n > 0) f[n - 1] = std::max(float(double(f[n - 1]) + rest), 0.0f);
+  return ratio - 1.0;
+}
+
+double SemiLagrangianAdvection::advectConserving(Field& f) {
+  double before = sumField(f);
+  advect(f);
+  return restoreTotal(f, before);
+}
+
+}  // namespace firmament::weather

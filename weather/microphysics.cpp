@@ -1,0 +1,61 @@
+#include "weather/microphysics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "weather/physical_constants.h"
+#include "weather/thermodynamics.h"
+
+namespace firmament::weather {
+
+double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_s) {
+  constexpr float kAutoconversionRate = 1e-3f, kThresholdMixingRatio = 0.5e-3f, kFallSpeed = 6.0f;
+  const float dt = float(dt_s);
+  const float rho = float(layer.density_kg_m3);
+  const float kelvinPerKg = float(kLatentHeatVaporization / layer.heatCapacity_J_m2_K);
+  const float rhoH = float(layer.massPerArea_kg_m2);
+  const float tRef = float(layer.referenceTemperature_K);
+  const float p0 = float(layer.surfacePressure_Pa);
+  double out = 0.0;
+  const size_t n = s.cells();
+  for (size_t c = 0; c < n; ++c) {
+    float cloud = s.cloudWater[c], rain = s.rain[c];
+    if (cloud <= 0.0f && rain <= 0.0f) {
+      s.precipitationRate[c] = 0.0f;
+      continue;
+    }
+    float base = s.cloudBase[c], top = std::max(s.cloudTop[c], base + 100.0f);
+    float depth = top - base;
+    // Cloud → rain.
+    if (cloud > 0.0f) {
+      float threshold = rho * kThresholdMixingRatio * std::min(depth, 2000.0f);
+      float rainMixing = rain / (rho * depth);
+      float rate = kAutoconversionRate * std::max(0.0f, cloud - threshold) +
+                   2.2f * cloud * std::pow(rainMixing, 0.875f);
+      if (rate > 0.0f) {
+        float converted = cloud * (1.0f - std::exp(-rate * dt / cloud));
+        transferWater(s.cloudWater[c], rain, converted);
+      }
+    }
+    // Rain-out, part evaporating below the base.
+    float midHeight = std::max(0.5f * (base + top), 500.0f);
+    float fallen = rain * (1.0f - std::exp(-dt * kFallSpeed / midHeight));
+    float vapour = s.vapour[c];
+    float saturated = rhoH * saturationMixingRatioFast(tRef + s.temperature[c], p0);
+    float humidity = saturated > 0.0f ? std::clamp(vapour / saturated, 0.0f, 1.0f) : 1.0f;
+    float evaporatedShare = std::min(0.9f, 0.5f * (1.0f - humidity) * base * 1e-3f);
+    float evaporated = fallen * evaporatedShare;
+    float newRain = rain - fallen;
+    float newVapour = vapour + evaporated;
+    // What left the fields is exactly what the stored values lost (round-off included).
+    double left = (double(rain) - double(newRain)) - (double(newVapour) - double(vapour));
+    s.rain[c] = newRain;
+    s.vapour[c] = newVapour;
+    s.temperature[c] -= kelvinPerKg * evaporated;
+    s.precipitationRate[c] = float(left / dt_s);
+    out += left;
+  }
+  return out * s.cellArea();
+}
+
+}  // namespace firmament::weather

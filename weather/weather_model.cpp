@@ -1,0 +1,209 @@
+#include "weather/weather_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "weather/convection.h"
+#include "weather/microphysics.h"
+#include "weather/physical_constants.h"
+#include "weather/sounding.h"
+#include "weather/stratiform.h"
+#include "weather/surface_heating.h"
+#include "weather/thermodynamics.h"
+#include "weather/value_noise.h"
+
+namespace firmament::weather {
+
+WeatherModel::WeatherModel(const WeatherConfig& config, SunElevationFunction sunElevation)
+    : config_(config),
+      sunElevation_(std::move(sunElevation)),
+      schedule_(config.preset, config.schedule),
+      state_(config.cellsX, config.cellsY, config.cellSize_m),
+      wind_(config.cellsX, config.cellsY, config.cellSize_m, config.seed) {
+  if (config.cellsX < 4 || config.cellsY < 4 || !(config.cellSize_m > 0.0))
+    throw InputError("weather grid must be at least 4 × 4 cells with a positive cell size");
+  if (!sunElevation_) throw InputError("weather model needs a sun-elevation function");
+  // Surface heterogeneity: smooth seeded noise with ~3 km features, mean 1, never negative.
+  const double featureCells = std::max(2.0, 3000.0 / config.cellSize_m);
+  Field noise = periodicNoiseField(config.cellsX, config.cellsY, featureCells, 3, hashCombine(config.seed, 11));
+  heatingMap_.resize(noise.size());
+  for (size_t c = 0; c < noise.size(); ++c)
+    heatingMap_[c] = std::max(0.0f, 1.0f + float(config.surfaceHeterogeneity) * noise[c]);
+  // Initial state: the background vapour, a faint seeded temperature texture, no cloud.
+  PresetParameters p = schedule_.parametersAt(0.0);
+  Field thermal = periodicNoiseField(config.cellsX, config.cellsY, featureCells / 2, 2, hashCombine(config.seed, 12));
+  float vapour = float(backgroundVapour_kg_m2(p));
+  for (size_t c = 0; c < state_.cells(); ++c) {
+    state_.temperature[c] = 0.2f * thermal[c];
+    state_.vapour[c] = vapour;
+  }
+  updateWind(p);
+  initialWater_kg_ = state_.waterTotal_kg();
+}
+
+void WeatherModel::setHeatingMap(const std::vector<float>& map) {
+  if (map.size() != state_.cells())
+    throw InputError("heating map has " + std::to_string(map.size()) + " values; the grid has " +
+                     std::to_string(state_.cells()));
+  for (float v : map)
+    if (!(v >= 0.0f) || !std::isfinite(v)) throw InputError("heating map values must be finite and ≥ 0");
+  for (size_t c = 0; c < map.size(); ++c) heatingMap_[c] *= map[c];
+}
+
+glm::dvec2 WeatherModel::prevailingWind_m_s() const {
+  double from = config_.windFrom_deg * std::numbers::pi / 180.0;
+  return -config_.windSpeed_m_s * glm::dvec2(std::sin(from), std::cos(from));
+}
+
+glm::dvec2 WeatherModel::windShear_per_s() const {
+  glm::dvec2 u = prevailingWind_m_s();
+  double speed = glm::length(u);
+  glm::dvec2 direction = speed > 0.0 ? u / speed : glm::dvec2(1.0, 0.0);
+  return direction * (config_.windShear_m_s_per_km * 1e-3);
+}
+
+double WeatherModel::backgroundVapour_kg_m2(const PresetParameters& p) const {
+  BoundaryLayer layer(p, config_.surfacePressure_Pa);
+  double e = std::clamp(p.relativeHumidity, 0.0, 1.0) * saturationVapourPressure(p.referenceTemperature_K);
+  return layer.massPerArea_kg_m2 * mixingRatioFromVapourPressure(e, config_.surfacePressure_Pa);
+}
+
+double WeatherModel::updateWind(const PresetParameters& p) {
+  WindParameters w;
+  glm::dvec2 u = prevailingWind_m_s();
+  w.prevailingU_m_s = u.x;
+  w.prevailingV_m_s = u.y;
+  w.turbulence_m_s = config_.turbulence_m_s;
+  w.boundaryLayerDepth_m = p.boundaryLayerDepth_m;
+  w.seed = config_.seed;
+  return wind_.update(state_, w, state_.time_s);
+}
+
+void WeatherModel::refreshParcelTable(const PresetParameters& p) {
+  auto values = p.toArray();
+  double change = 0.0;
+  for (int i = 0; i < PresetParameters::kCount; ++i)
+    change = std::max(change, std::fabs(values[i] - tableParameters_[i]) / std::max(1e-3, std::fabs(values[i])));
+  if (tableBuilt_ && (change < 1e-9 || (change < 0.05 && state_.time_s - tableBuiltAt_s_ < 300.0))) return;
+  parcelTable_.build(Sounding(p, config_.surfacePressure_Pa));
+  tableParameters_ = values;
+  tableBuiltAt_s_ = state_.time_s;
+  tableBuilt_ = true;
+}
+
+void WeatherModel::step(double dt_s) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw InputError("weather time step must be positive and finite");
+  PresetParameters p = schedule_.parametersAt(state_.time_s);
+  double deformation = updateWind(p);
+  double longest = std::min(kMaxSubstep_s, deformation > 0.0 ? 0.5 / deformation : kMaxSubstep_s);
+  int n = int(std::min(1e7, std::ceil(dt_s / longest - 1e-9)));
+  n = std::max(n, 1);
+  lastSubsteps_ = n;
+  for (int k = 0; k < n; ++k) substep(dt_s / n, k == 0);
+}
+
+void WeatherModel::advance(double duration_s) {
+  double end = state_.time_s + duration_s;
+  while (state_.time_s < end - 1e-6) step(std::min(config_.timeStep_s, end - state_.time_s));
+}
+
+void WeatherModel::substep(double dt, bool windCurrent) {
+  WeatherState& s = state_;
+  const PresetParameters p = schedule_.parametersAt(s.time_s);
+  refreshParcelTable(p);
+  const BoundaryLayer layer(p, config_.surfacePressure_Pa);
+  if (!windCurrent) updateWind(p);
+
+  // Transport.
+  advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
+  advection_.advectFields({&s.temperature, &s.updraft, &s.cloudTop, &s.convectiveFraction});
+  advection_.advectConservingFields({&s.vapour, &s.cloudWater, &s.rain});
+  mixing_.apply(s.temperature, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
+  // Mixing is conservative in exact arithmetic; the fixer removes its float round-off from the totals.
+  for (Field* f : {&s.vapour, &s.cloudWater}) {
+    double before = sumField(*f);
+    if (before == 0.0) continue;
+    mixing_.apply(*f, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
+    SemiLagrangianAdvection::restoreTotal(*f, before);
+  }
+
+  // Sources.
+  SurfaceHeatingParameters heating;
+  heating.sunElevation_rad = sunElevation_(s.time_s + 0.5 * dt);
+  heating.absorbedSolar_W_m2 = p.absorbedSolar_W_m2 * config_.heatingScale;
+  heating.bowenRatio = p.bowenRatio;
+  heating.backgroundVapour_kg_m2 = backgroundVapour_kg_m2(p);
+  heating.exchangeWithSurroundings = config_.exchangeWithSurroundings;
+  s.exchangedIn_kg += applySurfaceHeating(s, heatingMap_, layer, heating, dt);
+
+  StratiformParameters stratiform;
+  stratiform.largeScaleLift_m_s = p.largeScaleLift_m_s;
+  stratiform.frontLift_m_s = p.frontLift_m_s;
+  stratiform.frontWidth_m = p.frontWidth_m;
+  glm::dvec2 u = prevailingWind_m_s();
+  double speed = glm::length(u);
+  glm::dvec2 direction = speed > 0.0 ? u / speed : glm::dvec2(1.0, 0.0);
+  stratiform.frontDirectionX = direction.x;
+  stratiform.frontDirectionY = direction.y;
+  stratiform.frontPosition_m = speed * s.time_s;
+  stratiform.freeTroposphereRH = p.freeTroposphereRH;
+  applyStratiform(s, layer, stratiform, dt);
+
+  ConvectionParameters convection;
+  convection.tropopause_m = std::max(p.tropopause_m, p.stableLayerBase_m);
+  applyConvection(s, parcelTable_, layer, convection, dt);
+
+  s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
+
+  // Housekeeping: remnants of cloud and rain below 1e-4 kg/m² (τ ≈ 0.015) evaporate instead of decaying forever
+  // (they are summed and returned to the vapour field by a double-precision rescale, so no water is
+  // lost to rounding); tops only where there is cloud; the anomaly within the parcel table's range.
+  double remnants = 0.0;
+  for (size_t c = 0; c < s.cells(); ++c) {
+    if (s.cloudWater[c] > 0.0f && s.cloudWater[c] < 1e-4f) {
+      remnants += s.cloudWater[c];
+      s.cloudWater[c] = 0.0f;
+    }
+    if (s.rain[c] > 0.0f && s.rain[c] < 1e-4f) {
+      remnants += s.rain[c];
+      s.rain[c] = 0.0f;
+    }
+    if (s.cloudWater[c] == 0.0f && s.rain[c] == 0.0f) {
+      s.cloudTop[c] = 0.0f;
+      s.convectiveFraction[c] = 0.0f;
+    }
+    s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
+    s.convectiveFraction[c] = std::clamp(s.convectiveFraction[c], 0.0f, 1.0f);
+  }
+  if (remnants > 0.0) {
+    double vapour = sumField(s.vapour);
+    if (vapour > 0.0)
+      SemiLagrangianAdvection::restoreTotal(s.vapour, vapour + remnants);
+    else
+      for (float& v : s.vapour) v = float(remnants / double(s.cells()));
+  }
+  s.time_s += dt;
+}
+
+WeatherMap WeatherModel::map(const RegionPlacement& placement) const {
+  return makeWeatherMap(state_, placement, windShear_per_s());
+}
+
+WaterBudget WeatherModel::waterBudget() const {
+  WaterBudget b;
+  b.total_kg = state_.waterTotal_kg();
+  b.precipitatedOut_kg = state_.precipitatedOut_kg;
+  b.exchangedIn_kg = state_.exchangedIn_kg;
+  b.initial_kg = initialWater_kg_;
+  return b;
+}
+
+void WeatherModel::resetBudget() {
+  state_.precipitatedOut_kg = 0.0;
+  state_.exchangedIn_kg = 0.0;
+  initialWater_kg_ = state_.waterTotal_kg();
+}
+
+}  // namespace firmament::weather
