@@ -169,4 +169,43 @@ AstroTime makeAstroTime(std::string_view iso8601, std::optional<double> deltaTSe
   return makeAstroTime(parseUtc(iso8601), deltaTSeconds);
 }
 
+namespace {
+// Days since 1970-01-01 of a proleptic Gregorian date, and back (the civil-calendar algorithms in
+// H. Hinnant, "chrono-Compatible Low-Level Date Algorithms": eras of 400 years, March-based years).
+int64_t daysFromCivil(int64_t y, int m, int d) {
+  y -= m <= 2;
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const int64_t yoe = y - era * 400;
+  const int64_t doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const int64_t doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + doe - 719468;
+}
+
+void civilFromDays(int64_t z, int& y, int& m, int& d) {
+  z += 719468;
+  const int64_t era = (z >= 0 ? z : z - 146096) / 146097;
+  const int64_t doe = z - era * 146097;
+  const int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const int64_t mp = (5 * doy + 2) / 153;
+  d = int(doy - (153 * mp + 2) / 5 + 1);
+  m = int(mp < 10 ? mp + 3 : mp - 9);
+  y = int(yoe + era * 400 + (m <= 2));
+}
+}  // namespace
+
+UtcTime addSeconds(const UtcTime& utc, double seconds) {
+  double total = double(daysFromCivil(utc.year, utc.month, utc.day)) * 86400.0 + utc.hour * 3600.0 +
+                 utc.minute * 60.0 + utc.second + seconds;
+  double days = std::floor(total / 86400.0);
+  double rest = total - days * 86400.0;
+  UtcTime out;
+  civilFromDays(int64_t(days), out.year, out.month, out.day);
+  out.hour = int(rest / 3600.0);
+  rest -= out.hour * 3600.0;
+  out.minute = int(rest / 60.0);
+  out.second = rest - out.minute * 60.0;
+  return out;
+}
+
 }  // namespace firmament::astro

@@ -25,6 +25,10 @@ UtcTime parseUtc(std::string_view text);
 // "YYYY-MM-DDThh:mm:ss.sssZ".
 std::string formatUtc(const UtcTime& utc);
 
+// `utc` plus `seconds` (may be negative), counting every day as 86400 s (a leap second inside the
+// interval is not counted; simulated-time offsets never need that precision).
+UtcTime addSeconds(const UtcTime& utc, double seconds);
+
 // A Julian date split in two parts, as ERFA takes it: `dayStart + dayFraction` is the date. Splitting
 // keeps the time of day at full double precision (a single double JD resolves only ~20 µs).
 struct JulianDate {

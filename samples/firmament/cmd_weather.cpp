@@ -1,9 +1,7 @@
 // firmament weather SCENE --hours H --out DIR: runs the weather simulation alone and writes the weather
 // maps (EXR), colour-coded previews (PNG), stats.csv and a plot of it (stats.svg).
 //
-// TODO(main): scene loading here is a minimal stand-in (JSON parse + --set by JSON pointer + the weather
-// section's own validation). Swap in Scene::load(path, overrides) when core/scene.h lands; the sun will
-// come from astro's ephemeris instead of weather/solar_day.h's analytic day.
+// The sun follows astro's ephemeris for the scene's place and time (refraction included).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,28 +16,18 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "samples/firmament/command.h"
-#include "weather/solar_day.h"
 #include "weather/svg_plot.h"
 #include "weather/weather_config.h"
 #include "weather/weather_model.h"
 #include "weather/weather_preview.h"
 
-#if __has_include("core/exr_io.h")
+#include "astro/geodetic.h"
+#include "astro/sun.h"
+#include "astro/time.h"
+#include "core/atomic_file.h"
 #include "core/exr_io.h"
-#define FIRMAMENT_HAVE_EXR_IO 1
-#else
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
-#endif
-#if __has_include("core/png_io.h")
 #include "core/png_io.h"
-#define FIRMAMENT_HAVE_PNG_IO 1
-#else
-#include <png.h>
-#endif
+#include "core/scene.h"
 
 namespace firmament::cli {
 namespace {
@@ -47,112 +35,20 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Write to a temporary name beside the target, then rename: a crash never leaves a half-written file.
-template <typename WriteFn>
-void writeAtomically(const fs::path& target, WriteFn write) {
-  fs::path temporary = target;
-  temporary += ".tmp";
-  write(temporary);
-  std::error_code ec;
-  fs::rename(temporary, target, ec);
-  if (ec) throw RuntimeError("cannot rename " + temporary.string() + " to " + target.string() + ": " + ec.message());
-}
+void writeText(const fs::path& path, const std::string& text) { writeTextFileAtomically(path, text); }
 
-void writeText(const fs::path& path, const std::string& text) {
-  writeAtomically(path, [&](const fs::path& p) {
-    std::ofstream out(p, std::ios::binary);
-    out << text;
-    if (!out) throw RuntimeError("cannot write " + p.string());
-  });
-}
-
-void writeMapExr(const fs::path& path, const Image& image) {
-#ifdef FIRMAMENT_HAVE_EXR_IO
-  writeAtomically(path, [&](const fs::path& p) { writeExr(p, image); });
-#else
-  // Stand-in until core/exr_io.h (branch images) is merged: 32-bit float RGBA, metadata as strings.
-  writeAtomically(path, [&](const fs::path& p) {
-    Imf::Header header(image.width, image.height);
-    const char* names[4] = {"R", "G", "B", "A"};
-    for (int c = 0; c < image.channels; ++c) header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-    for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
-    Imf::FrameBuffer frame;
-    size_t pixelStride = sizeof(float) * image.channels;
-    for (int c = 0; c < image.channels; ++c)
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, (char*)(image.pixels.data() + c), pixelStride,
-                                        pixelStride * image.width));
-    Imf::OutputFile file(p.string().c_str(), header);
-    file.setFrameBuffer(frame);
-    file.writePixels(image.height);
-  });
-#endif
-}
+void writeMapExr(const fs::path& path, const Image& image) { writeExr(path, image); }
 
 void writeRgbPng(const fs::path& path, int width, int height, const std::vector<uint8_t>& rgb) {
-#ifdef FIRMAMENT_HAVE_PNG_IO
-  writeAtomically(path, [&](const fs::path& p) { writePng(p, width, height, 3, rgb.data()); });
-#else
-  // Stand-in until core/png_io.h (branch images) is merged.
-  writeAtomically(path, [&](const fs::path& p) {
-    FILE* f = std::fopen(p.string().c_str(), "wb");
-    if (!f) throw RuntimeError("cannot write " + p.string());
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png_create_info_struct(png);
-    if (setjmp(png_jmpbuf(png))) {
-      png_destroy_write_struct(&png, &info);
-      std::fclose(f);
-      throw RuntimeError("PNG encoding failed for " + p.string());
-    }
-    png_init_io(png, f);
-    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    for (int y = 0; y < height; ++y) png_write_row(png, rgb.data() + size_t(y) * width * 3);
-    png_write_end(png, nullptr);
-    png_destroy_write_struct(&png, &info);
-    std::fclose(f);
-  });
-#endif
+  writePng(path, width, height, 3, rgb.data());
 }
 
-// Minimal scene reading: the JSON file and --set /pointer=value overrides (value parsed as JSON, else
-// taken as a string).
-json loadScene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  json scene;
-  try {
-    scene = json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(path + ": not valid JSON: " + e.what());
-  }
-  for (const auto& o : overrides) {
-    auto eq = o.find('=');
-    if (eq == std::string::npos || o.empty() || o[0] != '/')
-      throw InputError("--set '" + o + "': expected /json/pointer=value");
-    std::string pointer = o.substr(0, eq), text = o.substr(eq + 1);
-    json value;
-    try {
-      value = json::parse(text);
-    } catch (const json::exception&) {
-      value = text;
-    }
-    try {
-      scene[json::json_pointer(pointer)] = value;
-    } catch (const json::exception& e) {
-      throw InputError("--set '" + o + "': " + e.what());
-    }
-  }
-  return scene;
-}
-
-double sceneNumber(const json& scene, const char* section, const char* key, double fallback, double lo, double hi) {
-  if (!scene.contains(section) || !scene[section].contains(key)) return fallback;
-  const json& v = scene[section][key];
-  if (!v.is_number() || v.get<double>() < lo || v.get<double>() > hi)
-    throw InputError(std::string("/") + section + "/" + key + ": expected a number in [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "]");
-  return v.get<double>();
+// Sun elevation (radians) at `t` seconds after `start`, from the ephemeris.
+weather::SunElevationFunction ephemerisSunElevation(const astro::GeodeticLocation& location,
+                                                    const astro::UtcTime& start) {
+  return [location, start](double t) {
+    return astro::sunPosition(astro::makeAstroTime(astro::addSeconds(start, t)), location).elevation();
+  };
 }
 
 int runWeather(const Args& args) {
@@ -165,26 +61,24 @@ int runWeather(const Args& args) {
   auto out = args.get("out");
   if (!out) throw InputError("firmament weather: --out DIR is required");
 
-  json scene = loadScene(scenePath, args.all("set"));
-  if (!scene.contains("weather"))
+  Scene scene = Scene::load(scenePath, args.all("set"));
+  if (!scene.hasSection("weather"))
     throw InputError(scenePath + ": the scene has no \"weather\" section (nothing to simulate)");
-  WeatherConfig config = configFromJson(scene["weather"]);
-  double latitude = sceneNumber(scene, "location", "latitude_deg", 46.55, -90, 90) * std::numbers::pi / 180.0;
-  double longitude = sceneNumber(scene, "location", "longitude_deg", 7.98, -180, 180) * std::numbers::pi / 180.0;
-  config.surfacePressure_Pa = surfacePressureFromHeight(sceneNumber(scene, "location", "height_m", 1200, -500, 9000));
-  std::string utc = "2026-06-21T15:30:00Z";
-  if (scene.contains("time") && scene["time"].contains("utc")) {
-    if (!scene["time"]["utc"].is_string()) throw InputError("/time/utc: expected a string");
-    utc = scene["time"]["utc"].get<std::string>();
-  }
-  UtcTime start = parseUtc(utc);
+  WeatherConfig config = configFromJson(scene.at("/weather"));
+  auto location = astro::GeodeticLocation::fromDegrees(scene.number("/location/latitude_deg"),
+                                                       scene.number("/location/longitude_deg"),
+                                                       scene.number("/location/height_m"));
+  double latitude = location.latitude, longitude = location.longitude;
+  config.surfacePressure_Pa = surfacePressureFromHeight(scene.number("/location/height_m"));
+  std::string utc = scene.string("/time/utc");
+  astro::UtcTime start = astro::parseUtc(utc);
 
   fs::path dir(*out);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create " + dir.string() + ": " + ec.message());
 
-  WeatherModel model(config, analyticSunElevationFunction(latitude, longitude, start));
+  WeatherModel model(config, ephemerisSunElevation(location, start));
   RegionPlacement placement{latitude, longitude, 6360000.0};
   const double duration = hours * 3600.0, interval = intervalMin * 60.0;
   const double statsInterval = std::min(interval, std::max(600.0, config.timeStep_s));

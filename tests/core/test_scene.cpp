@@ -129,8 +129,13 @@ TEST(Scene, EverySchemaFieldHasDefaultAndDescription) {
     } else if (s.value("type", "") == "array") {
       EXPECT_TRUE(s.contains("default")) << p;
       if (s.contains("items") && s["items"].value("type", "") == "object")
-        for (auto it = s["items"]["properties"].begin(); it != s["items"]["properties"].end(); ++it)
-          walk(it.value(), p + "/N/" + it.key());
+        for (auto it = s["items"]["properties"].begin(); it != s["items"]["properties"].end(); ++it) {
+          // a field listed in its object's "required" needs no default
+          bool required = false;
+          for (const auto& r : s["items"].value("required", nlohmann::json::array())) required = required || r == it.key();
+          if (!required) walk(it.value(), p + "/N/" + it.key());
+          else EXPECT_TRUE(it.value().contains("description")) << p << "/N/" << it.key();
+        }
     } else {
       EXPECT_TRUE(s.contains("default")) << p;
     }
