@@ -20,7 +20,7 @@
 namespace firmament {
 
 struct ReferenceQuality {
-  int samplesPerPixel = 64;        // Monte Carlo paths per view ray for orders >= 2 (0: orders 0-1 only)
+  int samplesPerPixel = 256;       // Monte Carlo paths per view ray for orders >= 2 (0: orders 0-1 only)
   int wavelengthCount = 48;        // evenly spaced over 360-830 nm (48: every 10 nm)
   uint64_t seed = 1;
   double quadratureTolerance = 1e-7;  // relative, orders 0 and 1 (per panel, so also of the whole integral)

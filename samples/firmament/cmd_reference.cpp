@@ -160,7 +160,7 @@ const CommandRegistration registration{Command{
         {"output", "OUT.exr", "output EXR (default out/<scene>_reference.exr); .png and .json go beside it", false, 'o'},
         {"width", "W", "image width (same as --set /camera/width=W)"},
         {"height", "H", "image height"},
-        {"spp", "N", "Monte Carlo paths per pixel for orders >= 2 (default 64; 0: orders 0 and 1 only)"},
+        {"spp", "N", "Monte Carlo paths per pixel for orders >= 2 (default 256; 0: orders 0 and 1 only)"},
         {"wavelengths", "N", "wavelengths evenly spaced over 360-830 nm (default 48: every 10 nm)"},
         setOption(),
         {"threads", "N", "worker threads (default: all cores); the image does not depend on it"},
