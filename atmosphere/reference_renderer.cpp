@@ -140,8 +140,8 @@ ReferenceRadiance ReferenceRenderer::radiance(glm::dvec3 camera, glm::dvec3 dire
   result.multipleScatteringStandardError.assign(n, 0.0);
 
   if (quality_.multipleScattering && quality_.samplesPerPixel > 0 && view.inAtmosphere) {
-    // Mean and standard error from the sample sums: SE = sqrt( (Σx² - m Σx... ) ) computed as
-    // SE^2 = (Σ x² / m - mean²) / (m - 1) for m samples, per wavelength and for the luminance.
+    // Mean and standard error of the mean from the sums over m independent samples:
+    // SE^2 = (Σ x² / m - mean²) / (m - 1), per wavelength and for the luminance.
     const reference::PreparedViewRay ray = e.pathTracer.prepare(view);
     reference::Random random(quality_.seed, stream);
     std::vector<double> contribution, sum(n, 0.0), sumSquares(n, 0.0);
