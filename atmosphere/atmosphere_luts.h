@@ -1,10 +1,12 @@
 #pragma once
-// The atmosphere's precomputed tables on the GPU: transmittance T(r, mu) and Hillaire 2020's
-// multiple-scattering Psi_ms(r, mu_s). They depend on the atmosphere's parameters and the table
-// settings only, so they are computed once and reused until either changes (keyed by hash).
+// The atmosphere's precomputed tables on the GPU, per spectral batch (three wavelengths each, see
+// atmosphere_spectra.h): transmittance T(r, mu) and Hillaire 2020's multiple-scattering Psi_ms(r, mu_s),
+// plus the sun disc's transmitted centre radiance in Rec.709 summed over the batches. They depend on
+// the atmosphere's parameters and the table settings only, so they are computed once and reused until
+// either changes (keyed by hash, in memory and on disk).
 #include <glm/glm.hpp>
-#include <optional>
 #include <string>
+#include <vector>
 
 #include "atmosphere/atmosphere_block.h"
 #include "atmosphere/atmosphere_settings.h"
@@ -25,6 +27,9 @@ struct AtmosphereLutSettings {
   int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
   int multipleScatteringDirectionsSqrt = 8;   // 8 x 8 = 64 directions
   int multipleScatteringSteps = 20;           // march steps per direction
+  // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
+  // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
+  int spectralSamples = 3;
   glm::dvec3 wavelengthsNm{680.0, 550.0, 440.0};
   std::string hash() const;
 };
@@ -44,23 +49,28 @@ class AtmosphereLuts {
   // setting and the device, so cached tables are bit-identical to freshly computed ones.
   Update update(const AtmosphereSettings& atmosphere, const AtmosphereLutSettings& settings);
 
-  const gpu::Buffer& atmosphereBlock() const { return block_; }
-  const gpu::Image& transmittance() const { return transmittance_; }
-  const gpu::Image& multipleScattering() const { return multipleScattering_; }
+  struct Batch {
+    gpu::Buffer block;  // the AtmosphereBlock of this batch's wavelengths
+    gpu::Image transmittance;
+    gpu::Image multipleScattering;
+    shared::AtmosphereParameters parameters{};
+  };
+  size_t batchCount() const { return batches_.size(); }
+  const Batch& batch(size_t i) const { return batches_.at(i); }
+  const gpu::Image& sunRadiance() const { return sunRadiance_; }
   const gpu::Sampler& linearClamp() const { return linearClamp_; }
-  const shared::AtmosphereParameters& parameters() const { return parameters_; }
+  // Wavelength-independent geometry (radii) of the current atmosphere.
+  const shared::AtmosphereParameters& parameters() const { return batches_.at(0).parameters; }
   const std::string& key() const { return key_; }
 
  private:
   gpu::Context& context_;
   gpu::ComputePipeline transmittancePipeline_;
   gpu::ComputePipeline multipleScatteringPipeline_;
-  gpu::Buffer block_;
-  gpu::Image transmittance_;
-  gpu::Image multipleScattering_;
+  std::vector<Batch> batches_;
+  gpu::Image sunRadiance_;
   gpu::Sampler linearClamp_;
-  shared::AtmosphereParameters parameters_{};
-  std::string key_;  // atmosphere hash + settings hash of the current tables
+  std::string key_;  // atmosphere hash + settings hash + device of the current tables
 };
 
 }  // namespace firmament

@@ -49,12 +49,13 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
       skyViewPipeline_(context, {"sky/sky_view_lut",
                                  {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                                   gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
-                                 3 * sizeof(float)}),
+                                 4 * sizeof(float)}),
       skyPipeline_(context, {"sky/render_sky",
                              {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                               gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage},
-                             sizeof(gpu::TileDispatch)}),
+                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                              gpu::BindingType::SampledImage},
+                             sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)}),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
 
 RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
@@ -99,29 +100,49 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
+  const size_t batches = luts_.batchCount();
   if (useSkyView) {
-    struct {
-      float cameraRadius;
-      float muS;
-      int32_t steps;
-    } push{float(view.cameraRadius), float(view.sunDirection.z), options.viewSteps};
-    commands.bind(skyViewPipeline_, {luts_.atmosphereBlock(),
-                                     {luts_.transmittance(), luts_.linearClamp()},
-                                     {luts_.multipleScattering(), luts_.linearClamp()},
-                                     skyView_});
-    commands.pushConstants(push);
-    commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
-                      "sky/sky_view_lut");
-    commands.barrier();
+    // One sky-view pass per spectral batch, each adding its Rec.709 contribution.
+    for (size_t b = 0; b < batches; ++b) {
+      const AtmosphereLuts::Batch& batch = luts_.batch(b);
+      struct {
+        float cameraRadius;
+        float muS;
+        int32_t steps;
+        int32_t accumulate;
+      } push{float(view.cameraRadius), float(view.sunDirection.z), options.viewSteps, b > 0 ? 1 : 0};
+      commands.bind(skyViewPipeline_, {batch.block,
+                                       {batch.transmittance, luts_.linearClamp()},
+                                       {batch.multipleScattering, luts_.linearClamp()},
+                                       skyView_});
+      commands.pushConstants(push);
+      commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
+                        "sky/sky_view_lut");
+      commands.barrier();
+    }
   }
-  commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
-                               {luts_.transmittance(), luts_.linearClamp()},
-                               {luts_.multipleScattering(), luts_.linearClamp()},
-                               output,
-                               frameBlock_,
-                               {skyView_, luts_.linearClamp()}});
-  commands.pushConstants(tiles);
-  commands.dispatchTiles(tiles, "sky/render_sky");
+  // The image: one pass reading the sky-view table, or one march per spectral batch.
+  const size_t renderPasses = useSkyView ? 1 : batches;
+  for (size_t b = 0; b < renderPasses; ++b) {
+    const AtmosphereLuts::Batch& batch = luts_.batch(b);
+    struct {
+      gpu::TileDispatch tiles;
+      int32_t accumulate;
+      int32_t drawSun;
+      int32_t last;
+      int32_t pad;
+    } push{tiles, b > 0 ? 1 : 0, b == 0 ? 1 : 0, b + 1 == renderPasses ? 1 : 0, 0};
+    commands.bind(skyPipeline_, {batch.block,
+                                 {batch.transmittance, luts_.linearClamp()},
+                                 {batch.multipleScattering, luts_.linearClamp()},
+                                 output,
+                                 frameBlock_,
+                                 {skyView_, luts_.linearClamp()},
+                                 {luts_.sunRadiance(), luts_.linearClamp()}});
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "sky/render_sky");
+    if (b + 1 < renderPasses) commands.barrier();
+  }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
     result.timings.push_back(t);

@@ -40,6 +40,10 @@ int runRender(const Args& args) {
 
   SkyRenderOptions options;
   options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
+  options.luts.spectralSamples = args.integer("spectral-samples", options.luts.spectralSamples, 3, 48);
+  if (options.luts.spectralSamples % 3 != 0)
+    throw InputError("--spectral-samples " + std::to_string(options.luts.spectralSamples) +
+                     ": allowed: 3 (three wavelengths) or a multiple of 3 from 6 to 48");
   std::string method = args.getOr("sky", "lut");
   if (method == "lut") {
     options.method = SkyMethod::SkyViewLut;
@@ -88,6 +92,7 @@ const CommandRegistration reg{{"render",
                                                 "with -o also render"},
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
                                 {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
+                                {"spectral-samples", "N", "wavelengths: 3 (default) or 6..48 integrated to luminance"},
                                 deviceOption()},
                                0,
                                1,

@@ -88,20 +88,4 @@ SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, 
   return result;
 }
 
-// Limb darkening I(mu)/I(1) = mu^alpha (a power law, Hestroffer & Magnan 1998) with alpha ~ 0.5 at
-// visible wavelengths; the disc radiance is normalised so the disc integrates to E_sun:
-// ∫ I dOmega = I(1) pi a^2 * 2/(alpha+2)  =>  I(1) = E_sun (alpha+2) / (2 pi a^2).
-const float kLimbDarkeningAlpha = 0.5;
-
-// Spectral radiance of the sun's disc at the top of the atmosphere, 0 outside it.
-vec3 sunDiscRadiance(AtmosphereParameters atmosphere, float cos_angle) {
-  float a = atmosphere.sun_angular_radius;
-  if (cos_angle < cos(a)) return vec3(0.0);
-  float angle = acos(clamp(cos_angle, -1.0, 1.0));
-  float rho = clamp(angle / a, 0.0, 1.0);  // fraction of the disc radius
-  float mu = sqrt(max(1.0 - rho * rho, 0.0));
-  float centre = (kLimbDarkeningAlpha + 2.0) / (2.0 * kPi * a * a);
-  return atmosphere.solar_irradiance * centre * pow(mu, kLimbDarkeningAlpha);
-}
-
 #endif  // FIRMAMENT_SKY_MARCH_GLSL
