@@ -8,9 +8,9 @@ namespace firmament {
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d-L%.3f,%.3f,%.3f", transmittanceWidth, transmittanceHeight,
-                transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt, multipleScatteringSteps,
-                wavelengthsNm.x, wavelengthsNm.y, wavelengthsNm.z);
+  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d%s-L%.3f,%.3f,%.3f", transmittanceWidth,
+                transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt, multipleScatteringSteps,
+                multipleScatteringLut ? "" : "-off", wavelengthsNm.x, wavelengthsNm.y, wavelengthsNm.z);
   return text;
 }
 
@@ -51,6 +51,10 @@ bool AtmosphereLuts::update(const AtmosphereSettings& atmosphere, const Atmosphe
   commands.dispatch(groups(settings.transmittanceWidth), groups(settings.transmittanceHeight), 1,
                     "atmosphere/transmittance_lut");
   commands.barrier();
+  if (!settings.multipleScatteringLut) {
+    key_ = key;
+    return true;
+  }
   struct {
     int32_t directionsSqrt;
     int32_t steps;

@@ -25,6 +25,7 @@ struct AtmosphereLutSettings {
   int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
   int multipleScatteringDirectionsSqrt = 8;   // 8 x 8 = 64 directions
   int multipleScatteringSteps = 20;           // march steps per direction
+  bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   glm::dvec3 wavelengthsNm{680.0, 550.0, 440.0};
   std::string hash() const;
 };

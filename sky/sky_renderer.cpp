@@ -25,6 +25,13 @@ struct FrameBlock {
 };
 static_assert(sizeof(FrameBlock) == 6 * 16);
 
+// Push constants of shaders/sky/render_sky_tables.comp: the tiles, then the 4D table size.
+struct TablesPush {
+  gpu::TileDispatch tiles;
+  int32_t tableSize[4];  // nu, mu_s, mu, r
+};
+static_assert(sizeof(TablesPush) == sizeof(gpu::TileDispatch) + 16);
+
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
   out[1] = float(v.y);
@@ -45,16 +52,24 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 SkyRenderer::SkyRenderer(gpu::Context& context)
     : context_(context),
       luts_(context),
+      fmsSkyIrradiance_(context),
       skyPipeline_(context, {"sky/render_sky",
                              {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                               gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                              gpu::BindingType::UniformBuffer},
+                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage},
                              sizeof(gpu::TileDispatch)}),
+      skyTablesPipeline_(context, {"sky/render_sky_tables",
+                                   {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                                    gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                    gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                                    gpu::BindingType::UniformBuffer},
+                                   sizeof(TablesPush)}),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
 
 RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
   RenderResult result;
-  result.plan = planRender(scene);
+  const bool useTables = options.multipleScattering == MultipleScattering::BrunetonTables;
+  result.plan = planRender(scene, {options.multipleScattering, options.tables.scatteringOrders});
   result.view = makeSceneView(scene);
   const SceneView& view = result.view;
   const int width = view.camera.width;
@@ -62,7 +77,16 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
 
   // Tables first, in their own submission, so their cost is reported apart from the frame's.
   gpu::CommandList precompute(context_);
-  if (luts_.update(view.atmosphere, options.luts, precompute)) {
+  AtmosphereLutSettings lutSettings = options.luts;
+  lutSettings.multipleScatteringLut = !useTables;  // the 4D tables replace Psi_ms
+  bool recorded = luts_.update(view.atmosphere, lutSettings, precompute);
+  if (useTables) {
+    if (!tables_) tables_ = std::make_unique<ScatteringTables>(context_);
+    recorded = tables_->update(luts_, options.tables, precompute) || recorded;
+  } else {
+    recorded = fmsSkyIrradiance_.update(luts_, options.fmsSkyIrradiance, precompute) || recorded;
+  }
+  if (recorded) {
     precompute.submitAndWait();
     for (const auto& t : precompute.passTimings()) {
       result.timings.push_back(t);
@@ -87,13 +111,25 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
-  commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
-                               {luts_.transmittance(), luts_.linearClamp()},
-                               {luts_.multipleScattering(), luts_.linearClamp()},
-                               output,
-                               frameBlock_});
-  commands.pushConstants(tiles);
-  commands.dispatchTiles(tiles, "sky/render_sky");
+  if (useTables) {
+    const gpu::Sampler& linear = luts_.linearClamp();
+    const ScatteringTableSettings& t = tables_->settings();
+    TablesPush push{tiles, {t.nuSize, t.muSSize, t.muSize, t.rSize}};
+    commands.bind(skyTablesPipeline_, {luts_.atmosphereBlock(), {luts_.transmittance(), linear},
+                                       {tables_->scattering(), linear}, {tables_->singleMieScattering(), linear},
+                                       {tables_->irradiance(), linear}, output, frameBlock_});
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "sky/render_sky_tables");
+  } else {
+    commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
+                                 {luts_.transmittance(), luts_.linearClamp()},
+                                 {luts_.multipleScattering(), luts_.linearClamp()},
+                                 output,
+                                 frameBlock_,
+                                 {fmsSkyIrradiance_.irradiance(), luts_.linearClamp()}});
+    commands.pushConstants(tiles);
+    commands.dispatchTiles(tiles, "sky/render_sky");
+  }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
     result.timings.push_back(t);

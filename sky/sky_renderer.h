@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "atmosphere/atmosphere_luts.h"
+#include "atmosphere/fms_sky_irradiance.h"
+#include "atmosphere/scattering_tables.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "gpu/context.h"
@@ -19,6 +21,9 @@ namespace firmament {
 
 struct SkyRenderOptions {
   AtmosphereLutSettings luts;
+  MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
+  ScatteringTableSettings tables;              // BrunetonTables: orders (tables.scatteringOrders), sizes
+  FmsSkyIrradianceSettings fmsSkyIrradiance;   // HillaireFms: the ground's skylight table
   int viewSteps = 32;  // march steps along each view ray
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
 };
@@ -43,7 +48,10 @@ class SkyRenderer {
  private:
   gpu::Context& context_;
   AtmosphereLuts luts_;
+  FmsSkyIrradiance fmsSkyIrradiance_;
+  std::unique_ptr<ScatteringTables> tables_;  // created on first use (5 pipelines)
   gpu::ComputePipeline skyPipeline_;
+  gpu::ComputePipeline skyTablesPipeline_;
   gpu::Buffer frameBlock_;
 };
 

@@ -22,7 +22,16 @@ int runRender(const Args& args) {
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
   Scene scene = args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
                                          : Scene::load(scenePath, overrides);
-  RenderPlan plan = planRender(scene);
+  SkyRenderOptions options;
+  options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
+  const std::string multipleScattering = args.getOr("multiple-scattering", "fms");
+  if (multipleScattering == "tables") {
+    options.multipleScattering = MultipleScattering::BrunetonTables;
+  } else if (multipleScattering != "fms") {
+    throw InputError("--multiple-scattering " + multipleScattering + ": expected fms or tables");
+  }
+  options.tables.scatteringOrders = args.integer("orders", options.tables.scatteringOrders, 1, 64);
+  RenderPlan plan = planRender(scene, {options.multipleScattering, options.tables.scatteringOrders});
   if (args.has("explain")) {
     std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
                 int(scene.integer("/camera/height")), describePlan(plan).c_str());
@@ -36,9 +45,6 @@ int runRender(const Args& args) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
-
-  SkyRenderOptions options;
-  options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
 
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
@@ -63,7 +69,7 @@ int runRender(const Args& args) {
 const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
-                               "[--explain] [--device D]",
+                               "[--multiple-scattering fms|tables] [--orders N] [--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
                                 {"width", "W", "image width (same as --set /camera/width=W)"},
@@ -72,6 +78,10 @@ const CommandRegistration reg{{"render",
                                 {"explain", "", "print the passes this scene needs (and those it leaves out); "
                                                 "with -o also render"},
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
+                                {"multiple-scattering", "fms|tables",
+                                 "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
+                                 "4D tables of N orders"},
+                                {"orders", "N", "scattering orders of the 4D tables (default 4)"},
                                 deviceOption()},
                                0,
                                1,

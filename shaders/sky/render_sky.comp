@@ -4,11 +4,12 @@
 // term along the view ray, add the ground and the sun disc, and convert to linear Rec.709 cd/m².
 //   L = ∫_0^D T(0,t) [ sigma_s^R(t) p_R(nu) + sigma_s^M(t) p_M(nu) ] E_sun T_sun(t)
 //                  + [ sigma_s^R(t) + sigma_s^M(t) ] Psi_ms(t)  dt
-//     + T(0,D) L_ground                                   (if the ray meets the ground)
+//     + T(0,D) L_ground                                   (if the ray meets the ground: sun + sky irradiance)
 //     + T(0,D) L_sun_disc                                 (inside the sun's disc)
 // Each step is integrated analytically for constant coefficients (Hillaire 2016's energy-conserving
 // form), and samples are spaced quadratically to resolve the dense air near the camera.
 #include "atmosphere/atmosphere_sampling.glsl"
+#include "atmosphere/irradiance_sampling.glsl"
 #include "common/camera.glsl"
 #include "common/dispatch.glsl"
 
@@ -24,6 +25,8 @@ layout(std140, set = 0, binding = 4) uniform FrameBlock {
   vec4 sun_direction;    // xyz, unit
   ivec4 image;           // width, height, projection, view march steps
 } frame;
+// The sky's irradiance on the ground, E_sky(r, mu_s) (atmosphere/fms_sky_irradiance.comp).
+layout(set = 0, binding = 5) uniform sampler2D skyIrradianceLut;
 layout(push_constant) uniform Push { TileDispatch tiles; } push;
 
 // Limb darkening I(mu)/I(1) = mu^alpha (a power law, Hestroffer & Magnan 1998) with alpha ~ 0.5 at
@@ -127,6 +130,8 @@ void main() {
       float mu_s_g = dot(p, sun) / r_g;
       vec3 sun_light = transmittanceToSun(transmittanceLut, atmosphere, r_g, mu_s_g) * atmosphere.solar_irradiance;
       sunlike += throughput * atmosphere.ground_albedo / kPi * sun_light * max(mu_s_g, 0.0);
+      // Skylight reflected by the ground has the sky's spectrum: converted with the sky's factors.
+      sky += throughput * atmosphere.ground_albedo / kPi * irradianceLookup(skyIrradianceLut, atmosphere, r_g, mu_s_g);
     }
   }
   vec3 rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
