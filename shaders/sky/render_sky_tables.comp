@@ -6,6 +6,7 @@
 //   ground ray:  L = [S(x, w) - T(x, g) S(g, w)] p_R(nu) + [S_M(x, w) - T(x, g) S_M(g, w)] p_M(nu)
 //                    + T(x, g) rho/pi (E_sun T_sun(g) max(mu_s_g, 0) + E_sky(g))
 // S holds single Rayleigh plus every multiple order divided by p_R (see multiple_scattering.comp),
+// interpolated geometrically along mu_s (scattering_sampling.glsl: smooth twilight),
 // S_M single Mie; the light scattered on the stretch between x and the ground point g is what reaches
 // x from the whole ray minus what reaches g from beyond it, attenuated to x. Radiance at the three
 // wavelengths is converted to Rec.709 cd/m^2 as render_sky.comp does: the sky matrix for Rayleigh and
@@ -97,8 +98,8 @@ void main() {
     float phaseR = rayleighPhase(nu);
     float phaseM = cornetteShanksPhase(atmosphere.mie_phase_g, nu);
     hitsGround = rayIntersectsGround(atmosphere, r, mu);
-    vec3 scattering = scatteringAt(scatteringTable, atmosphere, tableSize, r, mu, mu_s, nu, hitsGround);
-    vec3 singleMie = scatteringAt(singleMieTable, atmosphere, tableSize, r, mu, mu_s, nu, hitsGround);
+    vec3 scattering = scatteringAtGeometricMuS(scatteringTable, atmosphere, tableSize, r, mu, mu_s, nu, hitsGround);
+    vec3 singleMie = scatteringAtGeometricMuS(singleMieTable, atmosphere, tableSize, r, mu, mu_s, nu, hitsGround);
     if (!hitsGround) {
       throughput = transmittanceToTop(transmittanceLut, atmosphere, r, mu);
     } else {
@@ -107,8 +108,8 @@ void main() {
       pointAlongRay(r, mu, mu_s, nu, d, r_g, mu_g, mu_s_g);
       r_g = max(r_g, atmosphere.bottom_radius);
       throughput = transmittanceBetween(transmittanceLut, atmosphere, r, mu, d, true);
-      scattering = max(scattering - throughput * scatteringAt(scatteringTable, atmosphere, tableSize, r_g, mu_g, mu_s_g, nu, true), vec3(0.0));
-      singleMie = max(singleMie - throughput * scatteringAt(singleMieTable, atmosphere, tableSize, r_g, mu_g, mu_s_g, nu, true), vec3(0.0));
+      scattering = max(scattering - throughput * scatteringAtGeometricMuS(scatteringTable, atmosphere, tableSize, r_g, mu_g, mu_s_g, nu, true), vec3(0.0));
+      singleMie = max(singleMie - throughput * scatteringAtGeometricMuS(singleMieTable, atmosphere, tableSize, r_g, mu_g, mu_s_g, nu, true), vec3(0.0));
       // Bruneton's guard for the difference of two Mie lookups, which is unreliable once the sun
       // has set at the camera (the single Mie of the stretch is then negligible anyway).
       singleMie *= smoothstep(0.0, 0.01, mu_s);

@@ -77,10 +77,10 @@ TEST(ScatteringLut, ParametersRoundTrip) {
 
 // The mu axis: ground rays fill [0, 0.5), sky rays (0.5, 1], each decreasing with mu from the
 // vertical at the middle to the horizon at the ends; mu_s: increasing, the first texel centre at
-// mu_s_min = cos(102 deg), so twilight is covered.
+// mu_s_min = cos(108 deg), so twilight is covered.
 TEST(ScatteringLut, AxesAreMonotoneAndCoverTwilight) {
   const auto atmosphere = earth();
-  EXPECT_NEAR(std::acos(atmosphere.mu_s_min) * 180.0 / shared::kPi, 102.0, 1e-9);
+  EXPECT_NEAR(std::acos(atmosphere.mu_s_min) * 180.0 / shared::kPi, 108.0, 1e-9);  // end of astronomical twilight
   const double r = atmosphere.bottom_radius + 1000.0;
   double previous = 2.0;
   bool previousHits = true;
