@@ -51,9 +51,11 @@ SHARED_INLINE Real normalisedSunDistance(AtmosphereParameters atmosphere, Real m
 //       near the horizon. Rays that miss the ground end at the top: d in [d_min, d_max] with
 //       d_min = R_t - r (straight up) and d_max = rho + H (grazing the ground: rho to the tangent point,
 //       then H from there to the top). Rays that hit the ground end there: d in [d_min, d_max] with
-//       d_min = r - R_b (straight down) and d_max = rho (grazing). Each family gets half of the axis,
-//       meeting at u_mu = 0.5 at the horizon; the ground half is reversed so that u_mu grows with mu on
-//       both sides, and each half maps through its own texel centres so filtering never mixes them.
+//       d_min = r - R_b (straight down) and d_max = rho (grazing). Each family gets half of the axis:
+//       ground rays [0, 0.5) with u = 0.5 - x/2, sky rays (0.5, 1] with u = 0.5 + x/2, x the normalised
+//       distance. The two vertical directions meet in the middle and the horizon, where radiance jumps
+//       between ground and sky, lies at the two ends; each half maps through its own texel centres, so
+//       filtering never blends a ground ray with a sky ray.
 // mu_s: x = max(1 - a/A, 0) / (1 + a), with a = normalisedSunDistance(mu_s) and A its value at mu_s_min:
 //       x = 1 at the zenith, 0 at mu_s_min, and, with a in the denominator, more texels near the horizon
 //       where the light changes fastest. Suns below mu_s_min clamp to x = 0.
