@@ -35,9 +35,10 @@ bool fits(const TableData& data, const gpu::Image& image) {
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d-S%d-L%.3f,%.3f,%.3f", transmittanceWidth, transmittanceHeight,
-                transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt, multipleScatteringSteps,
-                spectralSamples, wavelengthsNm.x, wavelengthsNm.y, wavelengthsNm.z);
+  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
+                transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt,
+                multipleScatteringSteps, multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
+                wavelengthsNm.y, wavelengthsNm.z);
   return text;
 }
 
@@ -116,6 +117,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     commands.dispatch(groups(settings.transmittanceWidth), groups(settings.transmittanceHeight), 1,
                       "atmosphere/transmittance_lut");
     commands.barrier();
+    if (!settings.multipleScatteringLut) continue;
     struct {
       int32_t directionsSqrt;
       int32_t steps;

@@ -27,6 +27,7 @@ struct AtmosphereLutSettings {
   int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
   int multipleScatteringDirectionsSqrt = 8;   // 8 x 8 = 64 directions
   int multipleScatteringSteps = 20;           // march steps per direction
+  bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
   // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
   int spectralSamples = 3;
@@ -58,6 +59,10 @@ class AtmosphereLuts {
   size_t batchCount() const { return batches_.size(); }
   const Batch& batch(size_t i) const { return batches_.at(i); }
   const gpu::Image& sunRadiance() const { return sunRadiance_; }
+  // The first batch: with three wavelengths (spectralSamples = 3), the only one (the 4D tables use it).
+  const gpu::Buffer& atmosphereBlock() const { return batch(0).block; }
+  const gpu::Image& transmittance() const { return batch(0).transmittance; }
+  const gpu::Image& multipleScattering() const { return batch(0).multipleScattering; }
   const gpu::Sampler& linearClamp() const { return linearClamp_; }
   // Wavelength-independent geometry (radii) of the current atmosphere.
   const shared::AtmosphereParameters& parameters() const { return batches_.at(0).parameters; }

@@ -23,22 +23,14 @@ int runRender(const Args& args) {
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
   Scene scene = args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
                                          : Scene::load(scenePath, overrides);
-  RenderPlan plan = planRender(scene);
-  if (args.has("explain")) {
-    std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
-                int(scene.integer("/camera/height")), describePlan(plan).c_str());
-    if (!args.has("output")) return kExitOk;
-  }
-  for (const auto& u : plan.unavailable) logWarning(u.name + ": " + u.reason);
-
-  std::filesystem::path out = args.getOr("output", "out/" + std::filesystem::path(scenePath).stem().string() + ".exr");
-  if (out.extension() != ".exr") throw InputError("-o " + out.string() + ": the output must end in .exr");
-  std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
-
   SkyRenderOptions options;
+  const std::string multipleScattering = args.getOr("multiple-scattering", "fms");
+  if (multipleScattering == "tables") {
+    options.multipleScattering = MultipleScattering::BrunetonTables;
+  } else if (multipleScattering != "fms") {
+    throw InputError("--multiple-scattering " + multipleScattering + ": allowed: fms, tables");
+  }
+  options.tables.scatteringOrders = args.integer("orders", options.tables.scatteringOrders, 1, 64);
   options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
   options.luts.spectralSamples = args.integer("spectral-samples", options.luts.spectralSamples, 3, 48);
   if (options.luts.spectralSamples % 3 != 0)
@@ -52,6 +44,21 @@ int runRender(const Args& args) {
   } else {
     throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
   }
+
+  RenderPlan plan = planRender(scene, planOptions(options));
+  if (args.has("explain")) {
+    std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
+                int(scene.integer("/camera/height")), describePlan(plan).c_str());
+    if (!args.has("output")) return kExitOk;
+  }
+  for (const auto& u : plan.unavailable) logWarning(u.name + ": " + u.reason);
+
+  std::filesystem::path out = args.getOr("output", "out/" + std::filesystem::path(scenePath).stem().string() + ".exr");
+  if (out.extension() != ".exr") throw InputError("-o " + out.string() + ": the output must end in .exr");
+  std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
 
   // Phases: device, render (tables + frame), write. The bar appears only past one second.
   auto progress = std::make_unique<Progress>("render", 3);
@@ -82,6 +89,7 @@ int runRender(const Args& args) {
 const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
+                               "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples N] [--sky lut|march] "
                                "[--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
@@ -93,6 +101,10 @@ const CommandRegistration reg{{"render",
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
                                 {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
                                 {"spectral-samples", "N", "wavelengths: 3 (default) or 6..48 integrated to luminance"},
+                                {"multiple-scattering", "fms|tables",
+                                 "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
+                                 "4D tables of N orders"},
+                                {"orders", "N", "scattering orders of the 4D tables (default 4)"},
                                 deviceOption()},
                                0,
                                1,
