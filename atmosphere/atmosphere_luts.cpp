@@ -35,9 +35,9 @@ bool fits(const TableData& data, const gpu::Image& image) {
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
-                transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt,
-                multipleScatteringSteps, multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
+  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%dx%ds%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
+                transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringThetaSamples,
+                multipleScatteringPhiSamples, multipleScatteringSteps, multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
                 wavelengthsNm.y, wavelengthsNm.z);
   return text;
 }
@@ -51,7 +51,7 @@ AtmosphereLuts::AtmosphereLuts(gpu::Context& context)
       multipleScatteringPipeline_(context, {"atmosphere/multiple_scattering_lut",
                                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                                              gpu::BindingType::StorageImage},
-                                            2 * sizeof(int32_t)}),
+                                            3 * sizeof(int32_t)}),
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {}
 
 AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphere,
@@ -119,9 +119,11 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     commands.barrier();
     if (!settings.multipleScatteringLut) continue;
     struct {
-      int32_t directionsSqrt;
+      int32_t thetaSamples;
+      int32_t phiSamples;
       int32_t steps;
-    } multiplePush{settings.multipleScatteringDirectionsSqrt, settings.multipleScatteringSteps};
+    } multiplePush{settings.multipleScatteringThetaSamples, settings.multipleScatteringPhiSamples,
+                   settings.multipleScatteringSteps};
     commands.bind(multipleScatteringPipeline_, {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering});
     commands.pushConstants(multiplePush);
     commands.dispatch(groups(settings.multipleScatteringSize), groups(settings.multipleScatteringSize), 1,

@@ -25,7 +25,8 @@ struct AtmosphereLutSettings {
   int transmittanceHeight = 64;   // r samples
   int transmittanceSteps = 100;   // trapezoid intervals along each ray
   int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
-  int multipleScatteringDirectionsSqrt = 8;   // 8 x 8 = 64 directions
+  int multipleScatteringThetaSamples = 32;    // zenith bands of the sphere of directions
+  int multipleScatteringPhiSamples = 2;       // azimuth samples per band (32 x 2 = 64 directions)
   int multipleScatteringSteps = 20;           // march steps per direction
   bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
