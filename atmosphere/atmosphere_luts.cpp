@@ -4,20 +4,10 @@
 
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/table_file.h"
+#include "core/hash.h"
 
 namespace firmament {
 namespace {
-
-std::string fnv1aHex(const std::string& text) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char out[17];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
-}
 
 gpu::Image makeTable(gpu::Context& context, int width, int height, const char* name) {
   return gpu::Image(context, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, true, name});
@@ -84,7 +74,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
 
   std::filesystem::path file;
   if (!context_.cacheDir().empty())
-    file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + fnv1aHex(key) + ".bin");
+    file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + hex16(fnv1a(key)) + ".bin");
   if (!file.empty()) {
     auto tables = readTableFile(file, key);
     if (tables && tables->size() == 2 * batches_.size() + 1) {

@@ -242,12 +242,7 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   fs::path png = fs::path(exr).replace_extension(".png");
   fs::path stats = fs::path(exr).replace_extension(".json");
 
-  ExposureSettings exposure;
-  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
-                                                                   : ExposureSettings::Mode::Auto;
-  exposure.ev100 = scene.number("/camera/exposure/ev100");
-  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
-  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+  const ExposureSettings exposure = sceneExposure(scene);
 
   writeExr(exr, result.image);
   double ev100 = writePngPreview(png, result.image, exposure);
