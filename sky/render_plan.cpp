@@ -58,7 +58,20 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   }
 
   if (scene.hasSection("clouds")) {
-    plan.unavailable.push_back({"clouds", "cloud rendering is not implemented in this version; the sky is clear"});
+    // docs/clouds.md: noise baked once per seed, then one march per frame (per spectral batch).
+    if (options.multipleScattering == MultipleScattering::BrunetonTables) {
+      plan.unavailable.push_back({"clouds", "clouds need the f_ms path (--multiple-scattering fms) in this version"});
+    } else if (scene.at("/clouds/layers").empty()) {
+      plan.omitted.push_back({"clouds", "the clouds section has no layers"});
+    } else {
+      plan.passes.push_back({"clouds/bake_noise_3d", "shape 128^3 and detail 32^3 RGBA noise (+ CPU blue noise)",
+                             "cloud density, tileable, from the clouds seed", false});
+      plan.passes.push_back({"clouds/bake_curl", "curl noise 128^2", "distorts the detail noise", false});
+      plan.passes.push_back({"clouds/render_clouds", "clouds composited over the sky image (cd/m^2)",
+                             std::to_string(scene.at("/clouds/layers").size()) +
+                                 " layer(s): view march, light march, octave multiple scattering, aerial perspective",
+                             true});
+    }
   } else {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});
   }

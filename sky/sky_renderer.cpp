@@ -120,6 +120,23 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
                         : tables.source == AtmosphereLuts::Source::Memory ? "memory"
                                                                           : "disk cache";
 
+  // Clouds (docs/clouds.md): the noise is baked once per seed, apart from the frame's passes.
+  std::unique_ptr<CloudSettings> clouds;
+  if (scene.hasSection("clouds") && !scene.at("/clouds/layers").empty()) {
+    if (useTables) throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
+    clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
+    options.clouds.apply(clouds->march);
+    if (!clouds_) clouds_ = std::make_unique<CloudPass>(context_);
+    gpu::CommandList bake(context_);
+    if (clouds_->prepareNoise(*clouds, options.cloudNoise, bake)) {
+      bake.submitAndWait();
+      for (const auto& t : bake.passTimings()) {
+        result.timings.push_back(t);
+        result.precomputeMilliseconds += t.milliseconds;
+      }
+    }
+  }
+
   FrameBlock frame{};
   put(frame.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
   put(frame.cameraForward, view.camera.forward, view.camera.fov);
@@ -208,6 +225,16 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
     commands.dispatchTiles(tiles, "sky/render_sky");
     if (b + 1 < renderPasses) commands.barrier();
   }
+  if (clouds) {
+    commands.barrier();
+    CloudView cloudView;
+    cloudView.cameraPosition = glm::dvec3(0.0, 0.0, view.cameraRadius);
+    cloudView.sunDirection = view.sunDirection;
+    cloudView.camera = view.camera;
+    std::vector<const gpu::Image*> irradiance;
+    for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
+    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands);
+  }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
     result.timings.push_back(t);
@@ -217,6 +244,10 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
 
   result.image = Image(width, height, 4);
   result.image.pixels = output.downloadFloats();
+  if (clouds) {
+    result.clouds = Image(width, height, 4);
+    result.clouds.pixels = clouds_->cloudImage().downloadFloats();
+  }
   Image& image = result.image;
   image.metadata["firmament.scene_hash"] = scene.hash();
   image.metadata["firmament.device"] = context_.description();

@@ -10,6 +10,8 @@
 #include "atmosphere/atmosphere_luts.h"
 #include "atmosphere/fms_sky_irradiance.h"
 #include "atmosphere/scattering_tables.h"
+#include "clouds/cloud_pass.h"
+#include "clouds/cloud_settings.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "gpu/context.h"
@@ -35,6 +37,8 @@ struct SkyRenderOptions {
   int skyViewWidth = 192;  // azimuth samples
   int skyViewHeight = 108; // zenith samples
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
+  CloudOverrides clouds;          // march knobs over the scene's clouds quality preset
+  CloudNoiseSettings cloudNoise;  // noise texture sizes (tests use small ones)
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).
@@ -51,6 +55,9 @@ struct RenderResult {
   std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
   std::string timingNote;                // non-empty when timings are wall clock
+  // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
+  // is sky * a + rgb). Empty without clouds.
+  Image clouds;
 };
 
 class SkyRenderer {
@@ -67,6 +74,7 @@ class SkyRenderer {
   gpu::ComputePipeline skyViewPipeline_;
   gpu::ComputePipeline skyPipeline_;
   std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
+  std::unique_ptr<CloudPass> clouds_;  // created for the first scene with clouds
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
 };

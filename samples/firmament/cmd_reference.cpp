@@ -10,6 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "atmosphere/reference_renderer.h"
+#include "clouds/cloud_noise.h"
+#include "clouds/reference_clouds.h"
+#include "gpu/context.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exr_io.h"
@@ -53,7 +56,7 @@ int runReference(const Args& args) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
-  for (const char* section : {"clouds", "terrain", "weather"})
+  for (const char* section : {"terrain", "weather"})
     if (scene.hasSection(section))
       logWarning(std::string("reference: the '") + section + "' section is ignored (the reference renders the clear sky)");
 
@@ -72,6 +75,46 @@ int runReference(const Args& args) {
     Progress progress("reference", uint64_t(view.camera.width) * uint64_t(view.camera.height));
     result = renderReferenceImage(renderer, view.cameraRadius, view.camera,
                                   [&](size_t done, size_t) { progress.set(done); });
+  }
+
+  // Clouds (docs/clouds.md, "Reference"): the CPU cloud path tracer over the noise textures baked on
+  // the GPU (lavapipe without one) and read back, composited as sky * T + cloud light.
+  nlohmann::ordered_json cloudStats;
+  if (scene.hasSection("clouds") && !scene.at("/clouds/layers").empty()) {
+    const CloudSettings clouds = CloudSettings::fromScene(scene);
+    gpu::Context context;
+    CloudNoise noise(context);
+    gpu::CommandList commands(context);
+    noise.update(clouds.seed, CloudNoiseSettings{}, commands);
+    commands.submitAndWait();
+    const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+    CloudMedium medium(sharedCloudLayers(clouds, ground), noise.downloadShape(), noise.downloadDetail(),
+                       noise.downloadCurl());
+    double middle = 0.0;
+    for (const auto& l : clouds.layers) middle += 0.5 * (l.bottom_m + l.top_m) / double(clouds.layers.size());
+    const CloudEnvironment environment = cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
+    CloudReferenceSettings cloudSettings;
+    cloudSettings.samplesPerPixel = args.integer("cloud-spp", cloudSettings.samplesPerPixel, 1, 1 << 20);
+    cloudSettings.seed = quality.seed;
+    const CloudPathTracer tracer(medium, clouds.lighting, view.atmosphere, view.sunDirection, environment, cloudSettings);
+    CloudReferenceImage cloudImage;
+    {
+      Progress progress("clouds", uint64_t(view.camera.width) * uint64_t(view.camera.height));
+      cloudImage = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, view.cameraRadius), view.camera, quality.threads,
+                                        [&](size_t done, size_t) { progress.set(done); });
+    }
+    for (size_t i = 0; i < result.image.pixelCount(); ++i) {
+      const float* c = cloudImage.image.pixels.data() + 4 * i;
+      float* p = result.image.pixels.data() + 4 * i;
+      for (int k = 0; k < 3; ++k) p[k] = p[k] * c[3] + c[k];
+    }
+    cloudStats = {{"samples_per_pixel", cloudSettings.samplesPerPixel},
+                  {"seconds", cloudImage.seconds},
+                  {"scattering_events", cloudImage.events},
+                  {"capped_paths", cloudImage.capped},
+                  {"environment", "constant sky E_sky/pi from the clear-sky reference at the layers' mid-height; "
+                                  "constant ground below; no air scattering among the clouds"}};
+    result.seconds += cloudImage.seconds;
   }
 
   Image& image = result.image;
@@ -121,6 +164,7 @@ int runReference(const Args& args) {
                     {"roulette_start_bounce", quality.rouletteStartBounce},
                     {"threads", result.threads}};
   j["seconds"] = result.seconds;
+  if (!cloudStats.is_null()) j["clouds"] = cloudStats;
   j["luminance_cd_m2"] = {{"mean", meanY}, {"max", maxY}};
   j["noise"] = {{"definition", "Monte Carlo standard error of each pixel's luminance / its luminance"},
                 {"median_relative", result.medianRelativeError},
@@ -161,6 +205,7 @@ const CommandRegistration registration{Command{
         {"threads", "N", "worker threads (default: all cores); the image does not depend on it"},
         {"seed", "S", "random seed (default 1)"},
         {"tolerance", "T", "relative tolerance of the quadrature of orders 0 and 1 (default 1e-7)"},
+        {"cloud-spp", "N", "paths per pixel of the cloud path tracer (scenes with clouds; default 64)"},
     },
     1,
     1,

@@ -27,9 +27,9 @@ TEST(RenderPlan, ExplainListsPassesInOrder) {
 }
 
 TEST(RenderPlan, RequestedButUnavailableIsReported) {
-  RenderPlan plan = planRender(Scene::parse(R"({"clouds": {"layers": [{}]}})", "<test>"));
+  RenderPlan plan = planRender(Scene::parse(R"({"terrain": {}})", "<test>"));
   ASSERT_FALSE(plan.unavailable.empty());
-  EXPECT_EQ(plan.unavailable[0].name, "clouds");
+  EXPECT_EQ(plan.unavailable[0].name, "terrain");
 }
 
 }  // namespace

@@ -1,0 +1,57 @@
+#pragma once
+// The cloud noise textures, baked on the GPU from a seed by the shared procedural noise
+// (common/cloud_noise.glsl) and cached in memory by (seed, sizes): a scene that keeps its seed reuses
+// them across frames. Formats are RGBA8 unorm (Schneider 2015 uses 8 bits too): 8 MiB for the 128³
+// shape texture. The blue-noise mask is built on the CPU (clouds/blue_noise.h) and uploaded.
+#include <cstdint>
+#include <string>
+
+#include "clouds/noise_volume.h"
+#include "gpu/command.h"
+#include "gpu/context.h"
+#include "gpu/image.h"
+#include "gpu/pipeline.h"
+#include "gpu/sampler.h"
+
+namespace firmament {
+
+struct CloudNoiseSettings {
+  int shapeSize = 128;     // shape texture: size³ RGBA (Perlin-Worley, Worley x3)
+  int detailSize = 32;     // detail texture: size³ RGBA (Worley x4)
+  int curlSize = 128;      // curl texture: size² (RG)
+  int blueNoiseSize = 64;  // blue-noise mask: size² (R)
+  std::string key(uint32_t seed) const;
+};
+
+class CloudNoise {
+ public:
+  explicit CloudNoise(gpu::Context& context);
+
+  // Makes the textures match (seed, settings): records the bake passes into `commands` and returns
+  // true when stale (the caller submits, with a barrier before any pass that samples them), else
+  // records nothing and returns false.
+  bool update(uint32_t seed, const CloudNoiseSettings& settings, gpu::CommandList& commands);
+
+  const gpu::Image& shape() const { return shape_; }
+  const gpu::Image& detail() const { return detail_; }
+  const gpu::Image& curl() const { return curl_; }
+  const gpu::Image& blueNoise() const { return blueNoise_; }
+  const gpu::Sampler& linearRepeat() const { return linearRepeat_; }
+  const gpu::Sampler& nearestRepeat() const { return nearestRepeat_; }
+  const std::string& key() const { return key_; }
+
+  // The current textures read back for the CPU path tracer (after the bake was submitted).
+  NoiseVolume downloadShape() const;
+  NoiseVolume downloadDetail() const;
+  NoiseVolume downloadCurl() const;
+
+ private:
+  gpu::Context& context_;
+  gpu::ComputePipeline bake3d_;
+  gpu::ComputePipeline bakeCurl_;
+  gpu::Image shape_, detail_, curl_, blueNoise_;
+  gpu::Sampler linearRepeat_, nearestRepeat_;
+  std::string key_;
+};
+
+}  // namespace firmament

@@ -1,0 +1,116 @@
+#include "clouds/cloud_pass.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace firmament {
+namespace {
+
+constexpr int kMaxLayers = 8;
+
+// std140 mirror of CloudBlock in shaders/clouds/render_clouds.comp.
+struct CloudBlock {
+  float cameraPosition[4];
+  float cameraForward[4];  // w = fov
+  float cameraRight[4];    // w = yaw
+  float cameraUp[4];
+  float sunDirection[4];   // w = largest march distance
+  int32_t image[4];        // width, height, projection, layer count
+  int32_t steps[4];        // view steps, light steps, octaves, flags
+  float octaves[4];        // a, b, c, light march length
+  float phase[4];          // g forward, g back, back weight, albedo
+  float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
+  float layers[kMaxLayers * 5][4];
+};
+static_assert(sizeof(CloudBlock) == (10 + kMaxLayers * 5) * 16);
+
+struct Push {
+  gpu::TileDispatch tiles;
+  int32_t firstBatch;
+  int32_t pad[3];
+};
+
+void put(float (&out)[4], double x, double y, double z, double w) {
+  out[0] = float(x), out[1] = float(y), out[2] = float(z), out[3] = float(w);
+}
+void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) { put(out, v.x, v.y, v.z, w); }
+
+}  // namespace
+
+CloudPass::CloudPass(gpu::Context& context)
+    : context_(context),
+      noise_(context),
+      pipeline_(context, {"clouds/render_clouds",
+                          {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer},
+                          sizeof(Push)}),
+      block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block") {}
+
+bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands) {
+  return noise_.update(settings.seed, noise, commands);
+}
+
+void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Image& skyImage,
+                       const gpu::TileDispatch& tiles, gpu::CommandList& commands) {
+  if (settings.layers.size() > size_t(kMaxLayers))
+    throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
+  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
+  const auto layers = sharedCloudLayers(settings, luts.parameters().bottom_radius);
+  const CloudMarchSettings& m = settings.march;
+  const CloudLightingSettings& l = settings.lighting;
+  CloudBlock b{};
+  put(b.cameraPosition, view.cameraPosition);
+  put(b.cameraForward, view.camera.forward, view.camera.fov);
+  put(b.cameraRight, view.camera.right, view.camera.yaw);
+  put(b.cameraUp, view.camera.up);
+  put(b.sunDirection, view.sunDirection, m.maxDistance_m);
+  b.image[0] = view.camera.width;
+  b.image[1] = view.camera.height;
+  b.image[2] = view.camera.projection;
+  b.image[3] = int32_t(layers.size());
+  b.steps[0] = std::max(m.viewSteps, 1);
+  b.steps[1] = std::max(m.lightSteps, 1);
+  b.steps[2] = std::clamp(l.octaves, 1, 8);
+  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0);
+  // a <= b is enforced when the scene is read; clamp again for settings built in code.
+  put(b.octaves, std::min(l.a, l.b), l.b, l.c, cloudLightMarchLength(settings));
+  put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
+  put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const shared::CloudLayer& c = layers[i];
+    put(b.layers[5 * i], c.bottom_radius, c.top_radius, c.coverage, c.extinction);
+    put(b.layers[5 * i + 1], c.density_scale, c.anvil, c.shape_period, c.detail_period);
+    put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, 0.0);
+    put(b.layers[5 * i + 3], c.wind_offset);
+    put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), 0.0);
+  }
+  block_.upload(&b, sizeof(b));
+
+  const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
+  if (!cloudImage_ || cloudImage_.width() != width || cloudImage_.height() != height)
+    cloudImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, false, "cloud image"});
+  for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
+    const AtmosphereLuts::Batch& lut = luts.batch(batch);
+    commands.bind(pipeline_, {lut.block,
+                              {lut.transmittance, luts.linearClamp()},
+                              {lut.multipleScattering, luts.linearClamp()},
+                              {*skyIrradiance[batch], luts.linearClamp()},
+                              {noise_.shape(), noise_.linearRepeat()},
+                              {noise_.detail(), noise_.linearRepeat()},
+                              {noise_.curl(), noise_.linearRepeat()},
+                              {noise_.blueNoise(), noise_.nearestRepeat()},
+                              skyImage,
+                              cloudImage_,
+                              block_});
+    Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "clouds/render_clouds");
+    if (batch + 1 < luts.batchCount()) commands.barrier();
+  }
+}
+
+}  // namespace firmament

@@ -1,0 +1,53 @@
+#pragma once
+// The cloud ray-march pass (shaders/clouds/render_clouds.comp): cloud layers lit by the sun through the
+// atmosphere's transmittance table and by the sky irradiance table, composited over a rendered sky
+// image in place (docs/clouds.md). One dispatch per spectral batch of the atmosphere tables.
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "atmosphere/atmosphere_luts.h"
+#include "clouds/cloud_noise.h"
+#include "clouds/cloud_settings.h"
+#include "common/camera.glsl"
+#include "gpu/buffer.h"
+#include "gpu/command.h"
+#include "gpu/dispatch.h"
+
+namespace firmament {
+
+struct CloudView {
+  glm::dvec3 cameraPosition{0.0};  // planet-centred, m (the camera on +z of its ground point's ENU frame)
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};
+  shared::CameraParameters camera{};
+};
+
+class CloudPass {
+ public:
+  explicit CloudPass(gpu::Context& context);
+
+  // Records the noise bake into `commands` when the seed or sizes changed; true when it did.
+  bool prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands);
+
+  // Records the march over `skyImage` (RGBA32F, the view's size), one dispatch per batch of `luts`
+  // with skyIrradiance[b] the batch's sky irradiance table. The noise must be prepared and baked
+  // (a barrier between) and the sky written before (a barrier between).
+  void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Image& skyImage, const gpu::TileDispatch& tiles,
+              gpu::CommandList& commands);
+
+  // RGBA32F, the view's size: rgb = the clouds' light in front of the sky (cd/m^2, aerial perspective
+  // included), a = the clouds' transmittance. Valid after the recorded commands ran.
+  const gpu::Image& cloudImage() const { return cloudImage_; }
+  CloudNoise& noise() { return noise_; }
+
+ private:
+  gpu::Context& context_;
+  CloudNoise noise_;
+  gpu::ComputePipeline pipeline_;
+  gpu::Buffer block_;
+  gpu::Image cloudImage_;
+};
+
+}  // namespace firmament

@@ -1,0 +1,144 @@
+#include "clouds/cloud_settings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace firmament {
+
+namespace {
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+}
+
+double cloudTypeExtinction(int kind) {
+  switch (kind) {
+    case shared::kCloudStratus: return 0.05;
+    case shared::kCloudStratocumulus: return 0.07;
+    case shared::kCloudCumulus: return 0.1;
+    case shared::kCloudCumulonimbus: return 0.12;
+    case shared::kCloudCirrus: return 0.002;  // ice, IWC ~0.02 g/m^3, r_e ~25 um (Heymsfield 2003): ~1e-3
+    default: return 0.1;
+  }
+}
+
+int cloudKindFromName(const std::string& name) {
+  if (name == "stratus") return shared::kCloudStratus;
+  if (name == "stratocumulus") return shared::kCloudStratocumulus;
+  if (name == "cumulus") return shared::kCloudCumulus;
+  if (name == "cumulonimbus") return shared::kCloudCumulonimbus;
+  if (name == "cirrus") return shared::kCloudCirrus;
+  throw InputError("unknown cloud kind '" + name + "'");
+}
+
+const char* cloudKindName(int kind) {
+  switch (kind) {
+    case shared::kCloudStratus: return "stratus";
+    case shared::kCloudStratocumulus: return "stratocumulus";
+    case shared::kCloudCumulus: return "cumulus";
+    case shared::kCloudCumulonimbus: return "cumulonimbus";
+    case shared::kCloudCirrus: return "cirrus";
+    default: return "unknown";
+  }
+}
+
+void CloudOverrides::apply(CloudMarchSettings& march) const {
+  if (viewSteps) march.viewSteps = *viewSteps;
+  if (lightSteps) march.lightSteps = *lightSteps;
+  if (coarseFactor) march.coarseFactor = *coarseFactor;
+  if (jitter) march.jitter = *jitter;
+  if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
+  if (ambient) march.ambient = *ambient;
+}
+
+CloudSettings CloudSettings::fromScene(const Scene& scene) {
+  CloudSettings s;
+  const std::string source = scene.source();
+  const nlohmann::json& layers = scene.at("/clouds/layers");
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const std::string p = "/clouds/layers/" + std::to_string(i);
+    CloudLayerSettings l;
+    l.kind = cloudKindFromName(scene.string(p + "/kind"));
+    l.bottom_m = scene.number(p + "/bottom_m");
+    l.top_m = scene.number(p + "/top_m");
+    l.coverage = scene.number(p + "/coverage");
+    l.extinctionScale = scene.number(p + "/extinction_scale");
+    l.density = scene.number(p + "/density");
+    l.anvil = scene.number(p + "/anvil");
+    if (!(l.top_m > l.bottom_m))
+      throw InputError(source + ": " + p + ": top_m (" + std::to_string(l.top_m) + ") must exceed bottom_m (" +
+                       std::to_string(l.bottom_m) + ")");
+    s.layers.push_back(l);
+  }
+  for (size_t i = 0; i < s.layers.size(); ++i)
+    for (size_t j = i + 1; j < s.layers.size(); ++j)
+      if (s.layers[i].bottom_m < s.layers[j].top_m && s.layers[j].bottom_m < s.layers[i].top_m)
+        throw InputError(source + ": /clouds/layers: layers " + std::to_string(i) + " and " + std::to_string(j) +
+                         " overlap in height; allowed: disjoint shells");
+  s.seed = uint32_t(scene.integer("/clouds/seed"));
+  s.shapeScale_m = scene.number("/clouds/shape_scale_m");
+  s.detailScale_m = scene.number("/clouds/detail_scale_m");
+  s.detailStrength = scene.number("/clouds/detail_strength");
+  s.curlStrength_m = scene.number("/clouds/curl_strength_m");
+  s.windSpeed_m_s = scene.number("/clouds/wind_m_s");
+  s.windFromDeg = scene.number("/clouds/wind_from_deg");
+  s.time_s = scene.number("/clouds/time_s");
+  s.skew = scene.number("/clouds/skew");
+  CloudLightingSettings& light = s.lighting;
+  light.gForward = scene.number("/clouds/lighting/phase_g_forward");
+  light.gBack = scene.number("/clouds/lighting/phase_g_back");
+  light.backWeight = scene.number("/clouds/lighting/phase_back_weight");
+  light.albedo = scene.number("/clouds/lighting/albedo");
+  light.octaves = int(scene.integer("/clouds/lighting/ms_octaves"));
+  light.a = scene.number("/clouds/lighting/ms_a");
+  light.b = scene.number("/clouds/lighting/ms_b");
+  light.c = scene.number("/clouds/lighting/ms_c");
+  light.ambientBottomVisibility = scene.number("/clouds/lighting/ambient_bottom_visibility");
+  if (light.a > light.b)
+    throw InputError(source + ": /clouds/lighting/ms_a: " + std::to_string(light.a) +
+                     " exceeds ms_b (" + std::to_string(light.b) +
+                     "); allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
+  const std::string quality = scene.string("/clouds/quality");
+  if (quality == "low") {
+    s.march.viewSteps = 32, s.march.lightSteps = 4, light.octaves = std::min(light.octaves, 2);
+  } else if (quality == "high") {
+    s.march.viewSteps = 128, s.march.lightSteps = 8;
+  }
+  return s;
+}
+
+std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings, double groundRadius_m) {
+  std::vector<shared::CloudLayer> out;
+  // Wind towards (from + 180 deg), in the camera's East-North-Up frame.
+  const double towards = (settings.windFromDeg + 180.0) * kDegree;
+  const glm::dvec2 windDirection(std::sin(towards), std::cos(towards));
+  for (const CloudLayerSettings& l : settings.layers) {
+    shared::CloudLayer c{};
+    c.bottom_radius = groundRadius_m + l.bottom_m;
+    c.top_radius = groundRadius_m + l.top_m;
+    c.coverage = l.coverage;
+    c.extinction = cloudTypeExtinction(l.kind) * l.extinctionScale;
+    c.density_scale = l.density;
+    c.anvil = l.anvil;
+    c.shape_period = settings.shapeScale_m;
+    c.detail_period = settings.detailScale_m;
+    c.detail_strength = settings.detailStrength;
+    c.curl_period = settings.shapeScale_m * 0.5;
+    c.curl_strength = settings.curlStrength_m;
+    // Positions move against the wind in the noise frame: the field drifts with it.
+    const glm::dvec2 offset = -windDirection * settings.windSpeed_m_s * settings.time_s;
+    c.wind_offset = glm::dvec3(offset.x, offset.y, 0.0);
+    c.skew = -windDirection * settings.skew;
+    c.kind = l.kind;
+    out.push_back(c);
+  }
+  return out;
+}
+
+double cloudLightMarchLength(const CloudSettings& settings) {
+  double thickest = 0.0;
+  for (const auto& l : settings.layers) thickest = std::max(thickest, l.top_m - l.bottom_m);
+  return std::clamp(thickest, 100.0, 4000.0);
+}
+
+}  // namespace firmament

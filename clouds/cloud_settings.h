@@ -1,0 +1,91 @@
+#pragma once
+// Cloud layers and the cloud render knobs, from a scene's "clouds" section (core/scene_schema.json;
+// docs/clouds.md explains each), and their conversion to the shared CloudLayer structs
+// (common/cloud_density.glsl) that the GPU march and the CPU path tracer both read.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/cloud_density.glsl"
+#include "core/scene.h"
+
+namespace firmament {
+
+struct CloudLayerSettings {
+  int kind = shared::kCloudCumulus;
+  double bottom_m = 1500.0;  // above the ground sphere
+  double top_m = 4000.0;
+  double coverage = 0.5;
+  double extinctionScale = 1.0;
+  double density = 1.0;
+  double anvil = 1.0;
+};
+
+// Light and march knobs of the fast path (the quality preset fills the step counts).
+struct CloudMarchSettings {
+  int viewSteps = 64;    // fine steps over the view ray's stretches inside the shells
+  int lightSteps = 6;    // light-march samples towards the sun
+  int coarseFactor = 4;  // a coarse (empty-space) step is this many fine steps; 1 = no skipping
+  double earlyExitTransmittance = 0.01;
+  double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
+  double lightCone = 0.15;         // tan of the light cone's half-angle
+  bool jitter = true;              // blue-noise jitter of the sample positions
+  bool aerialPerspective = true;
+  bool ambient = true;
+};
+
+struct CloudLightingSettings {
+  double gForward = 0.8;
+  double gBack = -0.3;
+  double backWeight = 0.3;
+  double albedo = 1.0;
+  int octaves = 3;
+  double a = 0.5, b = 0.5, c = 0.5;
+  double ambientBottomVisibility = 0.5;
+};
+
+struct CloudSettings {
+  std::vector<CloudLayerSettings> layers;
+  uint32_t seed = 1;
+  double shapeScale_m = 12000.0;
+  double detailScale_m = 1500.0;
+  double detailStrength = 0.35;
+  double curlStrength_m = 150.0;
+  double windSpeed_m_s = 0.0;
+  double windFromDeg = 270.0;
+  double time_s = 0.0;
+  double skew = 0.2;
+  CloudLightingSettings lighting;
+  CloudMarchSettings march;
+
+  // From the scene's "clouds" section (which must be present). Throws InputError for layers with
+  // top <= bottom, overlapping layers, or ms_a > ms_b.
+  static CloudSettings fromScene(const Scene& scene);
+};
+
+// Overrides of the march from the command line or a benchmark (unset: the scene's preset).
+struct CloudOverrides {
+  std::optional<int> viewSteps;
+  std::optional<int> lightSteps;
+  std::optional<int> coarseFactor;
+  std::optional<bool> jitter;
+  std::optional<bool> aerialPerspective;
+  std::optional<bool> ambient;
+  void apply(CloudMarchSettings& march) const;
+};
+
+// Extinction at density 1 (m^-1, 550 nm; grey in the visible for droplets >> wavelength) per type.
+// From liquid water content LWC and effective radius r_e, sigma = 3 LWC / (2 rho_w r_e) (Stephens 1978,
+// extinction efficiency 2): cumulus LWC 0.5-1 g/m^3, r_e 10 um -> 0.075-0.15; stratus 0.3 g/m^3 -> 0.045.
+double cloudTypeExtinction(int kind);
+int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown
+const char* cloudKindName(int kind);
+
+// The shared layer structs for a ground sphere of radius groundRadius_m.
+std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings, double groundRadius_m);
+
+// The light-march length (m): the thickest layer's thickness, at most 4 km.
+double cloudLightMarchLength(const CloudSettings& settings);
+
+}  // namespace firmament

@@ -1,0 +1,272 @@
+#include "clouds/reference_clouds.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "atmosphere/atmosphere_spectra.h"
+#include "atmosphere/reference_path_tracer.h"
+#include "atmosphere/reference_renderer.h"
+#include "common/atmosphere_lut.glsl"
+#include "common/cloud_lighting.glsl"
+
+namespace firmament {
+namespace {
+
+glm::dvec3 directionAround(glm::dvec3 axis, double cosine, double azimuth) {
+  const glm::dvec3 helper = std::abs(axis.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0);
+  const glm::dvec3 t = glm::normalize(glm::cross(axis, helper));
+  const glm::dvec3 b = glm::cross(axis, t);
+  const double sine = std::sqrt(std::max(0.0, 1.0 - cosine * cosine));
+  return glm::normalize(cosine * axis + sine * (std::cos(azimuth) * t + std::sin(azimuth) * b));
+}
+
+}  // namespace
+
+CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl)
+    : layers_(std::move(layers)), shape_(std::move(shape)), detail_(std::move(detail)), curl_(std::move(curl)) {}
+
+double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
+  // The same steps as densityAt in shaders/clouds/render_clouds.comp, in double.
+  const shared::CloudLayer& layer = layers_[i];
+  const double ph = shared::cloudHeightFraction(layer, glm::length(p));
+  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+  const glm::dvec3 local = shared::cloudLocalPosition(layer, p);
+  const double base = shared::cloudShapeDensity(layer, ph, shape_.sample(shared::cloudShapeCoordinate(layer, local)), 1.0);
+  if (base <= 0.0) return 0.0;
+  const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(layer, local));
+  const glm::dvec4 detail =
+      detail_.sample(shared::cloudDetailCoordinate(layer, local, glm::dvec2(curl.x, curl.y), ph));
+  return layer.extinction * shared::cloudDensity(layer, ph, base, detail);
+}
+
+CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting,
+                                 const AtmosphereSettings& atmosphere, glm::dvec3 sun,
+                                 const CloudEnvironment& environment, const CloudReferenceSettings& settings)
+    : medium_(medium),
+      lighting_(lighting),
+      atmosphere_(atmosphereParametersAt(atmosphere, kDefaultWavelengthsNm)),
+      sun_(glm::normalize(sun)),
+      environment_(environment),
+      settings_(settings),
+      skyToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSkyLambdaPower)),
+      sunToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSunLambdaPower)) {}
+
+glm::dvec3 CloudPathTracer::sunIrradianceAt(glm::dvec3 p) const {
+  const double r = std::max(glm::length(p), atmosphere_.bottom_radius);
+  const double muS = std::clamp(glm::dot(p, sun_) / glm::length(p), -1.0, 1.0);
+  // The planet's shadow faded over the sun's disc, as transmittanceToSun (Bruneton 2017).
+  const double sinH = atmosphere_.bottom_radius / r;
+  const double cosH = -std::sqrt(std::max(1.0 - sinH * sinH, 0.0));
+  const double a = sinH * atmosphere_.sun_angular_radius;
+  const double visible = glm::smoothstep(-a, a, muS - cosH);
+  if (visible <= 0.0) return glm::dvec3(0.0);
+  const glm::dvec3 depth = shared::opticalDepthToTop(atmosphere_, r, muS, settings_.sunOpticalDepthSteps);
+  return visible * glm::exp(-depth) * atmosphere_.solar_irradiance;
+}
+
+std::vector<CloudPathTracer::Segment> CloudPathTracer::segments(glm::dvec3 origin, glm::dvec3 direction, double tMax) const {
+  double r, mu;
+  shared::rayRadiusAndCosine(origin, direction, r, mu);
+  if (shared::rayIntersectsGround(r, mu, atmosphere_.bottom_radius))
+    tMax = std::min(tMax, shared::distanceToBottomAtmosphereBoundary(r, mu, atmosphere_.bottom_radius));
+  std::vector<Segment> out;
+  for (size_t i = 0; i < medium_.layers().size(); ++i) {
+    const shared::CloudLayer& l = medium_.layers()[i];
+    glm::dvec2 a, b;
+    shared::cloudShellSegments(r, mu, l.bottom_radius, l.top_radius, tMax, a, b);
+    if (a.y > a.x) out.push_back({a.x, a.y, i});
+    if (b.y > b.x) out.push_back({b.x, b.y, i});
+  }
+  std::sort(out.begin(), out.end(), [](const Segment& x, const Segment& y) { return x.start < y.start; });
+  return out;
+}
+
+// Ratio tracking (Novák et al. 2014): T = Π (1 - sigma_t(x_k) / sigma_max) over tentative collisions
+// x_k drawn with the majorant; unbiased, and never 0/1 noise like a delta-tracking indicator.
+double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random) const {
+  double transmittance = 1.0;
+  for (const Segment& s : segments(origin, direction, 1e7)) {
+    const double majorant = shared::cloudMajorant(medium_.layers()[s.layer]);
+    if (!(majorant > 0.0)) continue;
+    for (double t = s.start - std::log1p(-random.uniform()) / majorant; t < s.end;
+         t -= std::log1p(-random.uniform()) / majorant) {
+      transmittance *= 1.0 - std::min(medium_.extinction(s.layer, origin + direction * t) / majorant, 1.0);
+      if (transmittance < 1e-6) return 0.0;  // negligible; (Russian roulette would keep it unbiased)
+    }
+  }
+  return transmittance;
+}
+
+CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec3 direction, uint64_t stream) const {
+  PixelResult result;
+  reference::Random random(settings_.seed, stream);
+  const double albedo = lighting_.albedo;
+  double sumY = 0.0, sumY2 = 0.0, sumT = 0.0;
+  glm::dvec3 sumRgb(0.0);
+  const int n = std::max(settings_.samplesPerPixel, 1);
+  for (int sample = 0; sample < n; ++sample) {
+    sumT += cloudTransmittance(origin, direction, random);
+    glm::dvec3 sunlike(0.0), skylike(0.0);
+    glm::dvec3 x = origin, w = direction;
+    double weight = 1.0;
+    bool primary = true;
+    for (int event = 0;; ++event) {
+      if (event >= settings_.maxEvents) {
+        result.capped++;
+        break;
+      }
+      // Delta tracking through the shells in order, to the first real collision.
+      bool collided = false;
+      for (const Segment& s : segments(x, w, primary ? settings_.maxDistance_m : 1e7)) {
+        const double majorant = shared::cloudMajorant(medium_.layers()[s.layer]);
+        if (!(majorant > 0.0)) continue;
+        double t = s.start;
+        while (true) {
+          t -= std::log1p(-random.uniform()) / majorant;
+          if (t >= s.end) break;
+          const glm::dvec3 p = x + w * t;
+          if (random.uniform() * majorant < medium_.extinction(s.layer, p)) {
+            x = p;
+            collided = true;
+            break;
+          }
+        }
+        if (collided) break;
+      }
+      if (!collided) {
+        // Left the clouds: the background of the view ray is the sky image (composited with T);
+        // scattered paths see the environment.
+        if (!primary) {
+          const double r = glm::length(x), mu = glm::dot(x, w) / r;
+          if (shared::rayIntersectsGround(r, mu, atmosphere_.bottom_radius)) {
+            sunlike += weight * environment_.groundSun;
+            skylike += weight * environment_.groundSky;
+          } else {
+            skylike += weight * environment_.sky;
+          }
+        }
+        break;
+      }
+      result.events++;
+      primary = false;
+      weight *= albedo;
+      // Next event towards the sun (a directional light of irradiance E_sun T_atm).
+      const double nuSun = glm::dot(w, sun_);
+      const glm::dvec3 sunLight = sunIrradianceAt(x);
+      if (sunLight.x + sunLight.y + sunLight.z > 0.0) {
+        const double phase = shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, nuSun);
+        sunlike += weight * phase * cloudTransmittance(x, sun_, random) * sunLight;
+      }
+      // New direction from the dual-lobe phase function (choose the lobe by its weight, then sample
+      // it exactly: the mixture's pdf equals the phase function, so the weight is unchanged).
+      const double g = random.uniform() < lighting_.backWeight ? lighting_.gBack : lighting_.gForward;
+      const double cosine = reference::sampleHenyeyGreensteinCosine(g, random.uniform());
+      w = directionAround(w, cosine, 2.0 * shared::kPi * random.uniform());
+      if (weight < 1e-3) {  // Russian roulette for albedo < 1
+        if (random.uniform() > weight * 1e3) break;
+        weight = 1e-3;
+      }
+    }
+    const glm::dvec3 rgb = sunToRgb_ * sunlike + skyToRgb_ * skylike;
+    const double y = 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
+    sumRgb += rgb;
+    sumY += y;
+    sumY2 += y * y;
+  }
+  result.rgb = sumRgb / double(n);
+  result.transmittance = sumT / double(n);
+  result.luminance = sumY / double(n);
+  if (n > 1)
+    result.luminanceStandardError =
+        std::sqrt(std::max(0.0, sumY2 / n - result.luminance * result.luminance) / double(n - 1));
+  return result;
+}
+
+CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dvec3 cameraPosition,
+                                         const shared::CameraParameters& camera, int threads,
+                                         const std::function<void(size_t, size_t)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  CloudReferenceImage out;
+  out.image = Image(camera.width, camera.height, 4);
+  const size_t count = out.image.pixelCount();
+  out.luminance.assign(count, 0.0);
+  out.luminanceStandardError.assign(count, 0.0);
+  std::atomic<size_t> next{0}, done{0};
+  std::atomic<long long> events{0}, capped{0};
+  auto worker = [&] {
+    for (size_t i = next++; i < count; i = next++) {
+      const int x = int(i % size_t(camera.width)), y = int(i / size_t(camera.width));
+      bool valid = true;
+      const glm::dvec3 dir = shared::cameraRayDirection(camera, glm::dvec2(x + 0.5, y + 0.5), valid);
+      float* p = out.image.at(x, y);
+      if (!valid) {
+        p[0] = p[1] = p[2] = 0.0f, p[3] = 1.0f;
+      } else {
+        const CloudPathTracer::PixelResult r = tracer.pixel(cameraPosition, dir, uint64_t(i));
+        for (int c = 0; c < 3; ++c) p[c] = float(std::max(r.rgb[c], 0.0));
+        p[3] = float(r.transmittance);
+        out.luminance[i] = r.luminance;
+        out.luminanceStandardError[i] = r.luminanceStandardError;
+        events += r.events;
+        capped += r.capped;
+      }
+      ++done;
+    }
+  };
+  const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < n; ++t) pool.emplace_back(worker);
+  while (progress && done.load() < count) {
+    progress(done.load(), count);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  for (auto& t : pool) t.join();
+  out.paths = (long long)count;
+  out.events = events.load();
+  out.capped = capped.load();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+CloudEnvironment cloudEnvironmentFromReference(const AtmosphereSettings& atmosphere, glm::dvec3 sun, double r,
+                                               int thetaBands, int samplesPerDirection) {
+  ReferenceQuality quality;
+  quality.samplesPerPixel = samplesPerDirection;
+  quality.sunDisc = false;
+  quality.threads = 1;
+  const std::vector<double> wavelengths{kDefaultWavelengthsNm.x, kDefaultWavelengthsNm.y, kDefaultWavelengthsNm.z};
+  const ReferenceRenderer renderer(reference::SpectralMedium::fromSettings(atmosphere, wavelengths), sun, quality);
+  // E = ∫ L cos(theta) dOmega over the upper hemisphere, midpoint rule in (theta, phi).
+  glm::dvec3 irradiance(0.0);
+  const int phiBands = 2 * thetaBands;
+  const double dTheta = 0.5 * shared::kPi / thetaBands, dPhi = 2.0 * shared::kPi / phiBands;
+  uint64_t stream = 0;
+  for (int i = 0; i < thetaBands; ++i)
+    for (int j = 0; j < phiBands; ++j) {
+      const double theta = (i + 0.5) * dTheta, phi = (j + 0.5) * dPhi;
+      const glm::dvec3 dir(std::sin(theta) * std::sin(phi), std::sin(theta) * std::cos(phi), std::cos(theta));
+      const std::vector<double> l = renderer.radiance(glm::dvec3(0.0, 0.0, r), dir, stream++).total();
+      irradiance += glm::dvec3(l[0], l[1], l[2]) * std::cos(theta) * std::sin(theta) * dTheta * dPhi;
+    }
+  CloudEnvironment env;
+  env.sky = irradiance / shared::kPi;
+  // The ground below the camera: the sun through the atmosphere and the same sky irradiance (the
+  // sky seen from the ground differs a little; part of the stated approximation).
+  const shared::AtmosphereParameters p = atmosphereParametersAt(atmosphere, kDefaultWavelengthsNm);
+  const double muS = glm::normalize(sun).z;
+  const glm::dvec3 groundPoint(0.0, 0.0, p.bottom_radius);
+  CloudLightingSettings unused;
+  CloudReferenceSettings settings;
+  CloudMedium none({}, {}, {}, {});
+  const CloudPathTracer tracer(none, unused, atmosphere, sun, CloudEnvironment{}, settings);
+  const glm::dvec3 sunAtGround = tracer.sunIrradianceAt(groundPoint + glm::dvec3(0.0, 0.0, 0.01));
+  env.groundSun = p.ground_albedo / shared::kPi * sunAtGround * std::max(muS, 0.0);
+  env.groundSky = p.ground_albedo / shared::kPi * irradiance;
+  return env;
+}
+
+}  // namespace firmament

@@ -1,0 +1,117 @@
+#pragma once
+// The CPU cloud reference (docs/clouds.md, "Reference"): a volumetric path tracer in double precision
+// over the same medium as the GPU march (common/cloud_density.glsl on the read-back noise textures,
+// clouds/noise_volume.h), with none of the march's approximations: free paths by delta tracking
+// against a majorant per shell (Woodcock et al. 1965), transmittance to the sun by ratio tracking
+// (Novák et al. 2014) through every layer, all scattering orders, the same dual-lobe Henyey-Greenstein
+// phase function sampled exactly, albedo per event.
+// Light: the sun by next-event estimation, through the clouds and through the atmosphere (the shared
+// optical depth opticalDepthToTop of common/atmosphere_lut.glsl, evaluated in double at the vertex, no
+// table), and an environment for paths that leave the shells: a constant sky radiance over the upper
+// hemisphere and a constant ground radiance below (an approximation, stated in docs/clouds.md; the
+// air between and around the clouds is not scattered in this reference).
+// Radiance is carried at the fast path's three wavelengths (680, 550, 440 nm) in a sun-like and a
+// sky-like part and converted with the same Rec.709 matrices, so that a comparison with the GPU
+// isolates cloud transport.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "atmosphere/atmosphere_settings.h"
+#include "atmosphere/reference_random.h"
+#include "clouds/cloud_settings.h"
+#include "clouds/noise_volume.h"
+#include "common/camera.glsl"
+#include "common/cloud_density.glsl"
+#include "core/image.h"
+
+namespace firmament {
+
+// The medium: layers and the noise textures they read.
+class CloudMedium {
+ public:
+  CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl);
+  const std::vector<shared::CloudLayer>& layers() const { return layers_; }
+  // Extinction (m^-1) of layer i at p (planet-centred, m); 0 outside its shell.
+  double extinction(size_t layer, glm::dvec3 p) const;
+
+ private:
+  std::vector<shared::CloudLayer> layers_;
+  NoiseVolume shape_, detail_, curl_;
+};
+
+// Light around the clouds, spectral radiance (W m^-2 sr^-1 nm^-1) at the three wavelengths.
+struct CloudEnvironment {
+  glm::dvec3 sky{0.0};        // above the local horizon (sky-like spectrum)
+  glm::dvec3 groundSun{0.0};  // below: the ground's reflection of sunlight (sun-like)
+  glm::dvec3 groundSky{0.0};  // below: the ground's reflection of skylight (sky-like)
+};
+
+struct CloudReferenceSettings {
+  int samplesPerPixel = 64;
+  uint64_t seed = 1;
+  int maxEvents = 100000;       // scattering events per path (hard cap; counted)
+  int sunOpticalDepthSteps = 200;  // trapezoid intervals of the atmosphere's optical depth to the sun
+  int threads = 0;              // 0: all cores
+  double maxDistance_m = 80000.0;  // as the fast path: clouds farther along the view ray are not seen
+};
+
+struct CloudReferenceImage {
+  Image image;  // rgb: the clouds' light (cd/m^2, Rec.709), a: their mean transmittance
+  std::vector<double> luminance, luminanceStandardError;
+  double seconds = 0.0;
+  long long paths = 0, events = 0, capped = 0;
+};
+
+class CloudPathTracer {
+ public:
+  // atmosphere: the scene's atmosphere (evaluated at 680, 550, 440 nm); sun: unit vector in the frame
+  // of the camera's ground point (camera on +z).
+  CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting, const AtmosphereSettings& atmosphere,
+                  glm::dvec3 sun, const CloudEnvironment& environment, const CloudReferenceSettings& settings);
+
+  // One pixel: the clouds' light (sun-like, sky-like) and transmittance along a view ray, averaged
+  // over samplesPerPixel paths with stream `stream`.
+  struct PixelResult {
+    glm::dvec3 rgb{0.0};  // Rec.709 cd/m^2
+    double transmittance = 1.0;
+    double luminance = 0.0, luminanceStandardError = 0.0;
+    long long events = 0, capped = 0;
+  };
+  PixelResult pixel(glm::dvec3 origin, glm::dvec3 direction, uint64_t stream) const;
+
+  // Spectral sunlight (W m^-2 nm^-1) reaching p through the atmosphere, without clouds.
+  glm::dvec3 sunIrradianceAt(glm::dvec3 p) const;
+
+ private:
+  struct Segment {
+    double start, end;
+    size_t layer;
+  };
+  std::vector<Segment> segments(glm::dvec3 origin, glm::dvec3 direction, double tMax) const;
+  double cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random) const;
+
+  const CloudMedium& medium_;
+  CloudLightingSettings lighting_;
+  shared::AtmosphereParameters atmosphere_{};
+  glm::dvec3 sun_;
+  CloudEnvironment environment_;
+  CloudReferenceSettings settings_;
+  glm::dmat3 skyToRgb_, sunToRgb_;
+};
+
+CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dvec3 cameraPosition,
+                                         const shared::CameraParameters& camera, int threads,
+                                         const std::function<void(size_t, size_t)>& progress = {});
+
+// The environment from the clear-sky CPU reference (atmosphere/reference_renderer.h) at three
+// wavelengths: the irradiance E_sky on a horizontal surface at radius r (m), by a midpoint rule over
+// thetaBands x 2 thetaBands directions of the upper hemisphere with samplesPerDirection paths each;
+// sky = E_sky / pi, and the ground (Lambertian, the atmosphere's albedo) lit by the transmitted sun
+// and E_sky at the ground below the camera.
+CloudEnvironment cloudEnvironmentFromReference(const AtmosphereSettings& atmosphere, glm::dvec3 sun, double r,
+                                               int thetaBands = 6, int samplesPerDirection = 8);
+
+}  // namespace firmament

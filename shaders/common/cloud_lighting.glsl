@@ -1,0 +1,54 @@
+// cloud_lighting.glsl: the pieces of cloud lighting shared by the GPU march, the CPU path tracer and
+// the tests (compat.glsl rules). docs/clouds.md derives each formula.
+#ifndef FIRMAMENT_CLOUD_LIGHTING_GLSL
+#define FIRMAMENT_CLOUD_LIGHTING_GLSL
+
+#include "common/atmosphere_medium.glsl"
+
+SHARED_BEGIN
+
+// Energy-conserving integration of one march step (Hillaire 2016, "Physically based sky, atmosphere
+// and cloud rendering in Frostbite"). Over a step of length dt with constant
+// extinction sigma_t and source S (radiance per metre of scattering), the light added at the step's
+// start is
+//     ∫_0^dt S e^(-sigma_t x) dx = S (1 - e^(-sigma_t dt)) / sigma_t = S * cloudStepIntegral(sigma_t, dt).
+// Written as dt (1 - e^-k) / k with k = sigma_t dt, which is exact in both limits:
+//   k -> 0:   dt (1 - k/2 + k^2/6 - k^3/24 + k^4/120 - ...) -> dt   (the thin medium: S dt);
+//   k -> oo:  (1 - e^-k) / sigma_t -> 1 / sigma_t                    (the opaque step: S / sigma_t).
+// Below k = 0.01 the Taylor series to k^4 is used: its truncation error k^5 / 720 < 1.4e-13 relative,
+// while 1 - e^-k would lose ~log10(1/k) digits to cancellation. k = 0 (sigma_t = 0) gives dt.
+SHARED_INLINE Real cloudStepIntegral(Real sigma_t, Real dt) {
+  Real k = sigma_t * dt;
+  if (k < 0.01) return dt * (1.0 - k * (1.0 / 2.0 - k * (1.0 / 6.0 - k * (1.0 / 24.0 - k * (1.0 / 120.0)))));
+  return (1.0 - exp(-k)) / sigma_t;
+}
+
+// The phase function of cloud droplets, approximated by two Henyey-Greenstein lobes (Hillaire 2016):
+// p(nu) = (1 - w) p_HG(g_forward, nu) + w p_HG(g_back, nu). Normalised (1/sr).
+SHARED_INLINE Real cloudPhase(Real gForward, Real gBack, Real backWeight, Real nu) {
+  return mix(henyeyGreensteinPhase(gForward, nu), henyeyGreensteinPhase(gBack, nu), backWeight);
+}
+
+// Octave i of the multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and
+// volumetric"; Hillaire 2016): the light of octave i is that of single scattering with
+// extinction scaled by a^i (longer free paths), intensity by b^i and phase eccentricity by c^i:
+//     L_ms = Σ_{i=0}^{N-1} b^i σ_s p(c^i g, nu) E_sun T_atm e^(-a^i τ_sun).
+// Energy: the octaves sum to at most Σ b^i times single scattering; with a <= b the added light never
+// exceeds what the extinction removed (Hillaire 2016). The caller enforces a <= b.
+SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return pow(b, Real(octave)); }
+SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return pow(a, Real(octave)); }
+SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return pow(c, Real(octave)); }
+
+// Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
+// radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
+// over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
+// L_ground) / 2. The cloud itself hides part of each hemisphere: the sky is scaled by a visibility
+// rising linearly from `bottomVisibility` at the base to 1 at the top of the shell, the ground by one
+// falling from 1 at the base to `bottomVisibility` at the top (after Hillaire 2016's
+// top/bottom ambient gradient).
+SHARED_INLINE Real cloudSkyVisibility(Real ph, Real bottomVisibility) { return mix(bottomVisibility, 1.0, clamp(ph, 0.0, 1.0)); }
+SHARED_INLINE Real cloudGroundVisibility(Real ph, Real bottomVisibility) { return mix(1.0, bottomVisibility, clamp(ph, 0.0, 1.0)); }
+
+SHARED_END
+
+#endif  // FIRMAMENT_CLOUD_LIGHTING_GLSL

@@ -1,0 +1,127 @@
+// The cloud pass inside the sky renderer: what runs, what a zero cloud changes (nothing), robustness
+// over camera and sun positions, and convergence in the number of view steps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "sky/render_plan.h"
+#include "tests/clouds/cloud_test_support.h"
+
+namespace firmament {
+namespace {
+
+class CloudRender : public test::GpuTest {};
+
+double maxAbsDifference(const Image& a, const Image& b) {
+  double m = 0.0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, double(std::abs(a.pixels[i] - b.pixels[i])));
+  return m;
+}
+
+void expectFiniteNonNegative(const Image& image, const std::string& what) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(image.pixels[i])) << what << " at " << i;
+    ASSERT_GE(image.pixels[i], 0.0f) << what << " at " << i;
+  }
+}
+
+TEST(CloudPlan, CloudsListedOnlyWithLayers) {
+  RenderPlan clear = planRender(Scene::parse("{}", "<t>"));
+  EXPECT_FALSE(clear.has("clouds/render_clouds"));
+  RenderPlan cloudy = planRender(test::cloudScene());
+  EXPECT_TRUE(cloudy.has("clouds/render_clouds"));
+  EXPECT_TRUE(cloudy.has("clouds/bake_noise_3d"));
+}
+
+TEST_F(CloudRender, ZeroDensityOrCoverageLeavesTheSkyUnchanged) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  Scene clearScene = test::cloudScene({}, R"({"location": {"height_m": 500}, "sun": {"zenith_deg": 40, "azimuth_deg": 180},
+    "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 50, "fov_deg": 80, "width": 64, "height": 36}})");
+  RenderResult clear = test::cloudRenderer().render(clearScene, o);
+  for (const char* zero : {"/clouds/layers/0/coverage=0", "/clouds/layers/0/extinction_scale=0", "/clouds/layers/0/density=0"}) {
+    RenderResult r = test::cloudRenderer().render(test::cloudScene({zero}), o);
+    EXPECT_EQ(maxAbsDifference(r.image, clear.image), 0.0) << zero;
+    for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_EQ(r.clouds.pixels[4 * i + 3], 1.0f) << zero;
+  }
+  // And with cloud, something changes.
+  RenderResult cloudy = test::cloudRenderer().render(test::cloudScene(), o);
+  EXPECT_GT(maxAbsDifference(cloudy.image, clear.image), 0.0);
+}
+
+TEST_F(CloudRender, CoverageOneIsNearlyOpaqueOverhead) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  RenderResult r = test::cloudRenderer().render(
+      test::cloudScene({"/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30"}), o);
+  expectFiniteNonNegative(r.image, "image");
+  double meanT = 0.0;
+  for (size_t i = 0; i < r.clouds.pixelCount(); ++i) meanT += r.clouds.pixels[4 * i + 3];
+  meanT /= double(r.clouds.pixelCount());
+  std::printf("coverage 1, looking up: mean cloud transmittance %.4f\n", meanT);
+  EXPECT_LT(meanT, 0.2);
+}
+
+// Camera below, at the bottom boundary, inside, at the top boundary and above the shell; sun at the
+// zenith, the horizon and below it; views up, level (tangent to the shells from their boundaries)
+// and down.
+TEST_F(CloudRender, FiniteAndNonNegativeEverywhere) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.viewSteps = 24;
+  o.clouds.lightSteps = 3;
+  const double ground = 500.0;
+  for (double height : {2.0, 1500.0, 2700.0, 4000.0, 6000.0}) {
+    for (double sunZenith : {0.0, 90.0, 96.0}) {
+      for (double pitch : {60.0, 0.0, -30.0}) {
+        Scene s = test::cloudScene({"/camera/height_above_ground_m=" + std::to_string(height),
+                                    "/sun/zenith_deg=" + std::to_string(sunZenith),
+                                    "/camera/pitch_deg=" + std::to_string(pitch), "/camera/width=16",
+                                    "/camera/height=9", "/location/height_m=" + std::to_string(ground)});
+        RenderResult r = test::cloudRenderer().render(s, o);
+        const std::string what = "height " + std::to_string(height) + " sun " + std::to_string(sunZenith) +
+                                 " pitch " + std::to_string(pitch);
+        expectFiniteNonNegative(r.image, what);
+        expectFiniteNonNegative(r.clouds, what + " (clouds)");
+        for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_LE(r.clouds.pixels[4 * i + 3], 1.0f) << what;
+      }
+    }
+  }
+}
+
+// The march converges: the error against a 1024-step render falls as the view steps grow (jitter off,
+// so the error is the quadrature's, not noise).
+TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.jitter = false;
+  o.clouds.coarseFactor = 1;
+  Scene s = test::cloudScene({"/camera/width=32", "/camera/height=18"});
+  o.clouds.viewSteps = 1024;
+  const Image truth = test::cloudRenderer().render(s, o).clouds;
+  std::vector<double> errors;
+  for (int steps : {16, 64, 256}) {
+    o.clouds.viewSteps = steps;
+    const Image img = test::cloudRenderer().render(s, o).clouds;
+    double sum2 = 0.0, ref2 = 0.0;
+    for (size_t i = 0; i < img.pixelCount(); ++i) {
+      const double y = luminanceRec709(img.pixels.data() + 4 * i), t = luminanceRec709(truth.pixels.data() + 4 * i);
+      sum2 += (y - t) * (y - t);
+      ref2 += t * t;
+    }
+    errors.push_back(std::sqrt(sum2 / std::max(ref2, 1e-30)));
+    std::printf("view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps, errors.back());
+  }
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+}
+
+TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=0.8", "/clouds/lighting/ms_b=0.5"})),
+               InputError);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene(
+                   {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
+               InputError);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
+}
+
+}  // namespace
+}  // namespace firmament
