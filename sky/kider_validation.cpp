@@ -201,7 +201,7 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     Image gpuImage;
     if (gpuRenderer) gpuImage = gpuRenderer->render(scene).image;
 
-    double se2 = 0.0, bias = 0.0, y2 = 0.0, dy2 = 0.0, gpuDy2 = 0.0, gpuRefDy2 = 0.0, ref2 = 0.0;
+    double noise2 = 0.0, se2 = 0.0, bias = 0.0, y2 = 0.0, dy2 = 0.0, gpuDy2 = 0.0, gpuRefDy2 = 0.0, ref2 = 0.0;
     size_t count = 0;
     for (size_t k = 0; k < capture.samples.size(); ++k) {
       const KiderSample& s = capture.samples[k];
@@ -218,6 +218,7 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
         const double e = d.model.back() - d.measured.back();
         dirSe2 += e * e;
         dirBias += e;
+        noise2 += std::pow(radiance[k].multipleScatteringStandardError[i], 2);
       }
       se2 += dirSe2;
       bias += dirBias;
@@ -239,6 +240,7 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     }
     c.rmseSpectral = 1e3 * std::sqrt(se2 / double(std::max<size_t>(count, 1)));
     c.bias = 1e3 * bias / double(std::max<size_t>(count, 1));
+    c.referenceNoiseRmse = 1e3 * std::sqrt(noise2 / double(std::max<size_t>(count, 1)));
     c.relRmseLuminance = y2 > 0 ? std::sqrt(dy2 / y2) : NAN;
     c.gpuRelRmseLuminance = gpuImage.width && y2 > 0 ? std::sqrt(gpuDy2 / y2) : NAN;
     c.gpuVsReferenceRelRmse = gpuImage.width && ref2 > 0 ? std::sqrt(gpuRefDy2 / ref2) : NAN;

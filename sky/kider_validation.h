@@ -72,6 +72,7 @@ struct KiderCaptureResult {
   double bias = 0.0;                     // mean(model - measured) spectral, 1e-3 W m^-2 sr^-1 nm^-1
   double gpuRelRmseLuminance = 0.0;      // the fast path against the measurements (NaN without it)
   double gpuVsReferenceRelRmse = 0.0;    // the fast path against the reference, same directions
+  double referenceNoiseRmse = 0.0;       // sqrt(mean(SE²)) of the reference's Monte Carlo noise, same unit
   double referenceSeconds = 0.0;
   std::vector<KiderDirectionResult> directions;
 };

@@ -78,14 +78,15 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
      << "## Total\n\n| model | total RMSE (10⁻³ W·m⁻²·sr⁻¹·nm⁻¹) |\n|---|---|\n"
      << "| **Firmament CPU reference (this run)** | **" << num(result.totalRmseSpectral, "%.1f") << "** |\n";
   for (const auto& p : publishedKiderResults()) md << "| " << p.model << " (published) | " << num(p.totalRmse, "%.1f") << " |\n";
-  md << "\n## Per capture\n\n"
+  md << "\n## Per capture\n\nThe reference noise RMSE is sqrt(mean(SE²)) of its Monte Carlo standard errors over the same "
+        "directions and wavelengths: it adds in quadrature to the true RMSE.\n\n"
      << "| capture | UTC | sun zenith ° | sun azimuth ° (computed → re-fitted) | RMSE spectral | bias | rel. RMSE "
-        "luminance | reference s |\n|---|---|---|---|---|---|---|---|\n";
+        "luminance | reference noise RMSE | reference s |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : result.captures)
     md << "| " << c.capture << " | " << c.utc << " | " << num(c.sunZenithDeg, "%.2f") << " | "
        << num(c.sunAzimuthComputedDeg, "%.2f") << " → " << num(c.sunAzimuthDeg, "%.2f") << " | "
        << num(c.rmseSpectral, "%.2f") << " | " << num(c.bias, "%+.2f") << " | " << num(100 * c.relRmseLuminance, "%.2f")
-       << " % | " << num(c.referenceSeconds, "%.1f") << " |\n";
+       << " % | " << num(c.referenceNoiseRmse, "%.2f") << " | " << num(c.referenceSeconds, "%.1f") << " |\n";
   if (!result.gpuDevice.empty()) {
     md << "\n## The fast GPU path in the same directions (luminance only)\n\n"
        << "Rendered as a " << settings.gpuWidth << "×" << settings.gpuHeight
