@@ -4,101 +4,134 @@
 
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/table_file.h"
+#include "core/hash.h"
 
 namespace firmament {
 namespace {
-std::string fnv1aHex(const std::string& text) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char out[17];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
+
+gpu::Image makeTable(gpu::Context& context, int width, int height, const char* name) {
+  return gpu::Image(context, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, true, name});
 }
+
+TableData download(const gpu::Image& image) {
+  return TableData{image.width(), image.height(), 1, 4, image.downloadFloats()};
+}
+
+bool fits(const TableData& data, const gpu::Image& image) {
+  return data.width == image.width() && data.height == image.height() && data.depth == 1 && data.channels == 4;
+}
+
 }  // namespace
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%ds%d-L%.3f,%.3f,%.3f", transmittanceWidth, transmittanceHeight,
-                transmittanceSteps, multipleScatteringSize, multipleScatteringDirectionsSqrt, multipleScatteringSteps,
-                wavelengthsNm.x, wavelengthsNm.y, wavelengthsNm.z);
+  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%dx%ds%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
+                transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringThetaSamples,
+                multipleScatteringPhiSamples, multipleScatteringSteps, multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
+                wavelengthsNm.y, wavelengthsNm.z);
   return text;
 }
 
 AtmosphereLuts::AtmosphereLuts(gpu::Context& context)
     : context_(context),
       transmittancePipeline_(context, {"atmosphere/transmittance_lut",
-                                       {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageImage},
-                                       sizeof(int32_t)}),
+                                       {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageImage,
+                                        gpu::BindingType::StorageImage},
+                                       2 * sizeof(int32_t)}),
       multipleScatteringPipeline_(context, {"atmosphere/multiple_scattering_lut",
                                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                                              gpu::BindingType::StorageImage},
-                                            2 * sizeof(int32_t)}),
-      block_(context, sizeof(AtmosphereBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "atmosphere block"),
+                                            3 * sizeof(int32_t)}),
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {}
 
 AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphere,
                                               const AtmosphereLutSettings& settings) {
-  std::string key = "atmosphere-luts-v1/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description();
+  std::string key = "atmosphere-luts-v2/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description();
   Update result;
   if (key == key_) return result;
 
-  parameters_ = atmosphereParametersAt(atmosphere, settings.wavelengthsNm);
-  AtmosphereBlock block = packAtmosphereBlock(parameters_,
-                                              threeWavelengthRadianceToRgb(settings.wavelengthsNm, kSkyLambdaPower),
-                                              threeWavelengthRadianceToRgb(settings.wavelengthsNm, kSunLambdaPower));
-  block_.upload(&block, sizeof(block));
-
-  if (!transmittance_ || int(transmittance_.width()) != settings.transmittanceWidth ||
-      int(transmittance_.height()) != settings.transmittanceHeight)
-    transmittance_ = gpu::Image(context_, {uint32_t(settings.transmittanceWidth), uint32_t(settings.transmittanceHeight), 1,
-                                           gpu::Format::RGBA32F, true, true, "transmittance LUT"});
-  if (!multipleScattering_ || int(multipleScattering_.width()) != settings.multipleScatteringSize)
-    multipleScattering_ = gpu::Image(context_, {uint32_t(settings.multipleScatteringSize), uint32_t(settings.multipleScatteringSize),
-                                                1, gpu::Format::RGBA32F, true, true, "multiple-scattering LUT"});
+  // Parameters and tables of every batch (kept when only their contents change).
+  std::vector<SpectralBatch> spectra = spectralBatches(settings.spectralSamples, settings.wavelengthsNm);
+  batches_.resize(spectra.size());
+  for (size_t b = 0; b < spectra.size(); ++b) {
+    Batch& batch = batches_[b];
+    batch.parameters = atmosphereParametersAt(atmosphere, spectra[b].wavelengthsNm);
+    AtmosphereBlock block = packAtmosphereBlock(batch.parameters, spectra[b].skyToRgb, spectra[b].sunToRgb);
+    if (!batch.block)
+      batch.block = gpu::Buffer(context_, sizeof(AtmosphereBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host,
+                                "atmosphere block");
+    batch.block.upload(&block, sizeof(block));
+    if (!batch.transmittance || int(batch.transmittance.width()) != settings.transmittanceWidth ||
+        int(batch.transmittance.height()) != settings.transmittanceHeight)
+      batch.transmittance = makeTable(context_, settings.transmittanceWidth, settings.transmittanceHeight, "transmittance LUT");
+    if (!batch.multipleScattering || int(batch.multipleScattering.width()) != settings.multipleScatteringSize)
+      batch.multipleScattering = makeTable(context_, settings.multipleScatteringSize, settings.multipleScatteringSize,
+                                           "multiple-scattering LUT");
+  }
+  if (!sunRadiance_ || int(sunRadiance_.width()) != settings.transmittanceWidth ||
+      int(sunRadiance_.height()) != settings.transmittanceHeight)
+    sunRadiance_ = makeTable(context_, settings.transmittanceWidth, settings.transmittanceHeight, "sun radiance LUT");
 
   std::filesystem::path file;
   if (!context_.cacheDir().empty())
-    file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + fnv1aHex(key) + ".bin");
+    file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + hex16(fnv1a(key)) + ".bin");
   if (!file.empty()) {
     auto tables = readTableFile(file, key);
-    if (tables && tables->size() == 2 && (*tables)[0].width == transmittance_.width() &&
-        (*tables)[0].height == transmittance_.height() && (*tables)[1].width == multipleScattering_.width() &&
-        (*tables)[1].height == multipleScattering_.height()) {
-      transmittance_.uploadFloats((*tables)[0].values);
-      multipleScattering_.uploadFloats((*tables)[1].values);
-      key_ = key;
-      result.source = Source::Disk;
-      return result;
+    if (tables && tables->size() == 2 * batches_.size() + 1) {
+      bool ok = fits(tables->back(), sunRadiance_);
+      for (size_t b = 0; b < batches_.size() && ok; ++b)
+        ok = fits((*tables)[2 * b], batches_[b].transmittance) && fits((*tables)[2 * b + 1], batches_[b].multipleScattering);
+      if (ok) {
+        for (size_t b = 0; b < batches_.size(); ++b) {
+          batches_[b].transmittance.uploadFloats((*tables)[2 * b].values);
+          batches_[b].multipleScattering.uploadFloats((*tables)[2 * b + 1].values);
+        }
+        sunRadiance_.uploadFloats(tables->back().values);
+        key_ = key;
+        result.source = Source::Disk;
+        return result;
+      }
     }
   }
 
   gpu::CommandList commands(context_);
   auto groups = [](int n) { return uint32_t((n + 7) / 8); };
-  commands.bind(transmittancePipeline_, {block_, transmittance_});
-  commands.pushConstants(int32_t(settings.transmittanceSteps));
-  commands.dispatch(groups(settings.transmittanceWidth), groups(settings.transmittanceHeight), 1,
-                    "atmosphere/transmittance_lut");
-  commands.barrier();
-  struct {
-    int32_t directionsSqrt;
-    int32_t steps;
-  } push{settings.multipleScatteringDirectionsSqrt, settings.multipleScatteringSteps};
-  commands.bind(multipleScatteringPipeline_, {block_, {transmittance_, linearClamp_}, multipleScattering_});
-  commands.pushConstants(push);
-  commands.dispatch(groups(settings.multipleScatteringSize), groups(settings.multipleScatteringSize), 1,
-                    "atmosphere/multiple_scattering_lut");
+  for (size_t b = 0; b < batches_.size(); ++b) {
+    const Batch& batch = batches_[b];
+    struct {
+      int32_t steps;
+      int32_t accumulate;
+    } transmittancePush{settings.transmittanceSteps, b > 0 ? 1 : 0};
+    commands.bind(transmittancePipeline_, {batch.block, batch.transmittance, sunRadiance_});
+    commands.pushConstants(transmittancePush);
+    commands.dispatch(groups(settings.transmittanceWidth), groups(settings.transmittanceHeight), 1,
+                      "atmosphere/transmittance_lut");
+    commands.barrier();
+    if (!settings.multipleScatteringLut) continue;
+    struct {
+      int32_t thetaSamples;
+      int32_t phiSamples;
+      int32_t steps;
+    } multiplePush{settings.multipleScatteringThetaSamples, settings.multipleScatteringPhiSamples,
+                   settings.multipleScatteringSteps};
+    commands.bind(multipleScatteringPipeline_, {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering});
+    commands.pushConstants(multiplePush);
+    commands.dispatch(groups(settings.multipleScatteringSize), groups(settings.multipleScatteringSize), 1,
+                      "atmosphere/multiple_scattering_lut");
+    commands.barrier();
+  }
   commands.submitAndWait();
   result.timings = commands.passTimings();
   result.source = Source::Computed;
   key_ = key;
   if (!file.empty()) {
-    writeTableFile(file, key,
-                   {TableData{transmittance_.width(), transmittance_.height(), 1, 4, transmittance_.downloadFloats()},
-                    TableData{multipleScattering_.width(), multipleScattering_.height(), 1, 4,
-                              multipleScattering_.downloadFloats()}});
+    std::vector<TableData> tables;
+    for (const auto& batch : batches_) {
+      tables.push_back(download(batch.transmittance));
+      tables.push_back(download(batch.multipleScattering));
+    }
+    tables.push_back(download(sunRadiance_));
+    writeTableFile(file, key, tables);
   }
   return result;
 }

@@ -1,10 +1,12 @@
 #pragma once
-// The atmosphere's precomputed tables on the GPU: transmittance T(r, mu) and Hillaire 2020's
-// multiple-scattering Psi_ms(r, mu_s). They depend on the atmosphere's parameters and the table
-// settings only, so they are computed once and reused until either changes (keyed by hash).
+// The atmosphere's precomputed tables on the GPU, per spectral batch (three wavelengths each, see
+// atmosphere_spectra.h): transmittance T(r, mu) and Hillaire 2020's multiple-scattering Psi_ms(r, mu_s),
+// plus the sun disc's transmitted centre radiance in Rec.709 summed over the batches. They depend on
+// the atmosphere's parameters and the table settings only, so they are computed once and reused until
+// either changes (keyed by hash, in memory and on disk).
 #include <glm/glm.hpp>
-#include <optional>
 #include <string>
+#include <vector>
 
 #include "atmosphere/atmosphere_block.h"
 #include "atmosphere/atmosphere_settings.h"
@@ -23,8 +25,13 @@ struct AtmosphereLutSettings {
   int transmittanceHeight = 64;   // r samples
   int transmittanceSteps = 100;   // trapezoid intervals along each ray
   int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
-  int multipleScatteringDirectionsSqrt = 8;   // 8 x 8 = 64 directions
+  int multipleScatteringThetaSamples = 32;    // zenith bands of the sphere of directions
+  int multipleScatteringPhiSamples = 2;       // azimuth samples per band (32 x 2 = 64 directions)
   int multipleScatteringSteps = 20;           // march steps per direction
+  bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
+  // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
+  // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
+  int spectralSamples = 3;
   glm::dvec3 wavelengthsNm{680.0, 550.0, 440.0};
   std::string hash() const;
 };
@@ -44,23 +51,32 @@ class AtmosphereLuts {
   // setting and the device, so cached tables are bit-identical to freshly computed ones.
   Update update(const AtmosphereSettings& atmosphere, const AtmosphereLutSettings& settings);
 
-  const gpu::Buffer& atmosphereBlock() const { return block_; }
-  const gpu::Image& transmittance() const { return transmittance_; }
-  const gpu::Image& multipleScattering() const { return multipleScattering_; }
+  struct Batch {
+    gpu::Buffer block;  // the AtmosphereBlock of this batch's wavelengths
+    gpu::Image transmittance;
+    gpu::Image multipleScattering;
+    shared::AtmosphereParameters parameters{};
+  };
+  size_t batchCount() const { return batches_.size(); }
+  const Batch& batch(size_t i) const { return batches_.at(i); }
+  const gpu::Image& sunRadiance() const { return sunRadiance_; }
+  // The first batch: with three wavelengths (spectralSamples = 3), the only one (the 4D tables use it).
+  const gpu::Buffer& atmosphereBlock() const { return batch(0).block; }
+  const gpu::Image& transmittance() const { return batch(0).transmittance; }
+  const gpu::Image& multipleScattering() const { return batch(0).multipleScattering; }
   const gpu::Sampler& linearClamp() const { return linearClamp_; }
-  const shared::AtmosphereParameters& parameters() const { return parameters_; }
+  // Wavelength-independent geometry (radii) of the current atmosphere.
+  const shared::AtmosphereParameters& parameters() const { return batches_.at(0).parameters; }
   const std::string& key() const { return key_; }
 
  private:
   gpu::Context& context_;
   gpu::ComputePipeline transmittancePipeline_;
   gpu::ComputePipeline multipleScatteringPipeline_;
-  gpu::Buffer block_;
-  gpu::Image transmittance_;
-  gpu::Image multipleScattering_;
+  std::vector<Batch> batches_;
+  gpu::Image sunRadiance_;
   gpu::Sampler linearClamp_;
-  shared::AtmosphereParameters parameters_{};
-  std::string key_;  // atmosphere hash + settings hash of the current tables
+  std::string key_;  // atmosphere hash + settings hash + device of the current tables
 };
 
 }  // namespace firmament

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "atmosphere/atmosphere_spectra.h"
+#include "core/hash.h"
 
 namespace firmament {
 
@@ -31,18 +32,8 @@ std::string AtmosphereSettings::hash() const {
                            rayleighScatteringUm4, mieAngstromAlpha, mieAngstromBeta, mieScaleHeight,
                            mieSingleScatteringAlbedo, miePhaseG, ozoneColumnDobson, groundAlbedo,
                            sunAngularRadius, muSMin};
-  uint64_t h = 1469598103934665603ull;  // FNV-1a over the bytes of each double
-  for (double f : fields) {
-    unsigned char bytes[sizeof(double)];
-    std::memcpy(bytes, &f, sizeof(double));
-    for (unsigned char b : bytes) {
-      h ^= b;
-      h *= 1099511628211ull;
-    }
-  }
-  char out[17];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
+  // FNV-1a over the bytes of every field: any change of any parameter changes the key.
+  return hex16(fnv1a(std::string_view(reinterpret_cast<const char*>(fields), sizeof(fields))));
 }
 
 namespace {

@@ -24,9 +24,12 @@ struct AtmosphereSettings {
   double ozoneColumnDobson = 300.0;     // DU
   double groundAlbedo = 0.1;
   double sunAngularRadius = 0.00935 / 2.0;  // rad
-  // Largest sun zenith angle the tables must represent: 102 degrees keeps twilight (Bruneton's
-  // choice for Earth with ozone), below that the sun's light is negligible.
-  double muSMin = -0.2079116908177593;  // cos(102 deg)
+  // Largest sun zenith angle the scattering tables represent; a lower sun reads the value at this
+  // angle. 108 degrees is the end of astronomical twilight: the sunlit sky is then ~1e-5 cd/m^2,
+  // below the natural night sky (~2e-4 cd/m^2), so the clamp is invisible. Bruneton 2017 uses 102
+  // degrees, which leaves a visible plateau of ~0.01-0.1 cd/m^2 through nautical and astronomical
+  // twilight (docs/atmosphere-tables.md).
+  double muSMin = -0.30901699437494734;  // cos(108 deg)
 
   static AtmosphereSettings fromScene(const Scene& scene);
   // 16 hex digits identifying every field, for caching tables.

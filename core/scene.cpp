@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace firmament {
 
@@ -252,16 +253,8 @@ bool Scene::boolean(const std::string& pointer) const { return fieldAt(root_, po
 const json& Scene::at(const std::string& pointer) const { return fieldAt(root_, pointer); }
 
 std::string Scene::hash() const {
-  // FNV-1a 64 over the canonical dump (nlohmann sorts object keys), so equal scenes hash equal.
-  std::string canonical = root_.dump();
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : canonical) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char out[17];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
+  // FNV-1a over the canonical dump (nlohmann sorts object keys), so equal scenes hash equal.
+  return hex16(fnv1a(root_.dump()));
 }
 
 namespace {

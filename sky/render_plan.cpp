@@ -8,14 +8,54 @@ bool RenderPlan::has(const std::string& name) const {
   return false;
 }
 
-RenderPlan planRender(const Scene& scene) {
+RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   RenderPlan plan;
   // The atmosphere is always present; its tables depend on its parameters only.
   plan.passes.push_back({"atmosphere/transmittance_lut", "transmittance table T(r, mu)",
                          "every sky needs sunlight attenuation", false});
-  plan.passes.push_back({"atmosphere/multiple_scattering_lut", "multiple-scattering table Psi_ms(r, mu_s)",
-                         "light scattered more than once (Hillaire 2020)", false});
-  plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)", "the view: sky, ground and sun disc", true});
+  if (options.multipleScattering == MultipleScattering::BrunetonTables) {
+    const int orders = options.scatteringOrders;
+    const std::string higher = orders >= 2 ? "orders 2.." + std::to_string(orders) : "";
+    plan.passes.push_back({"atmosphere/direct_irradiance", "sunlight on the ground (lights order 2)",
+                           "Bruneton 2017 tables", false});
+    plan.passes.push_back({"atmosphere/single_scattering", "4D single Rayleigh and Mie scattering tables",
+                           "Bruneton 2017 tables, order 1", false});
+    if (orders >= 2) {
+      plan.passes.push_back({"atmosphere/scattering_density", "4D scattering density J_n",
+                             "Bruneton 2017 tables, " + higher + " (one dispatch each)", false});
+      plan.passes.push_back({"atmosphere/indirect_irradiance", "ground sky irradiance table E(r, mu_s)",
+                             "skylight on the ground, orders 1.." + std::to_string(orders - 1), false});
+      plan.passes.push_back({"atmosphere/multiple_scattering", "4D scattering table, orders summed",
+                             "Bruneton 2017 tables, " + higher + " (one dispatch each)", false});
+    }
+    plan.passes.push_back({"sky/render_sky_tables", "HDR image (cd/m^2)",
+                           "the view from table lookups: sky, ground and sun disc", true});
+    plan.omitted.push_back({"atmosphere/multiple_scattering_lut",
+                            "multiple scattering comes from the 4D tables (--multiple-scattering tables)"});
+  } else {
+    const int batches = options.spectralSamples / 3;
+    const std::string each = batches > 1 ? " (once per batch of 3 of the " + std::to_string(options.spectralSamples) +
+                                               " wavelengths)"
+                                         : "";
+    plan.passes.push_back({"atmosphere/multiple_scattering_lut", "multiple-scattering table Psi_ms(r, mu_s)",
+                           "light scattered more than once (Hillaire 2020)" + each, false});
+    plan.passes.push_back({"atmosphere/fms_sky_irradiance", "ground sky irradiance table E(r, mu_s)",
+                           "skylight on the ground, from the same single + Psi_ms sky" + each, false});
+    // The sky-view table holds the sky seen from inside the atmosphere; from above it every pixel marches.
+    const double cameraAltitude = scene.number("/location/height_m") + scene.number("/camera/height_above_ground_m");
+    const bool inside = cameraAltitude <= scene.number("/atmosphere/thickness_m");
+    if (options.skyViewLut && inside) {
+      plan.passes.push_back({"sky/sky_view_lut", "sky-view table (azimuth from the sun, zenith angle), Rec.709",
+                             "the sky from the camera's altitude, marched once per texel" + each, true});
+      plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)",
+                             "the view: one sky-view lookup per pixel, plus the sun disc", true});
+    } else {
+      plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)",
+                             std::string("the view: a march per pixel") +
+                                 (inside ? "" : " (camera above the atmosphere)") + each + ", plus the sun disc",
+                             true});
+    }
+  }
 
   if (scene.hasSection("clouds")) {
     plan.unavailable.push_back({"clouds", "cloud rendering is not implemented in this version; the sky is clear"});

@@ -8,6 +8,18 @@
 
 namespace firmament {
 
+// How light scattered more than once is computed: Hillaire 2020's infinite-order isotropic f_ms table
+// (Psi_ms) with a per-pixel march, or Bruneton 2017's N orders in 4D tables read without a march.
+enum class MultipleScattering { HillaireFms, BrunetonTables };
+
+// The render options that change which passes run.
+struct PlanOptions {
+  MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
+  int scatteringOrders = 4;  // BrunetonTables only
+  bool skyViewLut = true;     // HillaireFms: read a per-frame sky-view table (cameras inside the atmosphere)
+  int spectralSamples = 3;    // HillaireFms: wavelengths, in batches of three
+};
+
 struct PlannedPass {
   std::string name;    // the pass and its shader, e.g. "atmosphere/transmittance_lut"
   std::string output;  // what it produces
@@ -27,7 +39,7 @@ struct RenderPlan {
   bool has(const std::string& name) const;
 };
 
-RenderPlan planRender(const Scene& scene);
+RenderPlan planRender(const Scene& scene, const PlanOptions& options = {});
 
 // Human-readable listing (for --explain).
 std::string describePlan(const RenderPlan& plan);

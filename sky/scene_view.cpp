@@ -48,4 +48,14 @@ SceneView makeSceneView(const Scene& scene) {
   return view;
 }
 
+ExposureSettings sceneExposure(const Scene& scene) {
+  ExposureSettings exposure;
+  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
+                                                                   : ExposureSettings::Mode::Auto;
+  exposure.ev100 = scene.number("/camera/exposure/ev100");
+  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
+  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+  return exposure;
+}
+
 }  // namespace firmament

@@ -9,6 +9,7 @@
 #include "atmosphere/atmosphere_settings.h"
 #include "common/camera.glsl"
 #include "core/scene.h"
+#include "core/tonemap.h"
 
 namespace firmament {
 
@@ -25,5 +26,8 @@ struct SceneView {
 };
 
 SceneView makeSceneView(const Scene& scene);
+
+// The PNG preview's exposure and tone map from /camera/exposure.
+ExposureSettings sceneExposure(const Scene& scene);
 
 }  // namespace firmament

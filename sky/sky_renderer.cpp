@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/exr_io.h"
+#include "core/error.h"
 #include "core/tonemap.h"
 
 namespace firmament {
@@ -25,6 +26,13 @@ struct FrameBlock {
   int32_t options[4];  // x: read the sky-view LUT
 };
 static_assert(sizeof(FrameBlock) == 7 * 16);
+
+// Push constants of shaders/sky/render_sky_tables.comp: the tiles, then the 4D table size.
+struct TablesPush {
+  gpu::TileDispatch tiles;
+  int32_t tableSize[4];  // nu, mu_s, mu, r
+};
+static_assert(sizeof(TablesPush) == sizeof(gpu::TileDispatch) + 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -48,33 +56,69 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
       luts_(context),
       skyViewPipeline_(context, {"sky/sky_view_lut",
                                  {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
-                                 3 * sizeof(float)}),
+                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                                  gpu::BindingType::SampledImage},
+                                 4 * sizeof(float)}),
       skyPipeline_(context, {"sky/render_sky",
                              {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                               gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage},
-                             sizeof(gpu::TileDispatch)}),
+                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+                             sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)}),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
+
+PlanOptions planOptions(const SkyRenderOptions& options) {
+  PlanOptions plan;
+  plan.multipleScattering = options.multipleScattering;
+  plan.scatteringOrders = options.tables.scatteringOrders;
+  plan.skyViewLut = options.method == SkyMethod::SkyViewLut;
+  plan.spectralSamples = options.luts.spectralSamples;
+  return plan;
+}
 
 RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
   RenderResult result;
-  result.plan = planRender(scene);
+  const bool useTables = options.multipleScattering == MultipleScattering::BrunetonTables;
+  if (useTables && options.luts.spectralSamples != 3)
+    throw InputError("the 4D scattering tables carry three wavelengths: use spectral samples 3 with them");
+  result.plan = planRender(scene, planOptions(options));
   result.view = makeSceneView(scene);
   const SceneView& view = result.view;
   const int width = view.camera.width;
   const int height = view.camera.height;
 
   // Tables first, in their own submission, so their cost is reported apart from the frame's.
-  AtmosphereLuts::Update tables = luts_.update(view.atmosphere, options.luts);
+  AtmosphereLutSettings lutSettings = options.luts;
+  lutSettings.multipleScatteringLut = !useTables;  // the 4D tables replace Psi_ms
+  AtmosphereLuts::Update tables = luts_.update(view.atmosphere, lutSettings);
   for (const auto& t : tables.timings) {
     result.timings.push_back(t);
     result.precomputeMilliseconds += t.milliseconds;
   }
-  result.tablesReused = tables.source != AtmosphereLuts::Source::Computed;
-  result.tablesSource = tables.source == AtmosphereLuts::Source::Memory ? "memory"
-                        : tables.source == AtmosphereLuts::Source::Disk ? "disk cache"
-                                                                        : "computed";
+  // Tables derived from those: the 4D scattering tables, or the f_ms path's ground skylight.
+  gpu::CommandList derived(context_);
+  bool recorded = false;
+  if (useTables) {
+    if (!tables_) tables_ = std::make_unique<ScatteringTables>(context_);
+    recorded = tables_->update(luts_, options.tables, derived);
+  } else {
+    fmsSkyIrradiance_.resize(luts_.batchCount());
+    for (size_t b = 0; b < luts_.batchCount(); ++b) {
+      if (!fmsSkyIrradiance_[b]) fmsSkyIrradiance_[b] = std::make_unique<FmsSkyIrradiance>(context_);
+      recorded = fmsSkyIrradiance_[b]->update(luts_, b, options.fmsSkyIrradiance, derived) || recorded;
+    }
+  }
+  if (recorded) {
+    derived.submitAndWait();
+    for (const auto& t : derived.passTimings()) {
+      result.timings.push_back(t);
+      result.precomputeMilliseconds += t.milliseconds;
+    }
+  }
+  result.tablesReused = tables.source != AtmosphereLuts::Source::Computed && !recorded;
+  result.tablesSource = tables.source == AtmosphereLuts::Source::Computed ? "computed"
+                        : tables.source == AtmosphereLuts::Source::Memory ? "memory"
+                                                                          : "disk cache";
 
   FrameBlock frame{};
   put(frame.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
@@ -88,7 +132,8 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   frame.image[3] = options.viewSteps;
   // The sky-view table holds the sky seen from inside the atmosphere; from above its top every
   // pixel is marched (the same integral, so there is no seam at the switch).
-  const bool useSkyView = options.method == SkyMethod::SkyViewLut && view.cameraRadius <= luts_.parameters().top_radius;
+  const bool useSkyView = !useTables && options.method == SkyMethod::SkyViewLut &&
+                          view.cameraRadius <= luts_.parameters().top_radius;
   result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
   frame.options[0] = useSkyView ? 1 : 0;
   frameBlock_.upload(&frame, sizeof(frame));
@@ -99,29 +144,70 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
+  const size_t batches = luts_.batchCount();
   if (useSkyView) {
-    struct {
-      float cameraRadius;
-      float muS;
-      int32_t steps;
-    } push{float(view.cameraRadius), float(view.sunDirection.z), options.viewSteps};
-    commands.bind(skyViewPipeline_, {luts_.atmosphereBlock(),
-                                     {luts_.transmittance(), luts_.linearClamp()},
-                                     {luts_.multipleScattering(), luts_.linearClamp()},
-                                     skyView_});
-    commands.pushConstants(push);
-    commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
-                      "sky/sky_view_lut");
-    commands.barrier();
+    // One sky-view pass per spectral batch, each adding its Rec.709 contribution.
+    for (size_t b = 0; b < batches; ++b) {
+      const AtmosphereLuts::Batch& batch = luts_.batch(b);
+      struct {
+        float cameraRadius;
+        float muS;
+        int32_t steps;
+        int32_t accumulate;
+      } push{float(view.cameraRadius), float(view.sunDirection.z), options.viewSteps, b > 0 ? 1 : 0};
+      commands.bind(skyViewPipeline_, {batch.block,
+                                       {batch.transmittance, luts_.linearClamp()},
+                                       {batch.multipleScattering, luts_.linearClamp()},
+                                       skyView_,
+                                       {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()}});
+      commands.pushConstants(push);
+      commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
+                        "sky/sky_view_lut");
+      commands.barrier();
+    }
   }
-  commands.bind(skyPipeline_, {luts_.atmosphereBlock(),
-                               {luts_.transmittance(), luts_.linearClamp()},
-                               {luts_.multipleScattering(), luts_.linearClamp()},
-                               output,
-                               frameBlock_,
-                               {skyView_, luts_.linearClamp()}});
-  commands.pushConstants(tiles);
-  commands.dispatchTiles(tiles, "sky/render_sky");
+  if (useTables) {
+    // Bruneton 2017: the in-scattering is a lookup in the 4D tables; no march.
+    if (!skyTablesPipeline_)
+      skyTablesPipeline_ = std::make_unique<gpu::ComputePipeline>(
+          context_, gpu::PipelineDesc{"sky/render_sky_tables",
+                                      {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                                       gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                       gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                                       gpu::BindingType::UniformBuffer},
+                                      sizeof(TablesPush)});
+    const gpu::Sampler& linear = luts_.linearClamp();
+    const ScatteringTableSettings& t = tables_->settings();
+    TablesPush push{tiles, {t.nuSize, t.muSSize, t.muSize, t.rSize}};
+    commands.bind(*skyTablesPipeline_, {luts_.atmosphereBlock(), {luts_.transmittance(), linear},
+                                        {tables_->scattering(), linear}, {tables_->singleMieScattering(), linear},
+                                        {tables_->irradiance(), linear}, output, frameBlock_});
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "sky/render_sky_tables");
+  }
+  // The image: one pass reading the sky-view table, or one march per spectral batch.
+  const size_t renderPasses = useTables ? 0 : useSkyView ? 1 : batches;
+  for (size_t b = 0; b < renderPasses; ++b) {
+    const AtmosphereLuts::Batch& batch = luts_.batch(b);
+    struct {
+      gpu::TileDispatch tiles;
+      int32_t accumulate;
+      int32_t drawSun;
+      int32_t last;
+      int32_t pad;
+    } push{tiles, b > 0 ? 1 : 0, b == 0 ? 1 : 0, b + 1 == renderPasses ? 1 : 0, 0};
+    commands.bind(skyPipeline_, {batch.block,
+                                 {batch.transmittance, luts_.linearClamp()},
+                                 {batch.multipleScattering, luts_.linearClamp()},
+                                 output,
+                                 frameBlock_,
+                                 {skyView_, luts_.linearClamp()},
+                                 {luts_.sunRadiance(), luts_.linearClamp()},
+                                 {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()}});
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "sky/render_sky");
+    if (b + 1 < renderPasses) commands.barrier();
+  }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
     result.timings.push_back(t);
@@ -156,12 +242,7 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   fs::path png = fs::path(exr).replace_extension(".png");
   fs::path stats = fs::path(exr).replace_extension(".json");
 
-  ExposureSettings exposure;
-  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
-                                                                   : ExposureSettings::Mode::Auto;
-  exposure.ev100 = scene.number("/camera/exposure/ev100");
-  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
-  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+  const ExposureSettings exposure = sceneExposure(scene);
 
   writeExr(exr, result.image);
   double ev100 = writePngPreview(png, result.image, exposure);

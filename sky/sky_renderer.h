@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "atmosphere/atmosphere_luts.h"
+#include "atmosphere/fms_sky_irradiance.h"
+#include "atmosphere/scattering_tables.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "gpu/context.h"
@@ -25,12 +27,18 @@ enum class SkyMethod {
 
 struct SkyRenderOptions {
   AtmosphereLutSettings luts;
-  SkyMethod method = SkyMethod::SkyViewLut;
+  MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
+  ScatteringTableSettings tables;              // BrunetonTables: orders (tables.scatteringOrders), sizes
+  FmsSkyIrradianceSettings fmsSkyIrradiance;   // HillaireFms: the ground's skylight table
+  SkyMethod method = SkyMethod::SkyViewLut;    // HillaireFms: how the march reaches the pixels
   int viewSteps = 32;      // march steps along each view ray (per pixel, or per sky-view texel)
   int skyViewWidth = 192;  // azimuth samples
   int skyViewHeight = 108; // zenith samples
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
 };
+
+// The plan options that follow from the render options (what `render --explain` prints).
+PlanOptions planOptions(const SkyRenderOptions& options);
 
 struct RenderResult {
   Image image;
@@ -40,7 +48,7 @@ struct RenderResult {
   double frameMilliseconds = 0.0;        // GPU time of the per-frame passes
   double precomputeMilliseconds = 0.0;   // GPU time of the tables (0 when cached)
   bool tablesReused = false;     // from memory or the disk cache
-  std::string tablesSource;      // "memory", "disk cache" or "computed"
+  std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
   std::string timingNote;                // non-empty when timings are wall clock
 };
@@ -54,8 +62,11 @@ class SkyRenderer {
  private:
   gpu::Context& context_;
   AtmosphereLuts luts_;
+  std::vector<std::unique_ptr<FmsSkyIrradiance>> fmsSkyIrradiance_;  // one per spectral batch
+  std::unique_ptr<ScatteringTables> tables_;  // created on first use (5 pipelines)
   gpu::ComputePipeline skyViewPipeline_;
   gpu::ComputePipeline skyPipeline_;
+  std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
 };

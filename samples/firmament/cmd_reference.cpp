@@ -96,12 +96,7 @@ int runReference(const Args& args) {
 
   const std::filesystem::path png = std::filesystem::path(out).replace_extension(".png");
   const std::filesystem::path stats = std::filesystem::path(out).replace_extension(".json");
-  ExposureSettings exposure;
-  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
-                                                                   : ExposureSettings::Mode::Auto;
-  exposure.ev100 = scene.number("/camera/exposure/ev100");
-  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
-  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+  const ExposureSettings exposure = sceneExposure(scene);
   writeExr(out, image);
   const double ev100 = writePngPreview(png, image, exposure);
 

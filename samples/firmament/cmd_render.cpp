@@ -23,7 +23,29 @@ int runRender(const Args& args) {
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
   Scene scene = args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
                                          : Scene::load(scenePath, overrides);
-  RenderPlan plan = planRender(scene);
+  SkyRenderOptions options;
+  const std::string multipleScattering = args.getOr("multiple-scattering", "fms");
+  if (multipleScattering == "tables") {
+    options.multipleScattering = MultipleScattering::BrunetonTables;
+  } else if (multipleScattering != "fms") {
+    throw InputError("--multiple-scattering " + multipleScattering + ": allowed: fms, tables");
+  }
+  options.tables.scatteringOrders = args.integer("orders", options.tables.scatteringOrders, 1, 64);
+  options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
+  options.luts.spectralSamples = args.integer("spectral-samples", options.luts.spectralSamples, 3, 48);
+  if (options.luts.spectralSamples % 3 != 0)
+    throw InputError("--spectral-samples " + std::to_string(options.luts.spectralSamples) +
+                     ": allowed: 3 (three wavelengths) or a multiple of 3 from 6 to 48");
+  std::string method = args.getOr("sky", "lut");
+  if (method == "lut") {
+    options.method = SkyMethod::SkyViewLut;
+  } else if (method == "march") {
+    options.method = SkyMethod::PerPixel;
+  } else {
+    throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
+  }
+
+  RenderPlan plan = planRender(scene, planOptions(options));
   if (args.has("explain")) {
     std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
                 int(scene.integer("/camera/height")), describePlan(plan).c_str());
@@ -37,17 +59,6 @@ int runRender(const Args& args) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
-
-  SkyRenderOptions options;
-  options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
-  std::string method = args.getOr("sky", "lut");
-  if (method == "lut") {
-    options.method = SkyMethod::SkyViewLut;
-  } else if (method == "march") {
-    options.method = SkyMethod::PerPixel;
-  } else {
-    throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
-  }
 
   // Phases: device, render (tables + frame), write. The bar appears only past one second.
   auto progress = std::make_unique<Progress>("render", 3);
@@ -78,6 +89,7 @@ int runRender(const Args& args) {
 const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
+                               "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples N] [--sky lut|march] "
                                "[--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
@@ -88,6 +100,11 @@ const CommandRegistration reg{{"render",
                                                 "with -o also render"},
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
                                 {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
+                                {"spectral-samples", "N", "wavelengths: 3 (default) or 6..48 integrated to luminance"},
+                                {"multiple-scattering", "fms|tables",
+                                 "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
+                                 "4D tables of N orders"},
+                                {"orders", "N", "scattering orders of the 4D tables (default 4)"},
                                 deviceOption()},
                                0,
                                1,

@@ -7,7 +7,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D transmittanceLut;
-layout(push_constant) uniform Push { int integration_steps; } push;
+// The radiance of the sun disc's centre seen through the atmosphere from (r, mu), in linear Rec.709
+// cd/m²: sum over spectral batches of M_sun (T ⊙ E_sun I(1)/E). The render multiplies it by the limb
+// darkening, so the sun's colour needs no per-pixel loop over batches.
+layout(set = 0, binding = 2, rgba32f) uniform image2D sunRadianceLut;
+layout(push_constant) uniform Push { int integration_steps; int accumulate; } push;
 
 void main() {
   ivec2 size = imageSize(transmittanceLut);
@@ -17,5 +21,10 @@ void main() {
   float r, mu;
   rMuFromTransmittanceUv(atmosphere, (vec2(texel) + 0.5) / vec2(size), size, r, mu);
   vec3 depth = opticalDepthToTop(atmosphere, r, mu, push.integration_steps);
-  imageStore(transmittanceLut, texel, vec4(exp(-depth), 1.0));
+  vec3 transmittance = exp(-depth);
+  imageStore(transmittanceLut, texel, vec4(transmittance, 1.0));
+  vec3 sun = sunRadianceToRgb() * (transmittance * atmosphere.solar_irradiance) *
+             sunDiscCentreFactor(atmosphere.sun_angular_radius);
+  if (push.accumulate != 0) sun += imageLoad(sunRadianceLut, texel).rgb;
+  imageStore(sunRadianceLut, texel, vec4(sun, 1.0));
 }

@@ -102,6 +102,26 @@ SHARED_INLINE Real henyeyGreensteinPhase(Real g, Real nu) {
   return (1.0 - g * g) / (4.0 * kPi * denominator * sqrt(denominator));
 }
 
+// The sun's disc. Limb darkening I(mu)/I(1) = mu^alpha with mu = cos of the angle at the sun's
+// surface (a power law, Hestroffer & Magnan 1998; alpha ~ 0.5 in the visible). Normalised so the
+// disc integrates to the solar irradiance E: for a small disc of angular radius a, with rho the
+// fraction of the radius, dOmega = 2 pi a^2 rho drho and mu = sqrt(1 - rho^2), so
+//   ∫ I dOmega = I(1) 2 pi a^2 ∫_0^1 mu^alpha mu dmu = I(1) pi a^2 * 2/(alpha + 2)
+//   =>  I(1) = E (alpha + 2) / (2 pi a^2).
+const Real kSunLimbDarkeningExponent = 0.5;
+
+// I(1) / E: the centre's radiance per unit irradiance (1/sr).
+SHARED_INLINE Real sunDiscCentreFactor(Real angular_radius) {
+  return (kSunLimbDarkeningExponent + 2.0) / (2.0 * kPi * angular_radius * angular_radius);
+}
+
+// I / I(1) in a direction at cosine `cos_angle` from the sun's centre; 0 outside the disc.
+SHARED_INLINE Real sunLimbDarkening(Real cos_angle, Real angular_radius) {
+  if (cos_angle < cos(angular_radius)) return 0.0;
+  Real rho = clamp(acos(clamp(cos_angle, -1.0, 1.0)) / angular_radius, 0.0, 1.0);
+  return pow(sqrt(max(1.0 - rho * rho, 0.0)), kSunLimbDarkeningExponent);
+}
+
 SHARED_END
 
 #endif  // FIRMAMENT_ATMOSPHERE_MEDIUM_GLSL

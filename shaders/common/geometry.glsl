@@ -19,16 +19,6 @@
 
 #include "common/compat.glsl"
 
-// C++ needs `inline` on functions defined in a header included by several files (one definition
-// rule); GLSL has no such keyword. (Candidate for compat.glsl; guarded so it can move there.)
-#ifndef SHARED_INLINE
-#ifdef __cplusplus
-#define SHARED_INLINE inline
-#else
-#define SHARED_INLINE
-#endif
-#endif
-
 SHARED_BEGIN
 
 // Δ (a quarter of the textbook b² − 4ac, for the half-b form above); ≥ 0 iff the ray's line meets the

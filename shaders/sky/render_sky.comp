@@ -10,7 +10,7 @@
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D outputImage;
+layout(set = 0, binding = 3, rgba32f) uniform image2D outputImage;
 layout(std140, set = 0, binding = 4) uniform FrameBlock {
   vec4 camera_position;  // planet-centred, m (the ground point's ENU axes)
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -21,7 +21,14 @@ layout(std140, set = 0, binding = 4) uniform FrameBlock {
   ivec4 options;         // x: 1 = read the sky-view LUT (camera inside the atmosphere), 0 = march
 } frame;
 layout(set = 0, binding = 5) uniform sampler2D skyViewLut;
-layout(push_constant) uniform Push { TileDispatch tiles; } push;
+layout(set = 0, binding = 6) uniform sampler2D sunRadianceLut;  // see atmosphere/transmittance_lut.comp
+layout(set = 0, binding = 7) uniform sampler2D skyIrradianceLut;  // see atmosphere/fms_sky_irradiance.comp
+layout(push_constant) uniform Push {
+  TileDispatch tiles;
+  int accumulate;  // add to the pixel: per-pixel marching runs once per spectral batch
+  int draw_sun;    // add the sun's disc (once)
+  int last;        // the last pass: clamp (spectral batches may add negative Rec.709 lobes before it)
+} push;
 
 // The sky-view LUT's texel for a direction seen from `origin` (on the +z axis of the frame).
 vec3 skyFromLut(AtmosphereParameters atmosphere, vec3 origin, vec3 dir, vec3 sun) {
@@ -60,21 +67,38 @@ void main() {
   }
   vec3 sun = frame.sun_direction.xyz;
   vec3 origin = frame.camera_position.xyz;
+  float r = length(origin);
+  float mu = dot(origin, dir) / r;
   vec3 rgb;
-  vec3 throughput;
   bool hits_ground;
   if (frame.options.x != 0) {
-    float r = max(length(origin), atmosphere.bottom_radius + 0.01);
-    float mu = dot(origin, dir) / length(origin);
     rgb = skyFromLut(atmosphere, origin, dir, sun);
-    hits_ground = rayIntersectsGround(atmosphere, r, mu);
-    throughput = hits_ground ? vec3(0.0) : transmittanceToTop(transmittanceLut, atmosphere, r, mu);
+    hits_ground = rayIntersectsGround(atmosphere, max(r, atmosphere.bottom_radius + 0.01), mu);
   } else {
-    SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, origin, dir, sun, frame.image.w);
+    SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, skyIrradianceLut, origin, dir, sun, frame.image.w);
     rgb = m.rgb;
-    throughput = m.throughput;
     hits_ground = m.hits_ground;
   }
-  if (!hits_ground) rgb += sunRadianceToRgb() * (throughput * sunDiscRadiance(atmosphere, dot(dir, sun)));
-  imageStore(outputImage, pixel, vec4(max(rgb, vec3(0.0)), 1.0));
+  if (push.draw_sun != 0 && !hits_ground) {
+    float limb = sunLimbDarkening(dot(dir, sun), atmosphere.sun_angular_radius);
+    if (limb > 0.0) {
+      // Transmittance to the sun from where the ray is in the atmosphere: the camera, or from space
+      // the ray's entry point (a ray that misses the atmosphere sees the sun unattenuated: r = top,
+      // mu = 1 has T = 1).
+      float r_t = max(r, atmosphere.bottom_radius + 0.01);
+      float mu_t = mu;
+      if (r > atmosphere.top_radius) {
+        r_t = atmosphere.top_radius;
+        mu_t = rayIntersectsGround(r, mu, atmosphere.top_radius)
+                   ? dot(origin + dir * distanceToBottomAtmosphereBoundary(r, mu, atmosphere.top_radius), dir) /
+                         atmosphere.top_radius
+                   : 1.0;
+      }
+      vec2 uv = transmittanceUvFromRMu(atmosphere, r_t, mu_t, textureSize(sunRadianceLut, 0));
+      rgb += textureLod(sunRadianceLut, uv, 0.0).rgb * limb;
+    }
+  }
+  if (push.accumulate != 0) rgb += imageLoad(outputImage, pixel).rgb;
+  if (push.last != 0) rgb = max(rgb, vec3(0.0));
+  imageStore(outputImage, pixel, vec4(rgb, 1.0));
 }

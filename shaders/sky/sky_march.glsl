@@ -2,13 +2,14 @@
 // render and the sky-view LUT so both compute exactly the same thing:
 //   L = ∫_0^D T(0,t) [ sigma_s^R(t) p_R(nu) + sigma_s^M(t) p_M(nu) ] E_sun T_sun(t)
 //                  + [ sigma_s^R(t) + sigma_s^M(t) ] Psi_ms(t)  dt
-//     + T(0,D) L_ground                                   (if the ray meets the ground)
+//     + T(0,D) L_ground                  (if the ray meets the ground: sun and sky irradiance)
 // Each step is integrated analytically for constant coefficients (Hillaire 2016's energy-conserving
 // form), and samples are spaced quadratically to resolve the dense air near the camera.
 #ifndef FIRMAMENT_SKY_MARCH_GLSL
 #define FIRMAMENT_SKY_MARCH_GLSL
 
 #include "atmosphere/atmosphere_sampling.glsl"
+#include "atmosphere/irradiance_sampling.glsl"
 
 struct SkyMarch {
   vec3 rgb;          // in-scattered light plus the lit ground, linear Rec.709 cd/m² (no sun disc)
@@ -24,8 +25,9 @@ vec3 stepIntegral(vec3 extinction, float dt, vec3 step_transmittance) {
 }
 
 // origin: planet-centred (m); dir, sun: unit vectors in the same frame.
+// sky_irradiance_lut: E_sky(r, mu_s) on a horizontal surface (atmosphere/fms_sky_irradiance.comp).
 SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, sampler2D multiple_scattering_lut,
-                  vec3 origin, vec3 dir, vec3 sun, int steps) {
+                  sampler2D sky_irradiance_lut, vec3 origin, vec3 dir, vec3 sun, int steps) {
   SkyMarch result;
   result.rgb = vec3(0.0);
   result.throughput = vec3(1.0);
@@ -77,31 +79,17 @@ SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, 
     result.throughput *= step_transmittance;
   }
   if (result.hits_ground) {
-    // Lambertian ground lit by the sun: albedo / pi * E_sun T_sun max(mu_s, 0).
+    // Lambertian ground: albedo / pi * (E_sun T_sun max(mu_s, 0) + E_sky).
     vec3 p = start + dir * path_length;
     float r_g = length(p);
     float mu_s_g = dot(p, sun) / r_g;
     vec3 sun_light = transmittanceToSun(transmittance_lut, atmosphere, r_g, mu_s_g) * atmosphere.solar_irradiance;
     sunlike += result.throughput * atmosphere.ground_albedo / kPi * sun_light * max(mu_s_g, 0.0);
+    // Skylight reflected by the ground has the sky's spectrum: converted with the sky's factors.
+    sky += result.throughput * atmosphere.ground_albedo / kPi * irradianceLookup(sky_irradiance_lut, atmosphere, r_g, mu_s_g);
   }
   result.rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
   return result;
-}
-
-// Limb darkening I(mu)/I(1) = mu^alpha (a power law, Hestroffer & Magnan 1998) with alpha ~ 0.5 at
-// visible wavelengths; the disc radiance is normalised so the disc integrates to E_sun:
-// ∫ I dOmega = I(1) pi a^2 * 2/(alpha+2)  =>  I(1) = E_sun (alpha+2) / (2 pi a^2).
-const float kLimbDarkeningAlpha = 0.5;
-
-// Spectral radiance of the sun's disc at the top of the atmosphere, 0 outside it.
-vec3 sunDiscRadiance(AtmosphereParameters atmosphere, float cos_angle) {
-  float a = atmosphere.sun_angular_radius;
-  if (cos_angle < cos(a)) return vec3(0.0);
-  float angle = acos(clamp(cos_angle, -1.0, 1.0));
-  float rho = clamp(angle / a, 0.0, 1.0);  // fraction of the disc radius
-  float mu = sqrt(max(1.0 - rho * rho, 0.0));
-  float centre = (kLimbDarkeningAlpha + 2.0) / (2.0 * kPi * a * a);
-  return atmosphere.solar_irradiance * centre * pow(mu, kLimbDarkeningAlpha);
 }
 
 #endif  // FIRMAMENT_SKY_MARCH_GLSL

@@ -1,0 +1,13 @@
+#include "core/hash.h"
+
+#include <cstdio>
+
+namespace firmament {
+
+std::string hex16(uint64_t value) {
+  char out[17];
+  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(value));
+  return out;
+}
+
+}  // namespace firmament
