@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 
 #include "core/color.h"
@@ -10,6 +11,7 @@
 #include "core/image_metrics.h"
 #include "core/log.h"
 #include "sky/reference_image_cache.h"
+#include "sky/scene_view.h"
 
 namespace firmament {
 namespace {
@@ -31,49 +33,69 @@ size_t medianIndex(const std::vector<double>& v) {
 
 std::string sizeLabel(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-// Keeps the values of a knob that a quick run measures: the first (cheapest) and the default.
-std::vector<BenchKnobValue> quickValues(const std::vector<BenchKnobValue>& all, const std::string& defaultValue) {
+// The values of a knob that a quick run measures: its quickValues, else the first (cheapest) and
+// the default.
+std::vector<BenchKnobValue> quickValues(const BenchKnob& knob) {
   std::vector<BenchKnobValue> out;
-  for (size_t i = 0; i < all.size(); ++i)
-    if (i == 0 || all[i].value == defaultValue) out.push_back(all[i]);
+  for (size_t i = 0; i < knob.values.size(); ++i) {
+    const std::string& v = knob.values[i].value;
+    const bool keep = knob.quickValues.empty()
+                          ? i == 0 || v == knob.defaultValue
+                          : std::find(knob.quickValues.begin(), knob.quickValues.end(), v) != knob.quickValues.end();
+    if (keep) out.push_back(knob.values[i]);
+  }
   return out;
 }
 
-struct Measurement {
-  double precomputeMs = 0.0, frameMs = 0.0;
-  std::vector<gpu::PassTiming> precomputePasses;
+struct TableTiming {
+  double precomputeMs = 0.0;
+  std::vector<gpu::PassTiming> passes;   // of the median run
+  std::unique_ptr<SkyRenderer> renderer; // the last one, its tables current
+};
+
+// Tables: fresh renderers (nothing cached in memory; the context has no disk cache), the median of
+// their table time over `repeats` (once when one takes over kSinglePrecomputeMilliseconds).
+TableTiming measureTables(gpu::Context& context, const Scene& scene, const SkyRenderOptions& options, int repeats) {
+  TableTiming t;
+  std::vector<double> ms;
+  std::vector<std::vector<gpu::PassTiming>> passes;
+  for (int i = 0; i < repeats; ++i) {
+    t.renderer = std::make_unique<SkyRenderer>(context);
+    RenderResult r = t.renderer->render(scene, options);
+    if (r.tablesSource != "computed")
+      throw RuntimeError("bench: the tables came from the " + r.tablesSource +
+                         "; the bench needs a context without a disk cache");
+    ms.push_back(r.precomputeMilliseconds);
+    passes.push_back({});
+    for (const auto& p : r.timings)
+      if (p.label.rfind("atmosphere/", 0) == 0) passes.back().push_back(p);
+    if (r.precomputeMilliseconds > kSinglePrecomputeMilliseconds) break;
+  }
+  t.precomputeMs = median(ms);
+  t.passes = passes[medianIndex(ms)];
+  return t;
+}
+
+struct FrameTiming {
+  double frameMs = 0.0;
   Image image;
   std::string timingNote;
 };
 
-// Tables: `repeats` fresh renderers (nothing cached in memory; the context has no disk cache), the
-// median of their table time. Frame: the last renderer, warmed up by that first render, rendered
-// `repeats` more times with its tables in memory.
-Measurement measure(gpu::Context& context, const Scene& scene, const SkyRenderOptions& options, int repeats) {
-  Measurement m;
-  std::vector<double> tables, frames;
-  std::vector<std::vector<gpu::PassTiming>> passes;
-  std::unique_ptr<SkyRenderer> renderer;
+// Frame: one warm-up render (tables from memory when the atmosphere is unchanged), then `repeats`
+// renders; the median of their per-frame GPU time.
+FrameTiming measureFrames(SkyRenderer& renderer, const Scene& scene, const SkyRenderOptions& options, int repeats) {
+  FrameTiming f;
+  renderer.render(scene, options);
+  std::vector<double> ms;
   for (int i = 0; i < repeats; ++i) {
-    renderer = std::make_unique<SkyRenderer>(context);
-    RenderResult r = renderer->render(scene, options);
-    if (r.tablesSource != "computed")
-      throw RuntimeError("bench: the tables came from the " + r.tablesSource +
-                         "; the bench needs a context without a disk cache");
-    tables.push_back(r.precomputeMilliseconds);
-    passes.push_back(r.timings);
+    RenderResult r = renderer.render(scene, options);
+    ms.push_back(r.frameMilliseconds);
+    f.timingNote = r.timingNote;
+    if (i + 1 == repeats) f.image = std::move(r.image);
   }
-  for (int i = 0; i < repeats; ++i) {
-    RenderResult r = renderer->render(scene, options);
-    frames.push_back(r.frameMilliseconds);
-    m.timingNote = r.timingNote;
-    if (i + 1 == repeats) m.image = std::move(r.image);
-  }
-  m.precomputeMs = median(tables);
-  m.frameMs = median(frames);
-  for (const auto& t : passes[medianIndex(tables)])
-    if (t.label.rfind("atmosphere/", 0) == 0) m.precomputePasses.push_back(t);
-  return m;
+  f.frameMs = median(ms);
+  return f;
 }
 
 BenchReference describeReference(const BenchScenario& scenario, const CachedReference& cached, int spp,
@@ -177,9 +199,12 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
       ints({5, 10, 25, 50, 100, 200}, [](SkyRenderOptions& o, int v) { o.luts.transmittanceSteps = v; }), true);
   add("ms_size", "multiple-scattering table Psi_ms(r, mu_s), N x N", std::to_string(d.luts.multipleScatteringSize),
       ints({4, 8, 16, 32, 64}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringSize = v; }), true);
-  add("ms_directions_sqrt", "directions of the multiple-scattering integral: N x N over the sphere",
-      std::to_string(d.luts.multipleScatteringDirectionsSqrt),
-      ints({2, 4, 8, 16}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringDirectionsSqrt = v; }), true);
+  add("ms_theta_samples", "directions of the multiple-scattering integral: zenith bands over the sphere",
+      std::to_string(d.luts.multipleScatteringThetaSamples),
+      ints({4, 8, 16, 32, 64}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringThetaSamples = v; }), true);
+  add("ms_phi_samples", "directions of the multiple-scattering integral: azimuth samples per zenith band",
+      std::to_string(d.luts.multipleScatteringPhiSamples),
+      ints({1, 2, 4, 8}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringPhiSamples = v; }), true);
   add("ms_steps", "march steps per direction of the multiple-scattering table",
       std::to_string(d.luts.multipleScatteringSteps),
       ints({5, 10, 20, 40}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringSteps = v; }), true);
@@ -192,12 +217,54 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
       d.method == SkyMethod::SkyViewLut ? "lut" : "per-pixel",
       {{"lut", [](SkyRenderOptions& o) { o.method = SkyMethod::SkyViewLut; }},
        {"per-pixel", [](SkyRenderOptions& o) { o.method = SkyMethod::PerPixel; }}});
-  // Hook: when SkyRenderOptions gains a wavelength count (spectralSamples) or a multiple-scattering
-  // mode (f_ms vs Bruneton tables with orders 1..N), add them here as `spectral_samples`,
-  // `multiple_scattering` and `scattering_orders`; the report and the plots pick them up.
-  if (quick)
-    for (auto& k : knobs)
-      if (k.name != "method") k.values = quickValues(k.values, k.defaultValue);
+  add("spectral_samples", "wavelengths: 3 (Bruneton's conversion to Rec.709) or N over 360-830 nm integrated to luminance",
+      std::to_string(d.luts.spectralSamples),
+      ints({3, 6, 12, 24, 48}, [](SkyRenderOptions& o, int v) { o.luts.spectralSamples = v; }), true);
+  add("fms_sky_irradiance_size", "f_ms form: the ground's skylight table, mu_s x r",
+      sizeLabel(d.fmsSkyIrradiance.width, d.fmsSkyIrradiance.height),
+      sizes({{16, 4}, {32, 8}, {64, 16}, {128, 32}},
+            [](SkyRenderOptions& o, int w, int h) { o.fmsSkyIrradiance.width = w, o.fmsSkyIrradiance.height = h; }),
+      true);
+  add("fms_sky_irradiance_theta", "f_ms form: the ground's skylight, theta x 2 theta directions over the hemisphere",
+      std::to_string(d.fmsSkyIrradiance.thetaSamples),
+      ints({2, 4, 8, 16}, [](SkyRenderOptions& o, int v) { o.fmsSkyIrradiance.thetaSamples = v; }), true);
+  add("fms_sky_irradiance_steps", "f_ms form: the ground's skylight, march steps per direction",
+      std::to_string(d.fmsSkyIrradiance.marchSteps),
+      ints({4, 8, 16, 32}, [](SkyRenderOptions& o, int v) { o.fmsSkyIrradiance.marchSteps = v; }), true);
+  const char* kShippedMode = d.multipleScattering == MultipleScattering::HillaireFms ? "f_ms" : "tables";
+  add("multiple_scattering", "f_ms: Hillaire 2020's Psi_ms (all orders, isotropic); tables: Bruneton 2017's 4D tables",
+      kShippedMode,
+      {{"f_ms", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::HillaireFms; }},
+       {"tables", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::BrunetonTables; }}},
+      true);
+  // The tables form's own knobs switch the form on (the shipped form is f_ms): their default marks
+  // the tables' default setting.
+  auto tablesForm = [](std::vector<BenchKnobValue> values) {
+    for (auto& v : values)
+      v.apply = [inner = v.apply](SkyRenderOptions& o) {
+        o.multipleScattering = MultipleScattering::BrunetonTables;
+        inner(o);
+      };
+    return values;
+  };
+  add("scattering_orders", "tables form: scattering orders N (single scattering plus N - 1)",
+      std::to_string(d.tables.scatteringOrders),
+      tablesForm(ints({1, 2, 3, 4, 6}, [](SkyRenderOptions& o, int v) { o.tables.scatteringOrders = v; })), true);
+  knobs.back().quickValues = {"1", "2"};
+  add("tables_integration_steps", "tables form: trapezoid intervals along each ray of the 4D tables",
+      std::to_string(d.tables.integrationSteps),
+      tablesForm(ints({25, 50, 100}, [](SkyRenderOptions& o, int v) { o.tables.integrationSteps = v; })), true);
+  knobs.back().quickValues = {};
+  // Not swept: the 4D tables' sizes (nu, mu_s, mu, r), their irradiance table and direction counts
+  // (docs/atmosphere-tables.md measures them); add entries here like the ones above.
+  if (quick) {
+    for (auto& k : knobs) {
+      if (k.name == "tables_integration_steps") k.values.clear();  // ~20 s per table computation
+      else if (k.name != "method" && k.name != "multiple_scattering") k.values = quickValues(k);
+    }
+  }
+  knobs.erase(std::remove_if(knobs.begin(), knobs.end(), [](const BenchKnob& k) { return k.values.empty(); }),
+              knobs.end());
   return knobs;
 }
 
@@ -247,27 +314,38 @@ AtmosphereBenchResult runAtmosphereBench(gpu::Context& context, const Atmosphere
       runs.push_back(std::move(run));
     }
 
+  // The tables depend on the atmosphere only: they are timed on the first scenario and reused (from
+  // the renderer's memory) by every scenario with the same atmosphere; another atmosphere is timed
+  // on its own.
+  std::vector<std::string> atmosphereKeys;
+  for (const Scene& scene : scenes) atmosphereKeys.push_back(makeSceneView(scene).atmosphere.hash());
   {
     Progress progress("bench atmosphere", uint64_t(runs.size() * config.scenarios.size()));
-    for (const auto& run : runs)
+    for (const auto& run : runs) {
+      std::map<std::string, TableTiming> tables;  // by atmosphere key
       for (size_t s = 0; s < config.scenarios.size(); ++s) {
-        Measurement m = measure(context, scenes[s], run.options, repeats);
-        ImageMetrics metrics = compareImages(m.image, references[s]);
+        auto it = tables.find(atmosphereKeys[s]);
+        if (it == tables.end())
+          it = tables.emplace(atmosphereKeys[s], measureTables(context, scenes[s], run.options, repeats)).first;
+        TableTiming& t = it->second;
+        FrameTiming f = measureFrames(*t.renderer, scenes[s], run.options, repeats);
+        ImageMetrics metrics = compareImages(f.image, references[s]);
         BenchRow row;
         row.knob = run.knob;
         row.value = run.value;
         row.scenario = config.scenarios[s].name;
-        row.precomputeMs = m.precomputeMs;
-        row.frameMs = m.frameMs;
+        row.precomputeMs = t.precomputeMs;
+        row.frameMs = f.frameMs;
         row.relRmse = metrics.luminance.relativeRmse;
         row.psnrDb = metrics.psnrDb;
-        row.maxRelErr = maxRelativeLuminanceError(m.image, references[s]);
+        row.maxRelErr = maxRelativeLuminanceError(f.image, references[s]);
         row.device = result.device;
         result.rows.push_back(row);
-        if (run.knob == "default" && s == 0) result.defaultTablePasses = m.precomputePasses;
-        if (!m.timingNote.empty()) result.timingNote = m.timingNote;
+        if (run.knob == "default" && s == 0) result.defaultTablePasses = t.passes;
+        if (!f.timingNote.empty()) result.timingNote = f.timingNote;
         progress.advance();
       }
+    }
   }
 
   if (config.fullFrameTiming && !config.scenarios.empty()) {

@@ -37,6 +37,7 @@ struct BenchKnob {
   std::string defaultValue; // the shipped default's label
   std::vector<BenchKnobValue> values;
   bool tables = false;      // it changes the precomputed tables (its cost is precompute_ms, else frame_ms)
+  std::vector<std::string> quickValues;  // the values --quick keeps (empty: the first and the default)
 };
 
 // The shipped scenarios and knobs; `quick` shrinks the images, the reference's paths and the knob
@@ -56,6 +57,10 @@ struct AtmosphereBenchConfig {
   ReferenceQuality referenceQuality;  // samplesPerPixel is taken from each scenario
   std::string environmentNote;   // for the report, e.g. the machine's load average
 };
+
+// A precompute that takes longer than this is timed once instead of `repeats` times (the 4D
+// scattering tables take ~20 s on lavapipe; their relative timing noise is small).
+inline constexpr double kSinglePrecomputeMilliseconds = 2000.0;
 
 // One row of results.csv.
 struct BenchRow {
