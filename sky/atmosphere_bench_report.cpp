@@ -150,7 +150,7 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
     for (const auto& r : result.rows)
       if (r.knob == "default" && r.scenario == (config.scenarios.empty() ? "" : config.scenarios.front().name))
         tablesMs = r.precomputeMs;
-    md << "\nTables (f_ms path: transmittance + multiple scattering), defaults, median: **" << fixed(tablesMs, 2)
+    md << "\nTables of the defaults (every table pass of the f_ms form), median: **" << fixed(tablesMs, 2)
        << " ms** (target ≤ 100 ms: " << (tablesMs <= 100 ? "met" : "**not met**") << ")";
     if (!result.defaultTablePasses.empty()) {
       md << "; per pass:";
