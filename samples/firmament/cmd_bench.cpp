@@ -1,0 +1,135 @@
+// `firmament bench atmosphere|clouds|weather|all --out DIR [--quick]`: error-against-run-time sweeps
+// (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "gpu/context.h"
+#include "samples/firmament/command.h"
+#include "sky/atmosphere_bench.h"
+
+namespace firmament::cli {
+namespace {
+
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double a = 0, b = 0, c = 0;
+  if (!(in >> a >> b >> c)) return "";
+  char text[96];
+  std::snprintf(text, sizeof(text), "%.2f %.2f %.2f", a, b, c);
+  return text;
+}
+
+int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
+  AtmosphereBenchConfig config;
+  config.quick = args.has("quick");
+  config.outDir = out;
+  config.scenarios = atmosphereBenchScenarios(config.quick);
+  config.knobs = atmosphereBenchKnobs(config.quick);
+  config.repeats = args.integer("repeats", 3, 1, 100);
+  config.referenceQuality.threads = args.integer("threads", 0, 0, 1024);
+  if (auto only = args.get("scenario")) {
+    std::vector<BenchScenario> kept;
+    for (const auto& s : config.scenarios)
+      if (s.name == *only) kept.push_back(s);
+    if (kept.empty()) throw InputError("--scenario " + *only + ": no such scenario (noon, sunset, twilight, altitude_10km, limb_100km)");
+    config.scenarios = kept;
+  }
+  if (auto spp = args.get("reference-spp")) {
+    const int n = args.integer("reference-spp", 0, 1, 1 << 20);
+    for (auto& s : config.scenarios) s.referenceSamples = n;
+  }
+
+  // No pipeline or table cache on disk: precompute_ms must measure the tables being computed.
+  gpu::ContextOptions contextOptions;
+  contextOptions.device = args.getOr("device", "");
+  contextOptions.persistentPipelineCache = false;
+  gpu::Context context(contextOptions);
+  logInfo("bench atmosphere: device " + context.description() + ", output " + out.string());
+  const std::string loadBefore = loadAverage();
+  AtmosphereBenchResult result = runAtmosphereBench(context, config);
+  const std::string loadAfter = loadAverage();
+  if (!loadBefore.empty())
+    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAfter +
+                             " (timings on a shared machine are noisy).";
+  writeAtmosphereBenchOutputs(config, result);
+  for (const auto& r : result.rows)
+    if (r.knob == "default") {
+      char line[200];
+      std::snprintf(line, sizeof(line), "default %-14s rel_rmse %.4g  PSNR %.2f dB  tables %.2f ms  frame %.2f ms",
+                    r.scenario.c_str(), r.relRmse, r.psnrDb, r.precomputeMs, r.frameMs);
+      logInfo(line);
+    }
+  for (const auto& f : result.fullFrame) {
+    char line[160];
+    std::snprintf(line, sizeof(line), "%dx%d frame (%s): %.2f ms", f.width, f.height, f.method.c_str(), f.frameMs);
+    logInfo(line);
+  }
+  logInfo("wrote " + (out / "results.csv").string() + ", " + (out / "report.md").string() + " and plots in " +
+          std::to_string(int(result.seconds)) + " s");
+  return kExitOk;
+}
+
+struct Target {
+  std::string name;
+  std::function<int(const Args&, const std::filesystem::path&)> run;  // empty: not implemented yet
+};
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> t = {{"atmosphere", benchAtmosphere}, {"clouds", {}}, {"weather", {}}};
+  return t;
+}
+
+int runBench(const Args& args) {
+  const std::string what = args.positionals.at(0);
+  const auto outOption = args.get("out");
+  if (!outOption) throw InputError("firmament bench: --out DIR is required");
+  const std::filesystem::path out = *outOption;
+
+  std::vector<const Target*> selected;
+  for (const auto& t : targets())
+    if (t.name == what || what == "all") selected.push_back(&t);
+  if (selected.empty()) {
+    std::string names;
+    for (const auto& t : targets()) names += t.name + "|";
+    throw InputError("firmament bench: unknown target '" + what + "' (" + names + "all)");
+  }
+  for (const Target* t : selected)
+    if (!t->run) {
+      std::fprintf(stderr, "firmament bench %s: not implemented yet\n", t->name.c_str());
+      return kExitBadInput;
+    }
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw InputError("--out " + out.string() + ": cannot create the folder: " + ec.message());
+  for (const Target* t : selected)
+    if (int code = t->run(args, out); code != kExitOk) return code;
+  return kExitOk;
+}
+
+const CommandRegistration registration{Command{
+    "bench",
+    "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
+    "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
+    "[--device D]",
+    {
+        {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
+        {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
+        {"scenario", "NAME", "only this scenario (noon, sunset, twilight, altitude_10km, limb_100km)"},
+        {"repeats", "N", "timing repeats, median reported (default 3)"},
+        {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
+        {"threads", "N", "reference worker threads (default: all cores)"},
+        deviceOption(),
+    },
+    1,
+    1,
+    runBench,
+}};
+
+}  // namespace
+}  // namespace firmament::cli
