@@ -9,6 +9,7 @@
 //   TEST_F(MyPassTest, Works) { gpu::Context& gpu = context(); ... }
 #include <gtest/gtest.h>
 
+#include <cerrno>  // program_invocation_short_name: one cache folder per test binary (CTest runs them in parallel)
 #include <memory>
 #include <string>
 
@@ -24,7 +25,7 @@ class GpuTest : public ::testing::Test {
   static gpu::Context& context() {
     static std::unique_ptr<gpu::Context> shared = [] {
       gpu::ContextOptions options;
-      options.cacheDir = scratchDir("gpu-test-pipeline-cache");
+      options.cacheDir = scratchDir(std::string("gpu-test-pipeline-cache-") + program_invocation_short_name);
       return std::make_unique<gpu::Context>(options);
     }();
     return *shared;
