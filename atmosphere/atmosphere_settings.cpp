@@ -31,7 +31,7 @@ std::string AtmosphereSettings::hash() const {
   const double fields[] = {bottomRadius,     topRadius,         groundHeight,         rayleighScaleHeight,
                            rayleighScatteringUm4, mieAngstromAlpha, mieAngstromBeta, mieScaleHeight,
                            mieSingleScatteringAlbedo, miePhaseG, ozoneColumnDobson, groundAlbedo,
-                           sunAngularRadius, muSMin};
+                           sunAngularRadius, muSMin, solarIrradianceScale};
   // FNV-1a over the bytes of every field: any change of any parameter changes the key.
   return hex16(fnv1a(std::string_view(reinterpret_cast<const char*>(fields), sizeof(fields))));
 }
@@ -70,7 +70,7 @@ shared::AtmosphereParameters atmosphereParametersAt(const AtmosphereSettings& s,
   for (int i = 0; i < 3; ++i) {
     double lambda = wavelengthsNm[i];
     double lambdaUm = lambda * 1e-3;
-    a.solar_irradiance[i] = solarIrradiance(lambda);
+    a.solar_irradiance[i] = solarIrradiance(lambda) * s.solarIrradianceScale;
     a.rayleigh_scattering[i] = s.rayleighScatteringUm4 * std::pow(lambdaUm, -4.0);
     // Angstrom: aerosol optical depth tau(lambda) = beta lambda^-alpha (lambda in µm); spread over an
     // exponential profile of scale height H the extinction at density 1 is tau / H.

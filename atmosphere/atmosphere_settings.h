@@ -24,6 +24,9 @@ struct AtmosphereSettings {
   double ozoneColumnDobson = 300.0;     // DU
   double groundAlbedo = 0.1;
   double sunAngularRadius = 0.00935 / 2.0;  // rad
+  // The solar spectrum is tabulated at 1 au; the irradiance falls as 1/d^2 with the Earth-Sun distance
+  // d (au), from 0.967 in early January to 1.034 in early July. 1 = the mean distance.
+  double solarIrradianceScale = 1.0;
   // Largest sun zenith angle the scattering tables represent; a lower sun reads the value at this
   // angle. 108 degrees is the end of astronomical twilight: the sunlit sky is then ~1e-5 cd/m^2,
   // below the natural night sky (~2e-4 cd/m^2), so the clamp is invisible. Bruneton 2017 uses 102

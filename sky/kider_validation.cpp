@@ -182,6 +182,9 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     std::vector<std::string> overrides = kiderAtmosphereOverrides();
     overrides.push_back("/sun/zenith_deg=" + number(c.sunZenithDeg));
     overrides.push_back("/sun/azimuth_deg=" + number(std::remainder(c.sunAzimuthDeg, 360.0)));
+    // The sun's direction is given (re-fitted azimuth); its distance comes from the ephemeris: the
+    // tabulated solar spectrum is at 1 au, and on 27 May the Earth is 1.013 au from the sun.
+    overrides.push_back("/sun/distance_au=" + number(sun.distance / 1.495978707e11));
     overrides.push_back("/camera/height_above_ground_m=" + number(settings.cameraHeightM));
     overrides.push_back("/camera/projection=\"equirectangular\"");
     overrides.push_back("/camera/yaw_deg=0");

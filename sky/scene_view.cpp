@@ -9,6 +9,7 @@
 namespace firmament {
 namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kAstronomicalUnit = 1.495978707e11;  // m (IAU 2012 Resolution B2)
 }
 
 SceneView makeSceneView(const Scene& scene) {
@@ -19,6 +20,8 @@ SceneView makeSceneView(const Scene& scene) {
     view.sunAzimuth = scene.number("/sun/azimuth_deg") * kDegree;
     view.sunDirection = astro::enuDirection(view.sunZenith, view.sunAzimuth);
     view.sunSource = "scene sun section";
+    view.sunDistanceAu = scene.number("/sun/distance_au");
+    view.atmosphere.solarIrradianceScale = 1.0 / (view.sunDistanceAu * view.sunDistanceAu);
   } else {
     auto location = astro::GeodeticLocation::fromDegrees(scene.number("/location/latitude_deg"),
                                                          scene.number("/location/longitude_deg"),
@@ -29,6 +32,9 @@ SceneView makeSceneView(const Scene& scene) {
     view.sunAzimuth = sun.azimuth;
     view.sunDirection = astro::enuDirection(sun.zenith, sun.azimuth);
     view.sunSource = "time and location";
+    // The tabulated solar spectrum is at 1 au: scale the irradiance by (1 au / d)^2 for the date.
+    view.sunDistanceAu = sun.distance / kAstronomicalUnit;
+    view.atmosphere.solarIrradianceScale = 1.0 / (view.sunDistanceAu * view.sunDistanceAu);
   }
   // The ground sphere is at the location's height (atmosphereParametersAt); the camera is above it.
   view.cameraRadius = view.atmosphere.bottomRadius + view.atmosphere.groundHeight +

@@ -21,6 +21,7 @@ struct SceneView {
   double sunZenith = 0.0;   // rad (apparent, refraction included when computed from time)
   double sunAzimuth = 0.0;  // rad clockwise from north
   std::string sunSource;    // "time and location" or "scene sun section"
+  double sunDistanceAu = 1.0;  // Earth-Sun distance (au): from the ephemeris, 1 with a scene sun section
   double cameraRadius = 0.0;  // m from the planet centre
   shared::CameraParameters camera{};
 };

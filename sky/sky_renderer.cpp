@@ -302,7 +302,8 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   j["height"] = image.height;
   j["sun"] = {{"zenith_deg", result.view.sunZenith * kRadToDeg},
               {"azimuth_deg", result.view.sunAzimuth * kRadToDeg},
-              {"source", result.view.sunSource}};
+              {"source", result.view.sunSource},
+              {"distance_au", result.view.sunDistanceAu}};
   j["passes"] = nlohmann::json::array();
   for (const auto& t : result.timings) j["passes"].push_back({{"name", t.label}, {"gpu_ms", t.milliseconds}});
   j["precompute_ms"] = result.precomputeMilliseconds;
