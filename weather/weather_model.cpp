@@ -1,6 +1,7 @@
 #include "weather/weather_model.h"
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 #include <numbers>
 
@@ -15,6 +16,34 @@
 #include "weather/value_noise.h"
 
 namespace firmament::weather {
+namespace {
+
+// Charges the CPU time of this thread since the previous mark to one operator (only when timing is on;
+// CPU time, not wall clock, so that other processes on a shared machine do not count).
+class OperatorClock {
+ public:
+  OperatorClock(OperatorTimes& times, bool on) : times_(times), on_(on) {
+    if (on_) last_ = now();
+  }
+  void charge(int op) {
+    if (!on_) return;
+    double t = now();
+    times_.seconds[op] += t - last_;
+    last_ = t;
+  }
+
+ private:
+  static double now() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+  OperatorTimes& times_;
+  bool on_;
+  double last_ = 0.0;
+};
+
+}  // namespace
 
 WeatherModel::WeatherModel(const WeatherConfig& config, SunElevationFunction sunElevation)
     : config_(config),
@@ -96,7 +125,9 @@ void WeatherModel::refreshParcelTable(const PresetParameters& p) {
 void WeatherModel::step(double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw InputError("weather time step must be positive and finite");
   PresetParameters p = schedule_.parametersAt(state_.time_s);
+  OperatorClock clock(times_, timing_);
   double deformation = updateWind(p);
+  clock.charge(0);
   double longest = std::min(kMaxSubstep_s, deformation > 0.0 ? 0.5 / deformation : kMaxSubstep_s);
   int n = int(std::min(1e7, std::ceil(dt_s / longest - 1e-9)));
   n = std::max(n, 1);
@@ -111,15 +142,19 @@ void WeatherModel::advance(double duration_s) {
 
 void WeatherModel::substep(double dt, bool windCurrent) {
   WeatherState& s = state_;
+  OperatorClock clock(times_, timing_);
   const PresetParameters p = schedule_.parametersAt(s.time_s);
   refreshParcelTable(p);
   const BoundaryLayer layer(p, config_.surfacePressure_Pa);
+  clock.charge(7);
   if (!windCurrent) updateWind(p);
+  clock.charge(0);
 
   // Transport.
   advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
   advection_.advectFields({&s.temperature, &s.updraft, &s.cloudTop, &s.convectiveFraction});
   advection_.advectConservingFields({&s.vapour, &s.cloudWater, &s.rain});
+  clock.charge(1);
   mixing_.apply(s.temperature, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
   // Mixing is conservative in exact arithmetic; the fixer removes its float round-off from the totals.
   for (Field* f : {&s.vapour, &s.cloudWater}) {
@@ -128,6 +163,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
     mixing_.apply(*f, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
     SemiLagrangianAdvection::restoreTotal(*f, before);
   }
+  clock.charge(2);
 
   // Sources.
   SurfaceHeatingParameters heating;
@@ -137,6 +173,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   heating.backgroundVapour_kg_m2 = backgroundVapour_kg_m2(p);
   heating.exchangeWithSurroundings = config_.exchangeWithSurroundings;
   s.exchangedIn_kg += applySurfaceHeating(s, heatingMap_, layer, heating, dt);
+  clock.charge(3);
 
   StratiformParameters stratiform;
   stratiform.largeScaleLift_m_s = p.largeScaleLift_m_s;
@@ -150,12 +187,15 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   stratiform.frontPosition_m = speed * s.time_s;
   stratiform.freeTroposphereRH = p.freeTroposphereRH;
   applyStratiform(s, layer, stratiform, dt);
+  clock.charge(4);
 
   ConvectionParameters convection;
   convection.tropopause_m = std::max(p.tropopause_m, p.stableLayerBase_m);
   applyConvection(s, parcelTable_, layer, convection, dt);
+  clock.charge(5);
 
   s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
+  clock.charge(6);
 
   // Housekeeping: remnants of cloud and rain below 1e-4 kg/m² (τ ≈ 0.015) evaporate instead of decaying forever
   // (they are summed and returned to the vapour field by a double-precision rescale, so no water is
@@ -185,6 +225,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
       for (float& v : s.vapour) v = float(remnants / double(s.cells()));
   }
   s.time_s += dt;
+  clock.charge(7);
 }
 
 WeatherMap WeatherModel::map(const RegionPlacement& placement) const {

@@ -33,6 +33,15 @@ struct WaterBudget {
   double imbalance_kg() const { return total_kg + precipitatedOut_kg - exchangedIn_kg - initial_kg; }
 };
 
+// CPU time spent in each operator (seconds, summed over sub-steps), for the benchmark's breakdown;
+// collected only when enabled (one clock read per operator per sub-step).
+struct OperatorTimes {
+  static constexpr int kCount = 8;
+  static constexpr const char* kNames[kCount] = {"wind",       "advection",  "mixing", "surface heating",
+                                                 "stratiform", "convection", "rain",   "housekeeping"};
+  double seconds[kCount] = {};
+};
+
 class WeatherModel {
  public:
   static constexpr double kMaxSubstep_s = 120.0;
@@ -57,6 +66,8 @@ class WeatherModel {
   PresetParameters currentParameters() const { return schedule_.parametersAt(state_.time_s); }
 
   WeatherMap map(const RegionPlacement& placement = {}) const;
+  void enableOperatorTimes(bool on) { timing_ = on; }
+  const OperatorTimes& operatorTimes() const { return times_; }
   WeatherStats stats() const { return computeStats(state_); }
   WaterBudget waterBudget() const;
   // Rebases the budget's initial total (after a test edits the state).
@@ -87,6 +98,8 @@ class WeatherModel {
   bool tableBuilt_ = false;
   double initialWater_kg_ = 0.0;
   int lastSubsteps_ = 0;
+  bool timing_ = false;
+  OperatorTimes times_;
 };
 
 }  // namespace firmament::weather
