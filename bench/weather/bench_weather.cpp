@@ -91,13 +91,19 @@ void series(const char* preset, int cells, double hours) {
   c.preset = preset;
   c.cellsX = c.cellsY = cells;
   WeatherModel model(c, summerDay());
-  std::printf("# %s %d² from 03:32 local solar time\n# local_h cloud mean_top max_top rain_area cb_fraction\n", preset,
-              cells);
+  std::printf("# %s %d² from 03:32 local solar time\n"
+              "# local_h cloud mean_top max_top rain_area cb_fraction layer_depth_m subsidence_K mass_flux_m_s min_T_K mean_T_K\n",
+              preset, cells);
   for (int k = 0; k <= int(hours * 2); ++k) {
     if (k > 0) model.advance(1800.0);
     WeatherStats s = model.stats();
-    std::printf("%6.2f %.3f %6.0f %6.0f %.3f %.3f\n", localSolarHours(model.time_s()), s.cloudFraction, s.meanTop_m,
-                s.maxTop_m, s.precipAreaFraction, s.cumulonimbusFraction);
+    const auto& T = model.state().temperature;
+    double mean = 0.0;
+    for (float t : T) mean += t;
+    std::printf("%6.2f %.3f %6.0f %6.0f %.3f %.3f %5.0f %5.2f %.4f %6.2f %5.2f\n", localSolarHours(model.time_s()),
+                s.cloudFraction, s.meanTop_m, s.maxTop_m, s.precipAreaFraction, s.cumulonimbusFraction,
+                model.layerDepth_m(), model.subsidenceWarming_K(), model.state().meanMassFlux_m_s,
+                double(*std::min_element(T.begin(), T.end())), mean / double(T.size()));
   }
 }
 
