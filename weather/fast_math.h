@@ -8,8 +8,9 @@
 // ≤ 3e-7 over [−87, 88] (tests/weather/test_thermodynamics.cpp); x is clamped there, so exp(−1e30) = 1.6e-38,
 // not 0, which no caller can tell from zero.
 // logFast: ln x = k ln 2 + 2 atanh(s), s = (m − 1)/(m + 1), m ∈ [√½, √2) the mantissa, k the exponent; the
-// atanh series to s⁹ (|s| ≤ 0.172, truncation s¹¹/11 ≤ 4e-10). Absolute error ≤ 3e-7 over [1e-3, 1e3] (≤ 4e-6 over [1e-30, 1e30], the rounding of a result near 69);
-// powFast ≤ 2e-6 relative for |y ln x| ≤ 20.
+// atanh series to s⁹ (|s| ≤ 0.172, truncation s¹¹/11 ≤ 4e-10). Absolute error ≤ 4e-7 over [1e-3, 1e3]
+// (≤ 4e-6 over [1e-30, 1e30]: the float rounding of a result near ±69); powFast ≤ 2e-6 relative for
+// |y ln x| ≤ 20; oneMinusExpFast ≤ 1e-6 relative.
 #include <cstdint>
 #include <cstring>
 
