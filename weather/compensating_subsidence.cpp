@@ -56,7 +56,11 @@ void CompensatingSubsidence::apply(const WeatherState& s, double coreFraction, d
   for (int j = 0; j < ny_; ++j) {
     const float* w = &s.updraft[size_t(j) * nx_];
     float* out = &flux_[size_t(j / b) * cnx];
-    for (int i = 0; i < nx_; ++i) out[i / b] += w[i];
+    for (int block = 0; block < cnx; ++block, w += b) {
+      float sum = 0.0f;
+      for (int k = 0; k < b; ++k) sum += w[k];
+      out[block] += sum;
+    }
   }
   const float perBlock = float(coreFraction / double(b * b));
   for (float& f : flux_) f *= perBlock;

@@ -242,20 +242,24 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
   clock.charge(6);
 
-  // Housekeeping: remnants of cloud and rain below 1e-4 kg/m² (τ ≈ 0.015) evaporate instead of decaying
-  // forever (their sum goes back to the vapour field at the next mass fix, in double, so no water is lost
-  // to rounding); tops only where there is cloud; the anomaly within the parcel table's range.
+  // Housekeeping: remnants of cloud and rain below 1e-3 kg/m² (cloud optical depth ≈ 0.15, cover 0.02;
+  // rain below 0.02 mm/h) evaporate instead of decaying forever (their sum goes back to the vapour field
+  // at the next mass fix, in double, so no water is lost to rounding). They are the thin tails that
+  // mixing and interpolation spread around every cloud, and at 1e-4 kg/m² they kept half the domain in
+  // the cloud and rain operators for nothing visible. Tops only where there is cloud; the anomaly within
+  // the parcel table's range.
+  constexpr float kRemnant = 1e-3f;
   double remnants = 0.0;
   const size_t n = s.cells();
   for (size_t c = 0; c < n; ++c) {
     s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
     float cloud = s.cloudWater[c], rain = s.rain[c];
     if (cloud == 0.0f && rain == 0.0f && s.cloudTop[c] == 0.0f && s.convectiveFraction[c] == 0.0f) continue;
-    if (cloud > 0.0f && cloud < 1e-4f) {
+    if (cloud > 0.0f && cloud < kRemnant) {
       remnants += cloud;
       s.cloudWater[c] = cloud = 0.0f;
     }
-    if (rain > 0.0f && rain < 1e-4f) {
+    if (rain > 0.0f && rain < kRemnant) {
       remnants += rain;
       s.rain[c] = rain = 0.0f;
     }

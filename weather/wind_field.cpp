@@ -135,7 +135,11 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
   for (int j = 0; j < ny_; ++j) {
     const float* row = &s.temperature[size_t(j) * nx_];
     float* out = &coarseT_[size_t(j / f) * cnx];
-    for (int i = 0; i < nx_; ++i) out[i / f] += row[i];
+    for (int b = 0; b < cnx; ++b, row += f) {
+      float sum = 0.0f;
+      for (int k = 0; k < f; ++k) sum += row[k];
+      out[b] += sum;
+    }
   }
   for (float& t : coarseT_) t *= inv;
   binomialSmooth(coarseT_, scratch_, cnx, cny);
