@@ -18,16 +18,22 @@ void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, in
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       size_t c = size_t(j) * nx + i;
-      // Departure point in cell units, in double so that long steps keep their sub-cell fraction.
+      // Departure point in cell units, in double so that long steps keep their sub-cell fraction. The
+      // floor is a truncation corrected for negative values (std::floor is a library call without
+      // SSE4.1); only departures beyond the domain need the modulo.
       double x = i - windU[c] * scale, y = j - windV[c] * scale;
-      double fx = std::floor(x), fy = std::floor(y);
-      long long ix = (long long)fx, iy = (long long)fy;
+      double limit = 1e9;
+      x = std::clamp(x, -limit, limit);
+      y = std::clamp(y, -limit, limit);
+      long long ix = (long long)x, iy = (long long)y;
+      ix -= double(ix) > x;
+      iy -= double(iy) > y;
+      fx_[c] = float(x - double(ix));
+      fy_[c] = float(y - double(iy));
       if (ix < 0 || ix >= nx) ix = ((ix % nx) + nx) % nx;  // far departures only
       if (iy < 0 || iy >= ny) iy = ((iy % ny) + ny) % ny;
       i0_[c] = int32_t(ix);
       j0_[c] = int32_t(iy);
-      fx_[c] = float(x - fx);
-      fy_[c] = float(y - fy);
     }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "weather/fast_math.h"
 #include "weather/physical_constants.h"
 #include "weather/thermodynamics.h"
 
@@ -31,15 +32,15 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       float threshold = rho * kThresholdMixingRatio * std::min(depth, 2000.0f);
       float rainMixing = rain / (rho * depth);
       float rate = kAutoconversionRate * std::max(0.0f, cloud - threshold) +
-                   2.2f * cloud * std::pow(rainMixing, 0.875f);
+                   2.2f * cloud * powFast(rainMixing, 0.875f);
       if (rate > 0.0f) {
-        float converted = cloud * (1.0f - std::exp(-rate * dt / cloud));
+        float converted = cloud * oneMinusExpFast(rate * dt / cloud);
         transferWater(s.cloudWater[c], rain, converted);
       }
     }
     // Rain-out, part evaporating below the base.
     float midHeight = std::max(0.5f * (base + top), 500.0f);
-    float fallen = rain * (1.0f - std::exp(-dt * kFallSpeed / midHeight));
+    float fallen = rain * oneMinusExpFast(dt * kFallSpeed / midHeight);
     float vapour = s.vapour[c];
     float saturated = rhoH * saturationMixingRatioFast(tRef + s.temperature[c], p0);
     float humidity = saturated > 0.0f ? std::clamp(vapour / saturated, 0.0f, 1.0f) : 1.0f;

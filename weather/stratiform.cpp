@@ -20,18 +20,21 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
   const float ftDeficit = float(std::clamp(1.0 - p.freeTroposphereRH, 0.0, 1.0));
   const double lx = s.nx * s.cellSize_m, ly = s.ny * s.cellSize_m;
   const double period = std::fabs(p.frontDirectionX) * lx + std::fabs(p.frontDirectionY) * ly;
+  const bool lifting = p.largeScaleLift_m_s != 0.0 || (p.frontLift_m_s != 0.0 && period > 0.0);
   for (int j = 0; j < s.ny; ++j) {
     for (int i = 0; i < s.nx; ++i) {
       size_t c = s.index(i, j);
       // Large-scale ascent, with the frontal band at periodic distance d along the front's motion.
       float lift = float(p.largeScaleLift_m_s);
-      if (p.frontLift_m_s != 0.0 && period > 0.0) {
-        double along = ((i + 0.5) * p.frontDirectionX + (j + 0.5) * p.frontDirectionY) * s.cellSize_m;
-        double d = std::remainder(along - p.frontPosition_m, period);
-        lift += float(p.frontLift_m_s * std::exp(-(d * d) / (p.frontWidth_m * p.frontWidth_m)));
+      if (lifting) {
+        if (p.frontLift_m_s != 0.0 && period > 0.0) {
+          double along = ((i + 0.5) * p.frontDirectionX + (j + 0.5) * p.frontDirectionY) * s.cellSize_m;
+          double d = std::remainder(along - p.frontPosition_m, period);
+          lift += float(p.frontLift_m_s * std::exp(-(d * d) / (p.frontWidth_m * p.frontWidth_m)));
+        }
+        s.lift[c] += lift;
+        s.temperature[c] -= float(kDryAdiabaticLapseRate) * lift * float(dt_s);
       }
-      s.lift[c] += lift;
-      s.temperature[c] -= float(kDryAdiabaticLapseRate) * lift * float(dt_s);
 
       float topTemperature = float(layer.referenceTemperature_K) + s.temperature[c] - topCooling;
       float saturated = rhoH * saturationMixingRatioFast(topTemperature, topPressure);

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "weather/fast_math.h"
 #include "weather/physical_constants.h"
 
 namespace firmament::weather {
 
-float cloudCover(float w) { return 1.0f - std::exp(-std::max(w, 0.0f) * 20.0f); }
+float cloudCover(float w) { return oneMinusExpFast(std::max(w, 0.0f) * 20.0f); }
 
 float cloudTransmission(float w) {
   constexpr float kAsymmetry = 0.85f, kEffectiveRadius = 10e-6f;
@@ -26,7 +27,7 @@ double applySurfaceHeating(WeatherState& s, const Field& heatingMap, const Bound
   const float qDecay = float(std::exp(-dt_s / p.vapourRelaxation_s));
   const float background = float(p.backgroundVapour_kg_m2);
   const float longwave = float(p.longwaveCooling_W_m2);
-  double exchanged = 0.0;
+  double exchanged = 0.0, sensibleSum = 0.0;
   const size_t n = s.cells();
   for (size_t c = 0; c < n; ++c) {
     float w = s.cloudWater[c];
@@ -34,6 +35,7 @@ double applySurfaceHeating(WeatherState& s, const Field& heatingMap, const Bound
                          : solar * heatingMap[c] - longwave;
     float sensible = net > 0.0f ? net * sensibleShare : net;
     s.surfaceHeatFlux[c] = sensible;
+    sensibleSum += sensible;
     s.temperature[c] = (s.temperature[c] + sensible * kelvinPerJoule * dt) * tDecay;
     if (p.exchangeWithSurroundings) {
       float before = s.vapour[c];
@@ -43,6 +45,7 @@ double applySurfaceHeating(WeatherState& s, const Field& heatingMap, const Bound
       exchanged += double(after) - double(before);
     }
   }
+  s.meanSensibleHeat_W_m2 = sensibleSum / double(n);
   return exchanged * s.cellArea();
 }
 

@@ -32,7 +32,8 @@ float cloudCover(float cloudWater_kg_m2);
 // Two-stream transmission of a cloud of this liquid water path.
 float cloudTransmission(float cloudWater_kg_m2);
 
-// Returns the water that entered the domain in this step (kg; negative when it left).
+// Returns the water that entered the domain in this step (kg; negative when it left); sets the state's
+// domain-mean sensible heat flux (the mixed layer's growth integrates it).
 double applySurfaceHeating(WeatherState& state, const Field& heatingMap, const BoundaryLayer& layer,
                            const SurfaceHeatingParameters& p, double dt_s);
 

@@ -1,10 +1,13 @@
 #include "weather/weather_model.h"
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 #include <numbers>
 
 #include "core/error.h"
+#include "weather/boundary_layer_growth.h"
+#include "weather/compensating_subsidence.h"
 #include "weather/convection.h"
 #include "weather/microphysics.h"
 #include "weather/physical_constants.h"
@@ -15,13 +18,42 @@
 #include "weather/value_noise.h"
 
 namespace firmament::weather {
+namespace {
+
+// Charges the CPU time of this thread since the previous mark to one operator (only when timing is on;
+// CPU time, not wall clock, so that other processes on a shared machine do not count).
+class OperatorClock {
+ public:
+  OperatorClock(OperatorTimes& times, bool on) : times_(times), on_(on) {
+    if (on_) last_ = now();
+  }
+  void charge(int op) {
+    if (!on_) return;
+    double t = now();
+    times_.seconds[op] += t - last_;
+    last_ = t;
+  }
+
+ private:
+  static double now() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  }
+  OperatorTimes& times_;
+  bool on_;
+  double last_ = 0.0;
+};
+
+}  // namespace
 
 WeatherModel::WeatherModel(const WeatherConfig& config, SunElevationFunction sunElevation)
     : config_(config),
       sunElevation_(std::move(sunElevation)),
       schedule_(config.preset, config.schedule),
       state_(config.cellsX, config.cellsY, config.cellSize_m),
-      wind_(config.cellsX, config.cellsY, config.cellSize_m, config.seed) {
+      wind_(config.cellsX, config.cellsY, config.cellSize_m, config.seed),
+      subsidence_(config.cellsX, config.cellsY, config.cellSize_m) {
   if (config.cellsX < 4 || config.cellsY < 4 || !(config.cellSize_m > 0.0))
     throw InputError("weather grid must be at least 4 × 4 cells with a positive cell size");
   if (!sunElevation_) throw InputError("weather model needs a sun-elevation function");
@@ -31,8 +63,11 @@ WeatherModel::WeatherModel(const WeatherConfig& config, SunElevationFunction sun
   heatingMap_.resize(noise.size());
   for (size_t c = 0; c < noise.size(); ++c)
     heatingMap_[c] = std::max(0.0f, 1.0f + float(config.surfaceHeterogeneity) * noise[c]);
-  // Initial state: the background vapour, a faint seeded temperature texture, no cloud.
+  // Initial state: the background vapour, a faint seeded temperature texture, no cloud; the layer at its
+  // morning depth.
   PresetParameters p = schedule_.parametersAt(0.0);
+  state_.layerDepth_m = p.boundaryLayerDepth_m;
+  subsidenceWarming_.assign(state_.cells(), 0.0f);
   Field thermal = periodicNoiseField(config.cellsX, config.cellsY, featureCells / 2, 2, hashCombine(config.seed, 12));
   float vapour = float(backgroundVapour_kg_m2(p));
   for (size_t c = 0; c < state_.cells(); ++c) {
@@ -81,7 +116,15 @@ double WeatherModel::updateWind(const PresetParameters& p) {
   return wind_.update(state_, w, state_.time_s);
 }
 
-void WeatherModel::refreshParcelTable(const PresetParameters& p) {
+PresetParameters WeatherModel::withDepth(PresetParameters p, double depth_m) {
+  p.boundaryLayerDepth_m = depth_m;
+  return p;
+}
+
+void WeatherModel::refreshParcelTable(const PresetParameters& layerParameters) {
+  // The sounding sees the layer depth in 25 m steps, so a growing layer rebuilds the table every 25 m
+  // (or 300 s), not every step.
+  const PresetParameters p = withDepth(layerParameters, 25.0 * std::round(layerParameters.boundaryLayerDepth_m / 25.0));
   auto values = p.toArray();
   double change = 0.0;
   for (int i = 0; i < PresetParameters::kCount; ++i)
@@ -95,8 +138,10 @@ void WeatherModel::refreshParcelTable(const PresetParameters& p) {
 
 void WeatherModel::step(double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw InputError("weather time step must be positive and finite");
-  PresetParameters p = schedule_.parametersAt(state_.time_s);
+  PresetParameters p = currentParameters();
+  OperatorClock clock(times_, timing_);
   double deformation = updateWind(p);
+  clock.charge(0);
   double longest = std::min(kMaxSubstep_s, deformation > 0.0 ? 0.5 / deformation : kMaxSubstep_s);
   int n = int(std::min(1e7, std::ceil(dt_s / longest - 1e-9)));
   n = std::max(n, 1);
@@ -111,23 +156,54 @@ void WeatherModel::advance(double duration_s) {
 
 void WeatherModel::substep(double dt, bool windCurrent) {
   WeatherState& s = state_;
-  const PresetParameters p = schedule_.parametersAt(s.time_s);
+  OperatorClock clock(times_, timing_);
+  const PresetParameters preset = schedule_.parametersAt(s.time_s);
+
+  // The mixed layer's depth follows the heat the ground has given it today.
+  LayerGrowthParameters growth;
+  growth.morningDepth_m = preset.boundaryLayerDepth_m;
+  growth.freeLapseRate_K_m = preset.lapseRate_K_per_km * 1e-3;
+  growth.stableLayerBase_m = preset.stableLayerBase_m;
+  growth.exchangeWithSurroundings = config_.exchangeWithSurroundings;
+  {
+    const BoundaryLayer now(withDepth(preset, s.layerDepth_m), config_.surfacePressure_Pa);
+    growth.density_kg_m3 = now.density_kg_m3;
+    // Air just above the inversion at the free troposphere's humidity.
+    const Sounding sounding(withDepth(preset, s.layerDepth_m), config_.surfacePressure_Pa);
+    growth.entrainedMixingRatio =
+        std::clamp(preset.freeTroposphereRH, 0.0, 1.0) *
+        saturationMixingRatio(sounding.temperatureAt(s.layerDepth_m + 1.0), now.topPressure_Pa);
+  }
+  s.exchangedIn_kg += applyLayerGrowth(s, growth, dt);
+  const PresetParameters p = withDepth(preset, s.layerDepth_m);
   refreshParcelTable(p);
   const BoundaryLayer layer(p, config_.surfacePressure_Pa);
+  clock.charge(7);
   if (!windCurrent) updateWind(p);
+  clock.charge(0);
 
-  // Transport.
+  // Transport. Fields that are zero everywhere (no cloud yet) are skipped; they are non-negative, so a
+  // zero sum says so. Water gets one mass fix after advection and mixing together, which also settles
+  // the previous step's pendingVapour (remnants returned, vapour drawn into storms from their catchment).
+  double vapourBefore = sumField(s.vapour) + s.pendingVapour, cloudBefore = sumField(s.cloudWater),
+         rainBefore = sumField(s.rain);
+  s.pendingVapour = 0.0;
+  const bool convective = sumField(s.cloudTop) > 0.0 || sumField(s.updraft) > 0.0;
   advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
-  advection_.advectFields({&s.temperature, &s.updraft, &s.cloudTop, &s.convectiveFraction});
-  advection_.advectConservingFields({&s.vapour, &s.cloudWater, &s.rain});
+  if (convective)
+    advection_.advectFields({&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
+  else if (cloudBefore > 0.0 || rainBefore > 0.0)
+    advection_.advectFields({&s.temperature, &s.vapour, &s.cloudWater, &s.rain});
+  else
+    advection_.advectFields({&s.temperature, &s.vapour});
+  clock.charge(1);
   mixing_.apply(s.temperature, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
-  // Mixing is conservative in exact arithmetic; the fixer removes its float round-off from the totals.
-  for (Field* f : {&s.vapour, &s.cloudWater}) {
-    double before = sumField(*f);
-    if (before == 0.0) continue;
-    mixing_.apply(*f, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
-    SemiLagrangianAdvection::restoreTotal(*f, before);
-  }
+  mixing_.apply(s.vapour, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
+  if (cloudBefore > 0.0) mixing_.apply(s.cloudWater, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
+  SemiLagrangianAdvection::restoreTotal(s.vapour, vapourBefore);
+  if (cloudBefore > 0.0) SemiLagrangianAdvection::restoreTotal(s.cloudWater, cloudBefore);
+  if (rainBefore > 0.0) SemiLagrangianAdvection::restoreTotal(s.rain, rainBefore);
+  clock.charge(2);
 
   // Sources.
   SurfaceHeatingParameters heating;
@@ -137,6 +213,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   heating.backgroundVapour_kg_m2 = backgroundVapour_kg_m2(p);
   heating.exchangeWithSurroundings = config_.exchangeWithSurroundings;
   s.exchangedIn_kg += applySurfaceHeating(s, heatingMap_, layer, heating, dt);
+  clock.charge(3);
 
   StratiformParameters stratiform;
   stratiform.largeScaleLift_m_s = p.largeScaleLift_m_s;
@@ -150,41 +227,51 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   stratiform.frontPosition_m = speed * s.time_s;
   stratiform.freeTroposphereRH = p.freeTroposphereRH;
   applyStratiform(s, layer, stratiform, dt);
+  clock.charge(4);
 
   ConvectionParameters convection;
   convection.tropopause_m = std::max(p.tropopause_m, p.stableLayerBase_m);
-  applyConvection(s, parcelTable_, layer, convection, dt);
+  convection.subsidenceWarming_K = &subsidenceWarming_;
+  const ConvectionResult convected = applyConvection(s, parcelTable_, layer, convection, dt);
+  s.meanMassFlux_m_s = convected.massFlux_m_s;
+  s.pendingVapour -= convected.drawnVapour;  // taken from the catchment at the next mass fix
+  subsidence_.apply(s, kConvectiveCoreFraction, p.lapseRate_K_per_km * 1e-3, dt, subsidenceWarming_);
+  s.subsidenceWarming_K = subsidence_.domainMean_K();
+  clock.charge(5);
 
   s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
+  clock.charge(6);
 
-  // Housekeeping: remnants of cloud and rain below 1e-4 kg/m² (τ ≈ 0.015) evaporate instead of decaying forever
-  // (they are summed and returned to the vapour field by a double-precision rescale, so no water is
-  // lost to rounding); tops only where there is cloud; the anomaly within the parcel table's range.
+  // Housekeeping: remnants of cloud and rain below 1e-3 kg/m² (cloud optical depth ≈ 0.15, cover 0.02;
+  // rain below 0.02 mm/h) evaporate instead of decaying forever (their sum goes back to the vapour field
+  // at the next mass fix, in double, so no water is lost to rounding). They are the thin tails that
+  // mixing and interpolation spread around every cloud, and at 1e-4 kg/m² they kept half the domain in
+  // the cloud and rain operators for nothing visible. Tops only where there is cloud; the anomaly within
+  // the parcel table's range.
+  constexpr float kRemnant = 1e-3f;
   double remnants = 0.0;
-  for (size_t c = 0; c < s.cells(); ++c) {
-    if (s.cloudWater[c] > 0.0f && s.cloudWater[c] < 1e-4f) {
-      remnants += s.cloudWater[c];
-      s.cloudWater[c] = 0.0f;
+  const size_t n = s.cells();
+  for (size_t c = 0; c < n; ++c) {
+    s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
+    float cloud = s.cloudWater[c], rain = s.rain[c];
+    if (cloud == 0.0f && rain == 0.0f && s.cloudTop[c] == 0.0f && s.convectiveFraction[c] == 0.0f) continue;
+    if (cloud > 0.0f && cloud < kRemnant) {
+      remnants += cloud;
+      s.cloudWater[c] = cloud = 0.0f;
     }
-    if (s.rain[c] > 0.0f && s.rain[c] < 1e-4f) {
-      remnants += s.rain[c];
-      s.rain[c] = 0.0f;
+    if (rain > 0.0f && rain < kRemnant) {
+      remnants += rain;
+      s.rain[c] = rain = 0.0f;
     }
-    if (s.cloudWater[c] == 0.0f && s.rain[c] == 0.0f) {
+    if (cloud == 0.0f && rain == 0.0f) {
       s.cloudTop[c] = 0.0f;
       s.convectiveFraction[c] = 0.0f;
     }
-    s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
     s.convectiveFraction[c] = std::clamp(s.convectiveFraction[c], 0.0f, 1.0f);
   }
-  if (remnants > 0.0) {
-    double vapour = sumField(s.vapour);
-    if (vapour > 0.0)
-      SemiLagrangianAdvection::restoreTotal(s.vapour, vapour + remnants);
-    else
-      for (float& v : s.vapour) v = float(remnants / double(s.cells()));
-  }
+  s.pendingVapour += remnants;
   s.time_s += dt;
+  clock.charge(7);
 }
 
 WeatherMap WeatherModel::map(const RegionPlacement& placement) const {

@@ -1,7 +1,8 @@
 #pragma once
 // The weather model: a periodic 2D boundary layer under a preset's sounding, stepped by operator
-// splitting (docs/weather.md). One step of Δt runs, in order: wind → advection (+ mass fixer) → mixing →
-// surface heating → large-scale lifting and stratiform condensation → convection → rain.
+// splitting (docs/weather.md). One step of Δt runs, in order: mixed-layer growth → wind → advection →
+// mixing (+ mass fixer) → surface heating → large-scale lifting and stratiform condensation → convection
+// (+ compensating subsidence) → rain.
 //
 // Stability: every operator is unconditionally stable on its own (semi-Lagrangian advection; exact
 // exponential integration of relaxations and conversions; mixing iterates to K Δt/Δx² ≤ 0.2). A
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "weather/advection.h"
+#include "weather/compensating_subsidence.h"
 #include "weather/mixing.h"
 #include "weather/parcel_table.h"
 #include "weather/preset_schedule.h"
@@ -33,10 +35,20 @@ struct WaterBudget {
   double imbalance_kg() const { return total_kg + precipitatedOut_kg - exchangedIn_kg - initial_kg; }
 };
 
+// CPU time spent in each operator (seconds, summed over sub-steps), for the benchmark's breakdown;
+// collected only when enabled (one clock read per operator per sub-step).
+struct OperatorTimes {
+  static constexpr int kCount = 8;
+  static constexpr const char* kNames[kCount] = {"wind",       "advection",  "mixing", "surface heating",
+                                                 "stratiform", "convection", "rain",   "housekeeping"};
+  double seconds[kCount] = {};
+};
+
 class WeatherModel {
  public:
   static constexpr double kMaxSubstep_s = 120.0;
   static constexpr double kMixingDiffusivity_m2_s = 100.0;
+  static constexpr double kConvectiveCoreFraction = 0.1;  // σ, convection.h
 
   WeatherModel(const WeatherConfig& config, SunElevationFunction sunElevation);
 
@@ -54,9 +66,14 @@ class WeatherModel {
   const WeatherConfig& config() const { return config_; }
   double time_s() const { return state_.time_s; }
   int lastSubsteps() const { return lastSubsteps_; }
-  PresetParameters currentParameters() const { return schedule_.parametersAt(state_.time_s); }
+  // The parameters in effect now, with the mixed layer at its current depth.
+  PresetParameters currentParameters() const { return withDepth(schedule_.parametersAt(state_.time_s), state_.layerDepth_m); }
+  double layerDepth_m() const { return state_.layerDepth_m; }
+  double subsidenceWarming_K() const { return state_.subsidenceWarming_K; }
 
   WeatherMap map(const RegionPlacement& placement = {}) const;
+  void enableOperatorTimes(bool on) { timing_ = on; }
+  const OperatorTimes& operatorTimes() const { return times_; }
   WeatherStats stats() const { return computeStats(state_); }
   WaterBudget waterBudget() const;
   // Rebases the budget's initial total (after a test edits the state).
@@ -72,6 +89,7 @@ class WeatherModel {
   void substep(double dt_s, bool windCurrent);
   double updateWind(const PresetParameters& p);
   void refreshParcelTable(const PresetParameters& p);
+  static PresetParameters withDepth(PresetParameters p, double depth_m);
 
   WeatherConfig config_;
   SunElevationFunction sunElevation_;
@@ -79,6 +97,8 @@ class WeatherModel {
   WeatherState state_;
   Field heatingMap_, userHeatingMap_;
   WindField wind_;
+  CompensatingSubsidence subsidence_;
+  Field subsidenceWarming_;
   SemiLagrangianAdvection advection_;
   Mixing mixing_;
   ParcelTable parcelTable_;
@@ -87,6 +107,8 @@ class WeatherModel {
   bool tableBuilt_ = false;
   double initialWater_kg_ = 0.0;
   int lastSubsteps_ = 0;
+  bool timing_ = false;
+  OperatorTimes times_;
 };
 
 }  // namespace firmament::weather

@@ -53,9 +53,10 @@ PresetParameters presetParameters(std::string_view name) {
     p.lapseRate_K_per_km = 5.0;
     p.freeTroposphereRH = 0.2;
   } else if (name == "fair-weather") {
-    // Shallow cumulus capped by a subsidence inversion near 2.5 km.
-    p.boundaryLayerDepth_m = 800.0;
-    p.relativeHumidity = 0.55;
+    // Shallow cumulus capped by a subsidence inversion near 2.5 km; the morning layer of 600 m grows to
+    // ≈ 1.2 km, where its thermals reach their condensation level.
+    p.boundaryLayerDepth_m = 600.0;
+    p.relativeHumidity = 0.6;
     p.inversion_K = 1.0;
     p.lapseRate_K_per_km = 6.5;
     p.stableLayerBase_m = 2600.0;
@@ -72,11 +73,12 @@ PresetParameters presetParameters(std::string_view name) {
     p.upperLapseRate_K_per_km = 3.0;
     p.freeTroposphereRH = 0.7;
   } else if (name == "thunderstorm") {
-    // Warm, moist, conditionally unstable to the tropopause, a weak cap.
+    // Warm, moist, conditionally unstable to the tropopause; a 1.5 K cap that only the strongest heating
+    // or a gust front breaks, so storms start in places, not everywhere.
     p.referenceTemperature_K = 298.0;
     p.boundaryLayerDepth_m = 800.0;
     p.relativeHumidity = 0.6;
-    p.inversion_K = 1.0;
+    p.inversion_K = 1.5;
     p.lapseRate_K_per_km = 7.0;
     p.stableLayerBase_m = 12000.0;
     p.upperLapseRate_K_per_km = 7.0;
@@ -96,7 +98,7 @@ PresetParameters presetParameters(std::string_view name) {
     // Broad synoptic ascent plus a frontal band: nimbostratus that rains.
     p.referenceTemperature_K = 290.0;
     p.relativeHumidity = 0.85;
-    p.inversion_K = 2.0;
+    p.inversion_K = 1.5;
     p.lapseRate_K_per_km = 6.0;
     p.freeTroposphereRH = 0.85;
     p.absorbedSolar_W_m2 = 400.0;

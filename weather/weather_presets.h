@@ -10,7 +10,7 @@ namespace firmament::weather {
 
 struct PresetParameters {
   double referenceTemperature_K = 293.0;  // air-mass surface temperature (the anomaly's zero)
-  double boundaryLayerDepth_m = 1000.0;   // h: depth of the well-mixed layer the model holds
+  double boundaryLayerDepth_m = 1000.0;   // h₀: the mixed layer's depth before sunrise (it grows by day)
   double relativeHumidity = 0.6;          // background boundary-layer relative humidity
   double inversion_K = 1.5;               // capping-inversion jump at h
   double lapseRate_K_per_km = 6.5;        // free troposphere from h to the stable layer

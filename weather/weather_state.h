@@ -60,9 +60,19 @@ struct WeatherState {
   Field windU, windV;       // total wind at cloud base, east and north (m/s)
   Field lift;               // ascent at the boundary-layer top from convergence and large-scale lifting (m/s)
 
+  // Domain-wide state of the layer and its environment.
+  double layerDepth_m = 1000.0;          // mixed-layer depth h (boundary_layer_growth.h)
+  double meanSensibleHeat_W_m2 = 0.0;    // domain mean of surfaceHeatFlux, last step
+  double subsidenceWarming_K = 0.0;      // domain mean of δ, compensating_subsidence.h
+  double meanMassFlux_m_s = 0.0;         // σ w̄ of the last convection step
+
   // Water that left or entered the domain, integrated (kg).
   double precipitatedOut_kg = 0.0;
-  double exchangedIn_kg = 0.0;  // surface evaporation minus entrainment drying
+  double exchangedIn_kg = 0.0;  // surface evaporation, entrainment and detrainment
+  // Vapour owed to (positive) or by (negative) the vapour field, Σ over cells of kg/m²: remnants of
+  // cloud and rain evaporated, minus vapour storms drew from their catchment; the next mass fix
+  // settles it (weather_model.cpp).
+  double pendingVapour = 0.0;
 
   WeatherState() = default;
   WeatherState(int nx_, int ny_, double cellSize);
@@ -71,7 +81,9 @@ struct WeatherState {
   size_t index(int i, int j) const { return size_t(j) * size_t(nx) + size_t(i); }
   // Σ field · cellArea in double.
   double total_kg(const Field& f) const;
-  double waterTotal_kg() const { return total_kg(vapour) + total_kg(cloudWater) + total_kg(rain); }
+  double waterTotal_kg() const {
+    return total_kg(vapour) + total_kg(cloudWater) + total_kg(rain) + pendingVapour * cellArea();
+  }
 };
 
 }  // namespace firmament::weather

@@ -7,6 +7,52 @@
 #include "weather/value_noise.h"
 
 namespace firmament::weather {
+namespace {
+
+// [1 2 1]/4 along x then y on a periodic nx × ny field (in place, via scratch).
+void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
+  scratch.resize(f.size());
+  for (int j = 0; j < ny; ++j) {
+    const float* row = &f[size_t(j) * nx];
+    float* out = &scratch[size_t(j) * nx];
+    for (int i = 0; i < nx; ++i) {
+      int w = i == 0 ? nx - 1 : i - 1, e = i + 1 == nx ? 0 : i + 1;
+      out[i] = 0.25f * (row[w] + row[e]) + 0.5f * row[i];
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    const float* south = &scratch[size_t(j == 0 ? ny - 1 : j - 1) * nx];
+    const float* row = &scratch[size_t(j) * nx];
+    const float* north = &scratch[size_t(j + 1 == ny ? 0 : j + 1) * nx];
+    float* out = &f[size_t(j) * nx];
+    for (int i = 0; i < nx; ++i) out[i] = 0.25f * (south[i] + north[i]) + 0.5f * row[i];
+  }
+}
+
+// Largest block size ≤ target that divides both grid sizes.
+int blockFactor(int nx, int ny, int target) {
+  for (int f = std::max(1, target); f > 1; --f)
+    if (nx % f == 0 && ny % f == 0) return f;
+  return 1;
+}
+
+// Bilinear neighbours of fine cell centres in a grid coarser by `factor` (periodic).
+void coarseNeighbours(int n, int factor, std::vector<int32_t>& lo, std::vector<int32_t>& hi, std::vector<float>& w) {
+  const int coarse = n / factor;
+  lo.resize(n);
+  hi.resize(n);
+  w.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double x = (i + 0.5) / factor - 0.5;  // in coarse cell-centre units
+    double fl = std::floor(x);
+    int a = int(fl);
+    w[i] = float(x - fl);
+    lo[i] = (a % coarse + coarse) % coarse;
+    hi[i] = ((a + 1) % coarse + coarse) % coarse;
+  }
+}
+
+}  // namespace
 
 WindField::WindField(int nx, int ny, double cellSize_m, uint32_t seed) : nx_(nx), ny_(ny), cellSize_(cellSize_m) {
   // Six modes with wavelengths from the domain size down to about an eighth of it.
@@ -41,72 +87,152 @@ WindField::WindField(int nx, int ny, double cellSize_m, uint32_t seed) : nx_(nx)
       sinY_[m * ny_ + j] = float(std::sin(a));
     }
   }
+  factor_ = blockFactor(nx, ny, int(std::lround(kSmoothingBlock_m / cellSize_m)));
+  cnx_ = nx / factor_;
+  cny_ = ny / factor_;
+  for (Field* f : {&coarseT_, &coarseU_, &coarseV_, &coarseLift_}) f->assign(size_t(cnx_) * cny_, 0.0f);
+  coarseNeighbours(nx, factor_, x0_, x1_, wx_);
+  coarseNeighbours(ny, factor_, y0_, y1_, wy_);
+}
+
+void WindField::perturbationSnapshot(double t_s, double turbulence, Field& u, Field& v) const {
+  // ψ = Σ A sin(θ), θ = kx·2πx/Lx + ky·2πy/Ly + φ(t); u = ∂ψ/∂y = Σ A (2π ky/Ly) cos θ,
+  // v = −∂ψ/∂x = −Σ A (2π kx/Lx) cos θ; A is chosen so that each mode's speed amplitude is
+  // amplitude · turbulence.
+  const int nx = nx_, ny = ny_;
+  const double lx = nx * cellSize_, ly = ny * cellSize_;
+  u.assign(size_t(nx) * ny, 0.0f);
+  v.assign(size_t(nx) * ny, 0.0f);
+  for (size_t m = 0; m < modes_.size(); ++m) {
+    const Mode& mode = modes_[m];
+    double kxw = mode.kx / lx, kyw = mode.ky / ly, kNorm = std::hypot(kxw, kyw);
+    float cu = float(turbulence * mode.amplitude * kyw / kNorm);
+    float cv = float(-turbulence * mode.amplitude * kxw / kNorm);
+    double phase = mode.phase + mode.angularFrequency * t_s;
+    float cp = float(std::cos(phase)), sp = float(std::sin(phase));
+    const float* cx = &cosX_[m * nx];
+    const float* sx = &sinX_[m * nx];
+    for (int j = 0; j < ny; ++j) {
+      // cos(a + b + φ) with the y part and φ folded into (cb, sb).
+      float cy = cosY_[m * ny + j], sy = sinY_[m * ny + j];
+      float cb = cy * cp - sy * sp, sb = sy * cp + cy * sp;
+      float* ur = &u[size_t(j) * nx];
+      float* vr = &v[size_t(j) * nx];
+      for (int i = 0; i < nx; ++i) {
+        float c = cx[i] * cb - sx[i] * sb;
+        ur[i] += cu * c;
+        vr[i] += cv * c;
+      }
+    }
+  }
+}
+
+double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
+  // Block means of T′, smoothed; then centred differences on the coarse grid (spacing D = f Δx).
+  const int f = factor_, cnx = cnx_, cny = cny_;
+  const float inv = 1.0f / float(f * f);
+  std::fill(coarseT_.begin(), coarseT_.end(), 0.0f);
+  for (int j = 0; j < ny_; ++j) {
+    const float* row = &s.temperature[size_t(j) * nx_];
+    float* out = &coarseT_[size_t(j / f) * cnx];
+    for (int b = 0; b < cnx; ++b, row += f) {
+      float sum = 0.0f;
+      for (int k = 0; k < f; ++k) sum += row[k];
+      out[b] += sum;
+    }
+  }
+  for (float& t : coarseT_) t *= inv;
+  binomialSmooth(coarseT_, scratch_, cnx, cny);
+  binomialSmooth(coarseT_, scratch_, cnx, cny);
+
+  const double spacing = f * cellSize_;
+  const float kappa = float(p.buoyancyWind_m2_s_K), maxSpeed = float(p.maxBuoyancyWind_m_s);
+  const float inv2d = float(1.0 / (2.0 * spacing)), invD2 = float(1.0 / (spacing * spacing));
+  const float depth = float(p.boundaryLayerDepth_m);
+  const Field& T = coarseT_;
+  float maxCurvature = 0.0f;  // max over cells of κ·limit·(|∂²T/∂x²| + |∂²T/∂y²|)·D²
+  for (int j = 0; j < cny; ++j) {
+    int jn = j + 1 == cny ? 0 : j + 1, js = j == 0 ? cny - 1 : j - 1;
+    const float* row = &T[size_t(j) * cnx];
+    const float* north = &T[size_t(jn) * cnx];
+    const float* south = &T[size_t(js) * cnx];
+    for (int i = 0; i < cnx; ++i) {
+      int ie = i + 1 == cnx ? 0 : i + 1, iw = i == 0 ? cnx - 1 : i - 1;
+      float tc = row[i], te = row[ie], tw = row[iw], tn = north[i], ts = south[i];
+      float ub = kappa * (te - tw) * inv2d, vb = kappa * (tn - ts) * inv2d;
+      float speed2 = ub * ub + vb * vb;
+      float limit = speed2 > maxSpeed * maxSpeed ? maxSpeed / std::sqrt(speed2) : 1.0f;
+      size_t c = size_t(j) * cnx + i;
+      coarseU_[c] = ub * limit;
+      coarseV_[c] = vb * limit;
+      // ∇·u_b = κ ∇²T̃′ (limited alike); w at the boundary-layer top = −h ∇·u_b.
+      float laplacian = (te + tw + tn + ts - 4.0f * tc) * invD2;
+      coarseLift_[c] = -depth * kappa * limit * laplacian;
+      maxCurvature = std::max(maxCurvature, kappa * limit * (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
+    }
+  }
+  return double(maxCurvature) * double(invD2);
 }
 
 double WindField::update(WeatherState& s, const WindParameters& p, double t_s) {
   const int nx = nx_, ny = ny_;
   const double lx = nx * cellSize_, ly = ny * cellSize_;
-  // Divergence-free part: ψ = Σ A sin(θ), θ = kx·2πx/Lx + ky·2πy/Ly + φ(t);
-  // u = ∂ψ/∂y = Σ A (2π ky/Ly) cos θ,  v = −∂ψ/∂x = −Σ A (2π kx/Lx) cos θ.
-  // A is chosen so that each mode's speed amplitude is amplitude · turbulence.
-  std::fill(s.windU.begin(), s.windU.end(), float(p.prevailingU_m_s));
-  std::fill(s.windV.begin(), s.windV.end(), float(p.prevailingV_m_s));
-  if (p.turbulence_m_s > 0.0) {
-    for (size_t m = 0; m < modes_.size(); ++m) {
-      const Mode& mode = modes_[m];
-      double kxw = mode.kx / lx, kyw = mode.ky / ly, kNorm = std::hypot(kxw, kyw);
-      float cu = float(p.turbulence_m_s * mode.amplitude * kyw / kNorm);
-      float cv = float(-p.turbulence_m_s * mode.amplitude * kxw / kNorm);
-      double phase = mode.phase + mode.angularFrequency * t_s;
-      float cp = float(std::cos(phase)), sp = float(std::sin(phase));
-      const float* cx = &cosX_[m * nx];
-      const float* sx = &sinX_[m * nx];
-      for (int j = 0; j < ny; ++j) {
-        // cos(a + b + φ) with b = y part folded into (cb, sb).
-        float cy = cosY_[m * ny + j], sy = sinY_[m * ny + j];
-        float cb = cy * cp - sy * sp, sb = sy * cp + cy * sp;
-        float* u = &s.windU[s.index(0, j)];
-        float* v = &s.windV[s.index(0, j)];
-        for (int i = 0; i < nx; ++i) {
-          float c = cx[i] * cb - sx[i] * sb;
-          u[i] += cu * c;
-          v[i] += cv * c;
-        }
+  // Perturbation snapshots bracketing t.
+  const bool turbulent = p.turbulence_m_s > 0.0;
+  float a = 0.0f;
+  if (turbulent) {
+    long long k = (long long)std::floor(t_s / kPerturbationInterval_s);
+    if (p.turbulence_m_s != snapshotTurbulence_ || k != snapshotIndex_) {
+      if (k == snapshotIndex_ + 1 && p.turbulence_m_s == snapshotTurbulence_) {
+        std::swap(snapU_[0], snapU_[1]);
+        std::swap(snapV_[0], snapV_[1]);
+      } else {
+        perturbationSnapshot(double(k) * kPerturbationInterval_s, p.turbulence_m_s, snapU_[0], snapV_[0]);
       }
+      perturbationSnapshot(double(k + 1) * kPerturbationInterval_s, p.turbulence_m_s, snapU_[1], snapV_[1]);
+      snapshotIndex_ = k;
+      snapshotTurbulence_ = p.turbulence_m_s;
     }
+    a = float(t_s / kPerturbationInterval_s - double(k));
   }
-  // Buoyancy-driven part from centred differences of T′, and the lift from its convergence.
-  const float kappa = float(p.buoyancyWind_m2_s_K), maxSpeed = float(p.maxBuoyancyWind_m_s);
-  const float inv2dx = float(1.0 / (2.0 * cellSize_)), invDx2 = float(1.0 / (cellSize_ * cellSize_));
-  const float depth = float(p.boundaryLayerDepth_m);
-  const Field& T = s.temperature;
-  double maxDeformation = 0.0;
+  const double buoyancyDeformation = buoyancyFlow(s, p);
+
+  // u = U₀ + perturbation (interpolated in time) + u_b (interpolated from the coarse grid), one pass.
+  const float u0 = float(p.prevailingU_m_s), v0 = float(p.prevailingV_m_s);
+  const float b0 = 1.0f - a, b1 = a;
+  std::vector<float> rowU(cnx_), rowV(cnx_), rowLift(cnx_);
   for (int j = 0; j < ny; ++j) {
-    int jn = j + 1 == ny ? 0 : j + 1, js = j == 0 ? ny - 1 : j - 1;
+    const float wy = wy_[j];
+    const size_t r0 = size_t(y0_[j]) * cnx_, r1 = size_t(y1_[j]) * cnx_;
+    for (int i = 0; i < cnx_; ++i) {
+      rowU[i] = coarseU_[r0 + i] + wy * (coarseU_[r1 + i] - coarseU_[r0 + i]);
+      rowV[i] = coarseV_[r0 + i] + wy * (coarseV_[r1 + i] - coarseV_[r0 + i]);
+      rowLift[i] = coarseLift_[r0 + i] + wy * (coarseLift_[r1 + i] - coarseLift_[r0 + i]);
+    }
+    const size_t row = size_t(j) * nx;
+    float* u = &s.windU[row];
+    float* v = &s.windV[row];
+    float* lift = &s.lift[row];
     for (int i = 0; i < nx; ++i) {
-      int ie = i + 1 == nx ? 0 : i + 1, iw = i == 0 ? nx - 1 : i - 1;
-      float tc = T[s.index(i, j)], te = T[s.index(ie, j)], tw = T[s.index(iw, j)];
-      float tn = T[s.index(i, jn)], ts = T[s.index(i, js)];
-      float ub = kappa * (te - tw) * inv2dx, vb = kappa * (tn - ts) * inv2dx;
-      float speed = std::sqrt(ub * ub + vb * vb);
-      float limit = speed > maxSpeed ? maxSpeed / speed : 1.0f;
-      size_t c = s.index(i, j);
-      s.windU[c] += ub * limit;
-      s.windV[c] += vb * limit;
-      // ∇·u_b = κ ∇²T′ (limited alike); w at the boundary-layer top = −h ∇·u_b.
-      float laplacian = (te + tw + tn + ts - 4.0f * tc) * invDx2;
-      s.lift[c] = -depth * kappa * limit * laplacian;
-      // The deformation of u_b: κ times the second derivatives of T′.
-      maxDeformation = std::max(maxDeformation, double(kappa * limit * invDx2) *
-                                                    (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
+      const int c0 = x0_[i], c1 = x1_[i];
+      const float wx = wx_[i];
+      u[i] = u0 + rowU[c0] + wx * (rowU[c1] - rowU[c0]);
+      v[i] = v0 + rowV[c0] + wx * (rowV[c1] - rowV[c0]);
+      lift[i] = rowLift[c0] + wx * (rowLift[c1] - rowLift[c0]);
+    }
+    if (turbulent) {
+      const float *su0 = &snapU_[0][row], *su1 = &snapU_[1][row], *sv0 = &snapV_[0][row], *sv1 = &snapV_[1][row];
+      for (int i = 0; i < nx; ++i) {
+        u[i] += b0 * su0[i] + b1 * su1[i];
+        v[i] += b0 * sv0[i] + b1 * sv1[i];
+      }
     }
   }
   // The perturbation's deformation: Σ |amplitude| |k|.
   double turbulenceDeformation = 0.0;
   for (const Mode& m : modes_)
-    turbulenceDeformation += p.turbulence_m_s * m.amplitude * 2.0 * std::numbers::pi *
-                             std::hypot(m.kx / lx, m.ky / ly);
-  return maxDeformation + turbulenceDeformation;
+    turbulenceDeformation += p.turbulence_m_s * m.amplitude * 2.0 * std::numbers::pi * std::hypot(m.kx / lx, m.ky / ly);
+  return buoyancyDeformation + turbulenceDeformation;
 }
 
 }  // namespace firmament::weather

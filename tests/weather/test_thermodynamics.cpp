@@ -1,8 +1,10 @@
 // Saturation, dew point, LCL and moist lapse rate against published values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "weather/fast_math.h"
 #include "weather/physical_constants.h"
 #include "weather/thermodynamics.h"
 
@@ -42,4 +44,28 @@ TEST(Thermodynamics, FastTablesMatchFormulas) {
   for (float x : {1e-6f, 0.3f, 1.0f, 27.0f, 1234.5f}) EXPECT_NEAR(cbrtFast(x), std::cbrt(x), 1e-5 * std::cbrt(x));
   EXPECT_EQ(cbrtFast(0.0f), 0.0f);
   EXPECT_EQ(cbrtFast(-3.0f), 0.0f);
+}
+
+// The float exp/log the per-cell physics uses, against double libm (weather/fast_math.h).
+TEST(Thermodynamics, FastExpAndLogMatchLibm) {
+  double expError = 0.0, logError = 0.0, powError = 0.0, oneMinusError = 0.0;
+  for (float x = -87.0f; x < 88.0f; x += 0.0137f) {
+    double exact = std::exp(double(x));
+    expError = std::max(expError, std::fabs(expFast(x) - exact) / exact);
+  }
+  for (float x = 1e-3f; x < 1e3f; x *= 1.0013f) logError = std::max(logError, std::fabs(logFast(x) - std::log(double(x))));
+  for (float x = 1e-8f; x < 1.0f; x *= 1.001f) {
+    double exact = std::pow(double(x), 0.875);
+    powError = std::max(powError, std::fabs(powFast(x, 0.875f) - exact) / exact);
+  }
+  for (float x = 1e-7f; x < 20.0f; x *= 1.001f) {
+    double exact = -std::expm1(-double(x));
+    oneMinusError = std::max(oneMinusError, std::fabs(oneMinusExpFast(x) - exact) / exact);
+  }
+  EXPECT_LT(expError, 3e-7);
+  EXPECT_LT(logError, 4e-7);
+  EXPECT_LT(powError, 2e-6);
+  EXPECT_LT(oneMinusError, 1e-6);
+  EXPECT_EQ(powFast(0.0f, 0.875f), 0.0f);
+  EXPECT_EQ(oneMinusExpFast(0.0f), 0.0f);
 }

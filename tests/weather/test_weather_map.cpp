@@ -10,12 +10,12 @@ using namespace firmament::weather;
 TEST(WeatherMap, PlacementWrapAndMotion) {
   WeatherConfig c = test::smallConfig("thunderstorm", 64);
   WeatherModel model(c, test::summerDay());
-  model.advance(8 * 3600.0);
+  model.advance(9 * 3600.0);  // 12:32 local solar time
   RegionPlacement placement{test::kLatitude, test::kLongitude, 6360000.0};
   WeatherMap map = model.map(placement);
   ASSERT_EQ(map.map.width, 64);
   ASSERT_EQ(map.wind.channels, 4);
-  EXPECT_DOUBLE_EQ(map.time_s, 8 * 3600.0);
+  EXPECT_DOUBLE_EQ(map.time_s, 9 * 3600.0);
 
   // The centre maps to (0, 0); a point 1 km east along the parallel maps to ≈ (1000, 0).
   glm::dvec2 centre = map.regionCoordinates(test::kLatitude, test::kLongitude);

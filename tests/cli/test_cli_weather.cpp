@@ -1,0 +1,143 @@
+// `firmament weather` as a user meets it: a short run writes the maps, previews and statistics the
+// docs promise (docs/weather.md, "Command line"); bad input exits 2 and names what is wrong.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/exr_io.h"
+#include "tests/support/test_paths.h"
+
+namespace firmament {
+namespace {
+
+struct CommandRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CommandRun firmament(const std::string& arguments) {
+  std::string command = std::string(FIRMAMENT_EXE) + " " + arguments + " 2>&1";
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const std::string kSmallGrid = " --set /weather/grid/cells_x=32 --set /weather/grid/cells_y=32";
+
+TEST(CliWeather, ShortRunWritesMapsPreviewsAndStats) {
+  auto dir = test::scratchDir("cli_weather");
+  auto scene = test::sourceDir() / "scenes" / "fair-weather.json";
+  CommandRun r = firmament("weather " + scene.string() + " --hours 1 --interval-min 30" + kSmallGrid + " --out " +
+                           dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+
+  // Frames at 0, 30 and 60 min: weather and wind maps (EXR, 32 × 32 RGBA) and a preview (PNG).
+  for (const char* frame : {"0000", "0001", "0002"}) {
+    for (const char* kind : {"weather_", "wind_"}) {
+      auto path = dir / (std::string(kind) + frame + ".exr");
+      ASSERT_TRUE(std::filesystem::exists(path)) << path;
+      Image image = readExr(path);
+      EXPECT_EQ(image.width, 32) << path;
+      EXPECT_EQ(image.height, 32) << path;
+      EXPECT_EQ(image.channels, 4) << path;
+      for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v)) << path;
+      EXPECT_FALSE(image.metadata["weather:time_s"].empty()) << path;
+    }
+    auto png = dir / (std::string("preview_") + frame + ".png");
+    ASSERT_TRUE(std::filesystem::exists(png)) << png;
+    std::string bytes = readText(png);
+    ASSERT_GT(bytes.size(), 8u);
+    EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "weather_0003.exr"));
+
+  // stats.csv: the documented header, then a row every 10 min (0 … 60 min), each with 7 numbers.
+  std::istringstream csv(readText(dir / "stats.csv"));
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line, "time_h,cloud_fraction,mean_top_m,max_top_m,precip_area_fraction,water_total_kg,precip_out_kg");
+  std::vector<double> times;
+  while (std::getline(csv, line)) {
+    if (line.empty()) continue;
+    std::vector<double> values;
+    std::stringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+    ASSERT_EQ(values.size(), 7u) << line;
+    for (double v : values) EXPECT_TRUE(std::isfinite(v)) << line;
+    EXPECT_GE(values[1], 0.0);
+    EXPECT_LE(values[1], 1.0);
+    EXPECT_GT(values[5], 0.0) << "the domain holds water";
+    times.push_back(values[0]);
+  }
+  ASSERT_EQ(times.size(), 7u);
+  EXPECT_NEAR(times.front(), 0.0, 1e-9);
+  EXPECT_NEAR(times.back(), 1.0, 1e-3);
+
+  // stats.svg: a plot with the four series.
+  std::string svg = readText(dir / "stats.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("cloud fraction"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+
+  // Nothing half-written left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST(CliWeather, BadInputExitsTwoWithAClearMessage) {
+  auto dir = test::scratchDir("cli_weather_bad");
+  auto scene = (test::sourceDir() / "scenes" / "fair-weather.json").string();
+  auto out = " --out " + (dir / "out").string();
+  struct Case {
+    std::string arguments, fragment;
+  };
+  auto noWeather = dir / "no_weather.json";
+  std::ofstream(noWeather) << R"({"location": {"latitude_deg": 46.5}})";
+  const std::vector<Case> cases = {
+      {"weather " + scene + " --hours 0" + out, "--hours"},
+      {"weather " + scene + " --hours 9000" + out, "--hours"},
+      {"weather " + scene + " --interval-min 0" + out, "--interval-min"},
+      {"weather " + scene + kSmallGrid, "--out"},
+      {"weather " + scene + " --set /weather/preset=monsoon" + out, "/weather/preset"},
+      {"weather " + scene + " --set /weather/grid/cells_x=2" + out, "/weather/grid/cells_x"},
+      {"weather " + scene + " --set /weather/no_such_key=1" + out, "/weather/no_such_key"},
+      {"weather " + noWeather.string() + out, "weather"},
+      {"weather " + (dir / "missing.json").string() + out, "missing.json"},
+      {"weather" + out, ""},
+  };
+  for (const auto& c : cases) {
+    CommandRun r = firmament(c.arguments);
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << ": " << r.output;
+    EXPECT_NE(r.output.find(c.fragment), std::string::npos) << c.arguments << ": " << r.output;
+  }
+  // No maps were written by any of them.
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "weather_0000.exr"));
+  CommandRun help = firmament("weather --help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.output.find("usage: firmament weather"), std::string::npos) << help.output;
+}
+
+}  // namespace
+}  // namespace firmament
