@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <string>
+#include <thread>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -199,7 +201,20 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeveri
   return VK_FALSE;
 }
 
+namespace {
+// lavapipe runs a dispatch on LP_NUM_THREADS threads (default: one per core), each taking one
+// contiguous block of workgroups. Twice as many threads as cores measured about 1.3x faster on the
+// 2-core machines here (finer blocks balance better, and a stalled thread costs less), so that is
+// the default unless the user set the variable. It must be set before the driver loads; GPUs ignore it.
+void preferMoreLavapipeThreads() {
+  if (std::getenv("LP_NUM_THREADS") != nullptr) return;
+  unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  setenv("LP_NUM_THREADS", std::to_string(std::min(2u * cores, 32u)).c_str(), 0);
+}
+}  // namespace
+
 void Context::createInstance(bool validation) {
+  preferMoreLavapipeThreads();
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   if (validation) {

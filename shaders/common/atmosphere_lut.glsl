@@ -119,12 +119,14 @@ SHARED_INLINE void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere,
 // direction is given by its zenith angle theta and its azimuth phi relative to the sun (0..pi, the
 // sky is symmetric about the sun's vertical plane). v puts the horizon (theta_h, the tangent to the
 // ground, pi - asin(r_ground / r)) at exactly 0.5 and packs texels towards it with a square root on
-// each side, where the sky changes fastest; u is linear in phi.
+// each side, where the sky changes fastest; u = sin(phi / 2) = sqrt((1 - cos phi) / 2) spends more
+// texels near the sun's azimuth (du/dphi = 1/2 there against 1/pi for u = phi/pi), where the aerosol
+// glow is, fewer towards the anti-sun, and needs a square root per pixel instead of an acos.
 SHARED_INLINE Real horizonZenithAngle(AtmosphereParameters atmosphere, Real r) {
   return kPi - asin(clamp(atmosphere.bottom_radius / max(r, atmosphere.bottom_radius), 0.0, 1.0));
 }
 
-SHARED_INLINE vec2 skyViewUvFromAngles(AtmosphereParameters atmosphere, Real r, Real theta, Real phi) {
+SHARED_INLINE vec2 skyViewUvFromAngles(AtmosphereParameters atmosphere, Real r, Real theta, Real cos_phi) {
   Real theta_h = horizonZenithAngle(atmosphere, r);
   Real v;
   if (theta < theta_h) {
@@ -134,10 +136,11 @@ SHARED_INLINE vec2 skyViewUvFromAngles(AtmosphereParameters atmosphere, Real r, 
     Real x = clamp((theta - theta_h) / max(kPi - theta_h, 1e-6), 0.0, 1.0);  // 0 at the horizon, 1 at the nadir
     v = 0.5 - 0.5 * sqrt(x);
   }
-  return vec2(clamp(phi / kPi, 0.0, 1.0), v);
+  return vec2(sqrt(clamp(0.5 - 0.5 * cos_phi, 0.0, 1.0)), v);
 }
 
-SHARED_INLINE void anglesFromSkyViewUv(AtmosphereParameters atmosphere, Real r, vec2 uv, OUT(Real) theta, OUT(Real) phi) {
+SHARED_INLINE void anglesFromSkyViewUv(AtmosphereParameters atmosphere, Real r, vec2 uv, OUT(Real) theta,
+                                       OUT(Real) cos_phi) {
   Real theta_h = horizonZenithAngle(atmosphere, r);
   if (uv.y >= 0.5) {
     Real s = 2.0 * uv.y - 1.0;
@@ -146,7 +149,7 @@ SHARED_INLINE void anglesFromSkyViewUv(AtmosphereParameters atmosphere, Real r, 
     Real s = 1.0 - 2.0 * uv.y;
     theta = theta_h + s * s * (kPi - theta_h);
   }
-  phi = uv.x * kPi;
+  cos_phi = 1.0 - 2.0 * uv.x * uv.x;
 }
 
 SHARED_END

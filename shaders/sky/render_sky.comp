@@ -39,8 +39,8 @@ vec3 skyFromLut(AtmosphereParameters atmosphere, vec3 origin, vec3 dir, vec3 sun
   vec3 dir_h = dir - dot(dir, up) * up;
   vec3 sun_h = sun - dot(sun, up) * up;
   float norms = length(dir_h) * length(sun_h);
-  float phi = norms > 1e-8 ? acos(clamp(dot(dir_h, sun_h) / norms, -1.0, 1.0)) : 0.0;
-  return textureLod(skyViewLut, skyViewUvFromAngles(atmosphere, r, theta, phi), 0.0).rgb;
+  float cos_phi = norms > 1e-8 ? clamp(dot(dir_h, sun_h) / norms, -1.0, 1.0) : 1.0;
+  return textureLod(skyViewLut, skyViewUvFromAngles(atmosphere, r, theta, cos_phi), 0.0).rgb;
 }
 
 void main() {

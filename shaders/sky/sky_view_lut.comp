@@ -23,12 +23,13 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (texel.x >= size.x || texel.y >= size.y) return;
   AtmosphereParameters atmosphere = atmosphereFromBlock();
-  float theta, phi;
-  anglesFromSkyViewUv(atmosphere, push.camera_radius, (vec2(texel) + 0.5) / vec2(size), theta, phi);
+  float theta, cos_phi;
+  anglesFromSkyViewUv(atmosphere, push.camera_radius, (vec2(texel) + 0.5) / vec2(size), theta, cos_phi);
+  float sin_phi = sqrt(max(1.0 - cos_phi * cos_phi, 0.0));
   // Local frame: camera on +z, sun in the x-z plane, phi measured from the sun's azimuth.
   vec3 origin = vec3(0.0, 0.0, push.camera_radius);
   vec3 sun = vec3(sqrt(max(1.0 - push.mu_s * push.mu_s, 0.0)), 0.0, push.mu_s);
-  vec3 dir = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+  vec3 dir = vec3(sin(theta) * cos_phi, sin(theta) * sin_phi, cos(theta));
   SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, skyIrradianceLut, origin, dir, sun, push.steps);
   vec3 rgb = m.rgb;
   if (push.accumulate != 0) rgb += imageLoad(skyViewLut, texel).rgb;
