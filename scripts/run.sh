@@ -40,14 +40,22 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc)
-if [ ! -f "$build/build.ninja" ]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-cmake --build "$build" -j "$jobs"
+# configure_and_build DIR [cmake options...]
+configure_and_build() {
+  local dir=$1
+  shift
+  if [ ! -f "$dir/build.ninja" ]; then
+    cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
+  fi
+  cmake --build "$dir" -j "$jobs"
+}
 
 case "$action" in
-  build) ;;
+  build)
+    configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
+    ;;
   render)
+    configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
     scene=scenes/default.json
     if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scene=$1; shift; fi
     mkdir -p out
@@ -55,19 +63,19 @@ case "$action" in
     "$build/samples/firmament" render "$scene" -o "out/$name.exr" "$@"
     ;;
   test)
-    ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
-    # The same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (optimised, so the
-    # numeric tests stay quick). FIRMAMENT_SKIP_SANITIZERS=1 skips it.
-    if [ "${FIRMAMENT_SKIP_SANITIZERS:-0}" != 1 ]; then
-      asan=${build}-sanitize
-      if [ ! -f "$asan/build.ninja" ]; then
-        cmake -S . -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIRMAMENT_SANITIZE=ON >/dev/null
-      fi
-      cmake --build "$asan" -j "$jobs"
+    # The suite runs once, built optimised with AddressSanitizer + UndefinedBehaviorSanitizer
+    # (RelWithDebInfo), so every test also checks memory and undefined behaviour.
+    # FIRMAMENT_SKIP_SANITIZERS=1 runs it on the plain Release build instead.
+    if [ "${FIRMAMENT_SKIP_SANITIZERS:-0}" = 1 ]; then
+      configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
+      ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
+    else
+      tests=${build}-sanitize
+      configure_and_build "$tests" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFIRMAMENT_SANITIZE=ON
       ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
       LSAN_OPTIONS=suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0 \
       UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-        ctest --test-dir "$asan" --output-on-failure -j "$jobs" "$@"
+        ctest --test-dir "$tests" --output-on-failure -j "$jobs" "$@"
     fi
     ;;
   *)
