@@ -21,9 +21,12 @@ struct CloudBlock {
   float octaves[4];        // a, b, c, light march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
+  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, unused
+  float weatherRegion[4];  // width, height (m), skew east, north (m/m)
+  float weatherPlanet[4];  // ground radius (m)
   float layers[kMaxLayers * 5][4];
 };
-static_assert(sizeof(CloudBlock) == (10 + kMaxLayers * 5) * 16);
+static_assert(sizeof(CloudBlock) == (13 + kMaxLayers * 5) * 16);
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -45,9 +48,27 @@ CloudPass::CloudPass(gpu::Context& context)
                           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer},
+                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                           gpu::BindingType::SampledImage},
                           sizeof(Push)}),
-      block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block") {}
+      block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
+      counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters") {}
+
+void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
+  if (map.map.channels != 4 || map.map.pixelCount() == 0) throw std::logic_error("CloudPass: weather map must be RGBA");
+  const uint32_t w = uint32_t(map.map.width), h = uint32_t(map.map.height);
+  if (!weatherImage_ || weatherImage_.width() != w || weatherImage_.height() != h)
+    weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
+  weatherImage_.uploadFloats(map.map.pixels);
+  weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
+}
+
+CloudSampleCounts CloudPass::sampleCounts() const {
+  uint32_t c[2] = {0, 0};
+  counters_.download(c, sizeof(c));
+  const double pixels = double(std::max<uint32_t>(cloudImage_ ? cloudImage_.width() * cloudImage_.height() : 1u, 1u));
+  return {c[0] / pixels, c[1] / pixels};
+}
 
 bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands) {
   return noise_.update(settings.seed, noise, commands);
@@ -75,7 +96,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0);
+  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0);
+  // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
+  const double thickest = cloudThickestLayer(settings);
+  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   put(b.octaves, std::min(l.a, l.b), l.b, l.c, cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
@@ -88,7 +112,12 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     put(b.layers[5 * i + 3], c.wind_offset);
     put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), 0.0);
   }
+  if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
+  put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
+  put(b.weatherPlanet, luts.parameters().bottom_radius, 0.0, 0.0, 0.0);
   block_.upload(&b, sizeof(b));
+  const uint32_t zero[2] = {0, 0};
+  counters_.upload(zero, sizeof(zero));
 
   const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
   if (!cloudImage_ || cloudImage_.width() != width || cloudImage_.height() != height)
@@ -105,7 +134,9 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                               {noise_.blueNoise(), noise_.nearestRepeat()},
                               skyImage,
                               cloudImage_,
-                              block_});
+                              block_,
+                              counters_,
+                              {weatherImage_, noise_.linearRepeat()}});
     Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/render_clouds");
