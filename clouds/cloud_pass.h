@@ -51,6 +51,9 @@ class CloudPass {
   // RGBA32F, the view's size: rgb = the clouds' light in front of the sky (cd/m^2, aerial perspective
   // included), a = the clouds' transmittance. Valid after the recorded commands ran.
   const gpu::Image& cloudImage() const { return cloudImage_; }
+  // The Beer shadow map of the last record() with it enabled (RGBA32F: front depth m, mean extinction
+  // 1/m, total optical depth, 0; common/cloud_shadow.glsl).
+  const gpu::Image& shadowMap() const { return shadowImage_; }
   CloudNoise& noise() { return noise_; }
   CloudSampleCounts sampleCounts() const;
 
@@ -58,6 +61,8 @@ class CloudPass {
   gpu::Context& context_;
   CloudNoise noise_;
   gpu::ComputePipeline pipeline_;
+  gpu::ComputePipeline bakeShadow_;
+  gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;

@@ -49,6 +49,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (jitter) march.jitter = *jitter;
   if (uniformSteps) march.uniformSteps = *uniformSteps;
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
+  if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
   if (ambient) march.ambient = *ambient;
 }

@@ -35,6 +35,12 @@ struct CloudMarchSettings {
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
   double maxStepFactor = 8.0;
   bool uniformSteps = false;
+  // Beer shadow map (common/cloud_shadow.glsl): when on, the light march reads the sun's optical depth
+  // through all layers from the map (baked per frame) wherever the sample lies on it.
+  bool beerShadowMap = false;
+  int shadowMapSize = 256;            // texels per side
+  int shadowMapSteps = 128;           // march steps per texel
+  double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
   bool jitter = true;              // blue-noise jitter of the sample positions
   bool aerialPerspective = true;
   bool ambient = true;
@@ -77,6 +83,7 @@ struct CloudOverrides {
   std::optional<bool> jitter;
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
+  std::optional<bool> beerShadowMap;
   std::optional<bool> aerialPerspective;
   std::optional<bool> ambient;
   void apply(CloudMarchSettings& march) const;

@@ -327,4 +327,9 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   return ev100;
 }
 
+std::vector<float> SkyRenderer::cloudShadowMap() const {
+  if (!clouds_ || !clouds_->shadowMap()) return {};
+  return clouds_->shadowMap().downloadFloats();
+}
+
 }  // namespace firmament

@@ -68,6 +68,8 @@ class SkyRenderer {
   explicit SkyRenderer(gpu::Context& context);
   RenderResult render(const Scene& scene, const SkyRenderOptions& options = {});
   gpu::Context& context() { return context_; }
+  // The clouds' Beer shadow map of the last render with it enabled (RGBA floats; empty otherwise).
+  std::vector<float> cloudShadowMap() const;
 
  private:
   gpu::Context& context_;
