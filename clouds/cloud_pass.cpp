@@ -21,9 +21,16 @@ struct CloudBlock {
   float octaves[4];        // a, b, c, light march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
+  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, unused
+  float weatherRegion[4];  // width, height (m), skew east, north (m/m)
+  float weatherPlanet[4];  // ground radius (m)
+  float shadowCentre[4];   // centre (cloud frame, m), extent (m)
+  float shadowAxisU[4];    // axis u, start distance L (m)
+  float shadowAxisV[4];    // axis v, march length (m)
+  int32_t shadowSize[4];   // texels, steps, enabled, unused
   float layers[kMaxLayers * 5][4];
 };
-static_assert(sizeof(CloudBlock) == (10 + kMaxLayers * 5) * 16);
+static_assert(sizeof(CloudBlock) == (17 + kMaxLayers * 5) * 16);
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -45,9 +52,34 @@ CloudPass::CloudPass(gpu::Context& context)
                           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer},
+                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                           sizeof(Push)}),
-      block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block") {}
+      bakeShadow_(context, {"clouds/bake_shadow_map",
+                            {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                             gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                             gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
+                            0}),
+      block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
+      counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters") {}
+
+void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
+  if (map.map.channels != 4 || map.map.pixelCount() == 0) throw std::logic_error("CloudPass: weather map must be RGBA");
+  const uint32_t w = uint32_t(map.map.width), h = uint32_t(map.map.height);
+  if (!weatherImage_ || weatherImage_.width() != w || weatherImage_.height() != h)
+    weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
+  weatherImage_.uploadFloats(map.map.pixels);
+  weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
+}
+
+CloudSampleCounts CloudPass::sampleCounts() const {
+  uint32_t c[2] = {0, 0};
+  counters_.download(c, sizeof(c));
+  const double pixels = double(std::max<uint32_t>(cloudImage_ ? cloudImage_.width() * cloudImage_.height() : 1u, 1u));
+  return {c[0] / pixels, c[1] / pixels};
+}
 
 bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands) {
   return noise_.update(settings.seed, noise, commands);
@@ -75,7 +107,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0);
+  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0);
+  // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
+  const double thickest = cloudThickestLayer(settings);
+  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   put(b.octaves, std::min(l.a, l.b), l.b, l.c, cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
@@ -88,11 +123,60 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     put(b.layers[5 * i + 3], c.wind_offset);
     put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), 0.0);
   }
+  if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
+  put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
+  put(b.weatherPlanet, luts.parameters().bottom_radius, 0.0, 0.0, 0.0);
+  // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
+  // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
+  // L = (top - mid) / max(mu_s, 0.05) + 1 km (past every layer's top for any sun above the horizon),
+  // and runs 2 L.
+  {
+    const double ground = luts.parameters().bottom_radius;
+    double lowest = 1e30, highest = 0.0;
+    for (const auto& l : settings.layers) lowest = std::min(lowest, l.bottom_m), highest = std::max(highest, l.top_m);
+    const double mid = 0.5 * (lowest + highest);
+    const glm::dvec3 centre(0.0, 0.0, ground + mid);
+    const glm::dvec3 sun = glm::normalize(view.sunDirection);
+    const glm::dvec3 u = glm::normalize(std::abs(sun.z) < 0.9 ? glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(sun, glm::dvec3(1.0, 0.0, 0.0)));
+    const glm::dvec3 v = glm::cross(sun, u);
+    const double start = (highest - mid) / std::max(sun.z, 0.05) + 1000.0;
+    put(b.shadowCentre, centre, m.shadowMapExtent_m);
+    put(b.shadowAxisU, u, start);
+    put(b.shadowAxisV, v, 2.0 * start);
+    b.shadowSize[0] = std::max(m.shadowMapSize, 1);
+    b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
+    b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
+  }
   block_.upload(&b, sizeof(b));
+  const uint32_t zero[2] = {0, 0};
+  counters_.upload(zero, sizeof(zero));
 
   const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
   if (!cloudImage_ || cloudImage_.width() != width || cloudImage_.height() != height)
     cloudImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, false, "cloud image"});
+  const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
+  if (!shadowImage_ || shadowImage_.width() != shadowSize)
+    shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
+  if (m.beerShadowMap) {
+    const AtmosphereLuts::Batch& lut = luts.batch(0);
+    commands.bind(bakeShadow_, {lut.block,
+                                {lut.transmittance, luts.linearClamp()},
+                                {lut.multipleScattering, luts.linearClamp()},
+                                {*skyIrradiance[0], luts.linearClamp()},
+                                {noise_.shape(), noise_.linearRepeat()},
+                                {noise_.detail(), noise_.linearRepeat()},
+                                {noise_.curl(), noise_.linearRepeat()},
+                                {noise_.blueNoise(), noise_.nearestRepeat()},
+                                skyImage,
+                                cloudImage_,
+                                block_,
+                                counters_,
+                                {weatherImage_, noise_.linearRepeat()},
+                                shadowImage_});
+    const uint32_t groups = (shadowSize + 7) / 8;
+    commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
+    commands.barrier();
+  }
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
     const AtmosphereLuts::Batch& lut = luts.batch(batch);
     commands.bind(pipeline_, {lut.block,
@@ -105,7 +189,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                               {noise_.blueNoise(), noise_.nearestRepeat()},
                               skyImage,
                               cloudImage_,
-                              block_});
+                              block_,
+                              counters_,
+                              {weatherImage_, noise_.linearRepeat()},
+                              {shadowImage_, luts.linearClamp()}});
     Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/render_clouds");

@@ -10,6 +10,7 @@
 #include "atmosphere/atmosphere_luts.h"
 #include "clouds/cloud_noise.h"
 #include "clouds/cloud_settings.h"
+#include "clouds/cloud_weather_map.h"
 #include "common/camera.glsl"
 #include "gpu/buffer.h"
 #include "gpu/command.h"
@@ -23,12 +24,22 @@ struct CloudView {
   shared::CameraParameters camera{};
 };
 
+// Density evaluations per pixel of the last recorded march (after its commands ran).
+struct CloudSampleCounts {
+  double viewPerPixel = 0.0;   // view march: coarse (shape-only) and fine samples
+  double lightPerPixel = 0.0;  // light march samples
+};
+
 class CloudPass {
  public:
   explicit CloudPass(gpu::Context& context);
 
   // Records the noise bake into `commands` when the seed or sizes changed; true when it did.
   bool prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands);
+
+  // The weather map the march reads (uploaded now; kept until the next call). Must be set before
+  // record().
+  void setWeatherMap(const CloudWeatherMap& map);
 
   // Records the march over `skyImage` (RGBA32F, the view's size), one dispatch per batch of `luts`
   // with skyIrradiance[b] the batch's sky irradiance table. The noise must be prepared and baked
@@ -40,13 +51,22 @@ class CloudPass {
   // RGBA32F, the view's size: rgb = the clouds' light in front of the sky (cd/m^2, aerial perspective
   // included), a = the clouds' transmittance. Valid after the recorded commands ran.
   const gpu::Image& cloudImage() const { return cloudImage_; }
+  // The Beer shadow map of the last record() with it enabled (RGBA32F: front depth m, mean extinction
+  // 1/m, total optical depth, 0; common/cloud_shadow.glsl).
+  const gpu::Image& shadowMap() const { return shadowImage_; }
   CloudNoise& noise() { return noise_; }
+  CloudSampleCounts sampleCounts() const;
 
  private:
   gpu::Context& context_;
   CloudNoise noise_;
   gpu::ComputePipeline pipeline_;
+  gpu::ComputePipeline bakeShadow_;
+  gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;
+  gpu::Buffer counters_;
+  gpu::Image weatherImage_;
+  glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)
   gpu::Image cloudImage_;
 };
 

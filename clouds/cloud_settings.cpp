@@ -47,6 +47,9 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightSteps) march.lightSteps = *lightSteps;
   if (coarseFactor) march.coarseFactor = *coarseFactor;
   if (jitter) march.jitter = *jitter;
+  if (uniformSteps) march.uniformSteps = *uniformSteps;
+  if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
+  if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
   if (ambient) march.ambient = *ambient;
 }
@@ -135,10 +138,14 @@ std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings,
   return out;
 }
 
-double cloudLightMarchLength(const CloudSettings& settings) {
-  double thickest = 0.0;
+double cloudThickestLayer(const CloudSettings& settings) {
+  double thickest = 1.0;
   for (const auto& l : settings.layers) thickest = std::max(thickest, l.top_m - l.bottom_m);
-  return std::clamp(thickest, 100.0, 4000.0);
+  return thickest;
+}
+
+double cloudLightMarchLength(const CloudSettings& settings) {
+  return std::clamp(cloudThickestLayer(settings), 100.0, 4000.0);
 }
 
 }  // namespace firmament

@@ -24,12 +24,23 @@ struct CloudLayerSettings {
 
 // Light and march knobs of the fast path (the quality preset fills the step counts).
 struct CloudMarchSettings {
-  int viewSteps = 64;    // fine steps over the view ray's stretches inside the shells
+  int viewSteps = 64;    // N: a vertical crossing of the thickest layer takes about N fine steps
   int lightSteps = 6;    // light-march samples towards the sun
   int coarseFactor = 4;  // a coarse (empty-space) step is this many fine steps; 1 = no skipping
   double earlyExitTransmittance = 0.01;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
   double lightCone = 0.15;         // tan of the light cone's half-angle
+  // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
+  // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
+  // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
+  double maxStepFactor = 8.0;
+  bool uniformSteps = false;
+  // Beer shadow map (common/cloud_shadow.glsl): when on, the light march reads the sun's optical depth
+  // through all layers from the map (baked per frame) wherever the sample lies on it.
+  bool beerShadowMap = false;
+  int shadowMapSize = 256;            // texels per side
+  int shadowMapSteps = 128;           // march steps per texel
+  double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
   bool jitter = true;              // blue-noise jitter of the sample positions
   bool aerialPerspective = true;
   bool ambient = true;
@@ -70,6 +81,9 @@ struct CloudOverrides {
   std::optional<int> lightSteps;
   std::optional<int> coarseFactor;
   std::optional<bool> jitter;
+  std::optional<bool> uniformSteps;
+  std::optional<double> maxStepFactor;
+  std::optional<bool> beerShadowMap;
   std::optional<bool> aerialPerspective;
   std::optional<bool> ambient;
   void apply(CloudMarchSettings& march) const;
@@ -87,5 +101,8 @@ std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings,
 
 // The light-march length (m): the thickest layer's thickness, at most 4 km.
 double cloudLightMarchLength(const CloudSettings& settings);
+
+// The thickest layer's thickness H (m, at least 1 m): the base view step is H / N.
+double cloudThickestLayer(const CloudSettings& settings);
 
 }  // namespace firmament

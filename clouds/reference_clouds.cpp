@@ -10,6 +10,7 @@
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/reference_path_tracer.h"
 #include "atmosphere/reference_renderer.h"
+#include "common/cloud_weather.glsl"
 #include "common/atmosphere_lut.glsl"
 #include "common/cloud_lighting.glsl"
 
@@ -26,21 +27,34 @@ glm::dvec3 directionAround(glm::dvec3 axis, double cosine, double azimuth) {
 
 }  // namespace
 
-CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl)
-    : layers_(std::move(layers)), shape_(std::move(shape)), detail_(std::move(detail)), curl_(std::move(curl)) {}
+CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl,
+                         CloudWeatherMap weather, double groundRadius_m)
+    : layers_(std::move(layers)),
+      shape_(std::move(shape)),
+      detail_(std::move(detail)),
+      curl_(std::move(curl)),
+      weather_(std::move(weather)),
+      groundRadius_m_(groundRadius_m) {}
 
 double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   // The same steps as densityAt in shaders/clouds/render_clouds.comp, in double.
   const shared::CloudLayer& layer = layers_[i];
-  const double ph = shared::cloudHeightFraction(layer, glm::length(p));
+  const double r = glm::length(p);
+  if (double h = shared::cloudHeightFraction(layer, r); h <= 0.0 || h >= 1.0) return 0.0;
+  const glm::dvec4 weather = weather_.sample(shared::cloudWeatherCoordinate(
+      p, groundRadius_m_, glm::dvec2(weather_.width_m, weather_.height_m), weather_.skew));
+  bool empty = false;
+  const shared::CloudLayer column = shared::cloudColumnLayer(layer, weather, groundRadius_m_, empty);
+  if (empty) return 0.0;
+  const double ph = shared::cloudHeightFraction(column, r);
   if (ph <= 0.0 || ph >= 1.0) return 0.0;
-  const glm::dvec3 local = shared::cloudLocalPosition(layer, p);
-  const double base = shared::cloudShapeDensity(layer, ph, shape_.sample(shared::cloudShapeCoordinate(layer, local)), 1.0);
+  const glm::dvec3 local = shared::cloudLocalPosition(column, p);
+  const double base = shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)), weather.x);
   if (base <= 0.0) return 0.0;
-  const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(layer, local));
+  const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(column, local));
   const glm::dvec4 detail =
-      detail_.sample(shared::cloudDetailCoordinate(layer, local, glm::dvec2(curl.x, curl.y), ph));
-  return layer.extinction * shared::cloudDensity(layer, ph, base, detail);
+      detail_.sample(shared::cloudDetailCoordinate(column, local, glm::dvec2(curl.x, curl.y), ph));
+  return column.extinction * shared::cloudDensity(column, ph, base, detail);
 }
 
 CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting,
@@ -261,7 +275,7 @@ CloudEnvironment cloudEnvironmentFromReference(const AtmosphereSettings& atmosph
   const glm::dvec3 groundPoint(0.0, 0.0, p.bottom_radius);
   CloudLightingSettings unused;
   CloudReferenceSettings settings;
-  CloudMedium none({}, {}, {}, {});
+  CloudMedium none({}, {}, {}, {}, {}, p.bottom_radius);
   const CloudPathTracer tracer(none, unused, atmosphere, sun, CloudEnvironment{}, settings);
   const glm::dvec3 sunAtGround = tracer.sunIrradianceAt(groundPoint + glm::dvec3(0.0, 0.0, 0.01));
   env.groundSun = p.ground_albedo / shared::kPi * sunAtGround * std::max(muS, 0.0);

@@ -22,6 +22,7 @@
 #include "atmosphere/atmosphere_settings.h"
 #include "atmosphere/reference_random.h"
 #include "clouds/cloud_settings.h"
+#include "clouds/cloud_weather_map.h"
 #include "clouds/noise_volume.h"
 #include "common/camera.glsl"
 #include "common/cloud_density.glsl"
@@ -29,10 +30,12 @@
 
 namespace firmament {
 
-// The medium: layers and the noise textures they read.
+// The medium: layers, the noise textures and the weather map they read (common/cloud_weather.glsl),
+// over a ground sphere of radius groundRadius_m.
 class CloudMedium {
  public:
-  CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl);
+  CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl,
+              CloudWeatherMap weather, double groundRadius_m);
   const std::vector<shared::CloudLayer>& layers() const { return layers_; }
   // Extinction (m^-1) of layer i at p (planet-centred, m); 0 outside its shell.
   double extinction(size_t layer, glm::dvec3 p) const;
@@ -40,6 +43,8 @@ class CloudMedium {
  private:
   std::vector<shared::CloudLayer> layers_;
   NoiseVolume shape_, detail_, curl_;
+  CloudWeatherMap weather_;
+  double groundRadius_m_;
 };
 
 // Light around the clouds, spectral radiance (W m^-2 sr^-1 nm^-1) at the three wavelengths.

@@ -75,7 +75,12 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   } else {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});
   }
-  if (scene.hasSection("weather")) {
+  const bool cloudLayers = scene.hasSection("clouds") && !scene.at("/clouds/layers").empty() &&
+                           options.multipleScattering != MultipleScattering::BrunetonTables;
+  if (scene.hasSection("weather") && cloudLayers) {
+    plan.passes.push_back({"weather/simulate (CPU)", "the weather map the clouds read (coverage, type, top)",
+                           "simulated from the local solar midnight to the scene's time", false});
+  } else if (scene.hasSection("weather")) {
     plan.unavailable.push_back({"weather", "the weather map only feeds clouds; run `firmament weather` to simulate it"});
   } else {
     plan.omitted.push_back({"weather", "no weather section: no simulation"});

@@ -11,6 +11,7 @@
 #include "core/exr_io.h"
 #include "core/error.h"
 #include "core/tonemap.h"
+#include "sky/scene_weather.h"
 
 namespace firmament {
 namespace {
@@ -127,6 +128,8 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
     clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     options.clouds.apply(clouds->march);
     if (!clouds_) clouds_ = std::make_unique<CloudPass>(context_);
+    // The weather map (sky/scene_weather.h): the simulation's (CPU, cached) or the procedural one.
+    clouds_->setWeatherMap(options.cloudWeather ? *options.cloudWeather : cloudWeatherMapForScene(scene));
     gpu::CommandList bake(context_);
     if (clouds_->prepareNoise(*clouds, options.cloudNoise, bake)) {
       bake.submitAndWait();
@@ -247,6 +250,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   if (clouds) {
     result.clouds = Image(width, height, 4);
     result.clouds.pixels = clouds_->cloudImage().downloadFloats();
+    result.cloudSamples = clouds_->sampleCounts();
   }
   Image& image = result.image;
   image.metadata["firmament.scene_hash"] = scene.hash();
@@ -309,6 +313,9 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   j["precompute_ms"] = result.precomputeMilliseconds;
   j["frame_ms"] = result.frameMilliseconds;
   j["tables"] = result.tablesSource;
+  if (result.clouds.pixelCount() > 0)
+    j["clouds"] = {{"view_samples_per_pixel", result.cloudSamples.viewPerPixel},
+                   {"light_samples_per_pixel", result.cloudSamples.lightPerPixel}};
   if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
   j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
                           {"max", maxY},
@@ -318,6 +325,11 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   j["outputs"] = {{"exr", exr.string()}, {"png", png.string()}, {"stats", stats.string()}};
   writeTextFileAtomically(stats, j.dump(2) + "\n");
   return ev100;
+}
+
+std::vector<float> SkyRenderer::cloudShadowMap() const {
+  if (!clouds_ || !clouds_->shadowMap()) return {};
+  return clouds_->shadowMap().downloadFloats();
 }
 
 }  // namespace firmament

@@ -39,6 +39,8 @@ struct SkyRenderOptions {
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
   CloudOverrides clouds;          // march knobs over the scene's clouds quality preset
   CloudNoiseSettings cloudNoise;  // noise texture sizes (tests use small ones)
+  // Replaces the scene's weather map (tests, tools); unset: sky/scene_weather.h decides.
+  std::shared_ptr<const CloudWeatherMap> cloudWeather;
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).
@@ -58,6 +60,7 @@ struct RenderResult {
   // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
   // is sky * a + rgb). Empty without clouds.
   Image clouds;
+  CloudSampleCounts cloudSamples;  // density evaluations per pixel of the cloud march
 };
 
 class SkyRenderer {
@@ -65,6 +68,8 @@ class SkyRenderer {
   explicit SkyRenderer(gpu::Context& context);
   RenderResult render(const Scene& scene, const SkyRenderOptions& options = {});
   gpu::Context& context() { return context_; }
+  // The clouds' Beer shadow map of the last render with it enabled (RGBA floats; empty otherwise).
+  std::vector<float> cloudShadowMap() const;
 
  private:
   gpu::Context& context_;

@@ -12,6 +12,7 @@
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
 #include "sky/atmosphere_bench.h"
+#include "sky/cloud_bench.h"
 
 namespace firmament::cli {
 namespace {
@@ -75,13 +76,33 @@ int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
   return kExitOk;
 }
 
+int benchClouds(const Args& args, const std::filesystem::path& out) {
+  CloudBenchConfig config;
+  config.quick = args.has("quick");
+  config.outDir = out;
+  config.repeats = args.integer("repeats", 3, 1, 100);
+  config.threads = args.integer("threads", 0, 0, 1024);
+  gpu::ContextOptions contextOptions;
+  contextOptions.device = args.getOr("device", "");
+  gpu::Context context(contextOptions);
+  logInfo("bench clouds: device " + context.description() + ", output " + out.string());
+  const std::string loadBefore = loadAverage();
+  const std::vector<CloudBenchRow> rows = runCloudBench(context, config);
+  if (!loadBefore.empty())
+    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
+                             " (timings on a shared machine are noisy).";
+  writeCloudBenchOutputs(config, rows);
+  logInfo("wrote " + (out / "clouds_results.csv").string() + " and " + (out / "clouds_report.md").string());
+  return kExitOk;
+}
+
 struct Target {
   std::string name;
   std::function<int(const Args&, const std::filesystem::path&)> run;  // empty: not implemented yet
 };
 
 const std::vector<Target>& targets() {
-  static const std::vector<Target> t = {{"atmosphere", benchAtmosphere}, {"clouds", {}}, {"weather", {}}};
+  static const std::vector<Target> t = {{"atmosphere", benchAtmosphere}, {"clouds", benchClouds}, {"weather", {}}};
   return t;
 }
 

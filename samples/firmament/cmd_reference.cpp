@@ -21,6 +21,7 @@
 #include "core/tonemap.h"
 #include "samples/firmament/command.h"
 #include "sky/scene_view.h"
+#include "sky/scene_weather.h"
 
 namespace firmament::cli {
 namespace {
@@ -88,8 +89,9 @@ int runReference(const Args& args) {
     noise.update(clouds.seed, CloudNoiseSettings{}, commands);
     commands.submitAndWait();
     const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+    // The same weather map as the fast path (sky/scene_weather.h), read with the same sampling.
     CloudMedium medium(sharedCloudLayers(clouds, ground), noise.downloadShape(), noise.downloadDetail(),
-                       noise.downloadCurl());
+                       noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
     double middle = 0.0;
     for (const auto& l : clouds.layers) middle += 0.5 * (l.bottom_m + l.top_m) / double(clouds.layers.size());
     const CloudEnvironment environment = cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);

@@ -2,9 +2,12 @@
 #extension GL_GOOGLE_include_directive : require
 // Cloud layers over the clear sky (docs/clouds.md). Per pixel:
 //  1. the view ray's stretches inside every layer's shell (common/cloud_density.glsl), in order;
-//  2. a march of `view steps` fine steps spread over their total length, with blue-noise jitter, coarse
-//     steps of the shape-only density until it is non-zero (empty-space skipping; exact, since the
-//     shape-only density bounds the full one), and an early exit at low transmittance;
+//  2. a march of fine steps growing with the distance from the camera (common/cloud_march.glsl: the
+//     base step is the thickest layer's thickness / `view steps`, growing in proportion to distance
+//     beyond one thickness, capped), or, with the uniform flag, `view steps` equal steps spread over the
+//     stretches' total length; blue-noise jitter; coarse steps of the shape-only density until it is
+//     non-zero (empty-space skipping; exact, since the shape-only density bounds the full one); an
+//     early exit at low transmittance;
 //  3. at every step with cloud: sunlight through the atmosphere (transmittance table at the sample)
 //     and through the cloud (a light march of `light steps` in a cone), dual-lobe Henyey-Greenstein,
 //     octave multiple scattering; ambient from the sky irradiance table and the ground; each step
@@ -19,31 +22,22 @@
 #include "common/camera.glsl"
 #include "common/cloud_density.glsl"
 #include "common/cloud_lighting.glsl"
+#include "common/cloud_march.glsl"
+#include "common/cloud_weather.glsl"
 #include "common/dispatch.glsl"
+#include "clouds/cloud_sampling.glsl"
+#include "common/cloud_shadow.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3) uniform sampler2D skyIrradianceLut;
-layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
-layout(set = 0, binding = 5) uniform sampler3D detailNoise;  // linear, repeat
-layout(set = 0, binding = 6) uniform sampler2D curlNoise;    // linear, repeat
 layout(set = 0, binding = 7) uniform sampler2D blueNoise;    // read with texelFetch
 layout(set = 0, binding = 8, rgba32f) uniform image2D skyImage;    // read, composited, written
 layout(set = 0, binding = 9, rgba32f) uniform image2D cloudImage;  // rgb: cloud light L; a: T_cloud
-layout(std140, set = 0, binding = 10) uniform CloudBlock {
-  vec4 camera_position;  // planet-centred, m
-  vec4 camera_forward;   // xyz; w = horizontal fov (rad)
-  vec4 camera_right;     // xyz; w = yaw (rad)
-  vec4 camera_up;        // xyz
-  vec4 sun_direction;    // xyz; w = largest march distance (m)
-  ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient)
-  vec4 octaves;          // a, b, c, light march length (m)
-  vec4 phase;            // g forward, g back, back weight, single-scattering albedo
-  vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
-  vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt
-} cloud;
+// Sample counters (summed over the pixels by the first batch): view-march density evaluations (coarse
+// and fine), light-march density evaluations.
+layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   int firstBatch;  // 1: write (composite over the sky); 0: add this spectral batch's light
@@ -53,72 +47,7 @@ layout(push_constant) uniform Push {
 } push;
 
 const int kMaxSegments = 16;  // two stretches per layer, 8 layers
-
-CloudLayer layerAt(int i) {
-  vec4 a = cloud.layers[5 * i];
-  vec4 b = cloud.layers[5 * i + 1];
-  vec4 c = cloud.layers[5 * i + 2];
-  vec4 d = cloud.layers[5 * i + 3];
-  vec4 e = cloud.layers[5 * i + 4];
-  CloudLayer layer;
-  layer.bottom_radius = a.x;
-  layer.top_radius = a.y;
-  layer.coverage = a.z;
-  layer.extinction = a.w;
-  layer.density_scale = b.x;
-  layer.anvil = b.y;
-  layer.shape_period = b.z;
-  layer.detail_period = b.w;
-  layer.detail_strength = c.x;
-  layer.curl_period = c.y;
-  layer.curl_strength = c.z;
-  layer.wind_offset = d.xyz;
-  layer.skew = e.xy;
-  layer.kind = int(e.z + 0.5);
-  return layer;
-}
-
-// The shape-only density SN_nd at p (0 outside the shell); ph and local are returned for the detail.
-float shapeDensityAt(CloudLayer layer, vec3 p, out float ph, out vec3 local) {
-  ph = cloudHeightFraction(layer, length(p));
-  local = vec3(0.0);
-  if (ph <= 0.0 || ph >= 1.0) return 0.0;
-  local = cloudLocalPosition(layer, p);
-  vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(layer, local), 0.0);
-  return cloudShapeDensity(layer, ph, shape, 1.0);
-}
-
-// The full density d at p.
-float densityAt(CloudLayer layer, vec3 p) {
-  float ph;
-  vec3 local;
-  float base = shapeDensityAt(layer, p, ph, local);
-  if (base <= 0.0) return 0.0;
-  vec2 curl = textureLod(curlNoise, cloudCurlCoordinate(layer, local), 0.0).xy;
-  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(layer, local, curl, ph), 0.0);
-  return cloudDensity(layer, ph, base, detail);
-}
-
-// Optical depth towards the sun from p through `layer`: `n` samples at the midpoints of steps growing
-// quadratically (boundaries L (j/n)^2), each pushed sideways within a cone of half-angle atan(cone)
-// by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
-float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone) {
-  const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
-                                 vec2(0.95, 0.05), vec2(-0.45, 0.62));
-  vec3 t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
-  vec3 t2 = cross(sun, t1);
-  float tau = 0.0;
-  float previous = 0.0;
-  for (int j = 1; j <= n; ++j) {
-    float f = float(j) / float(n);
-    float next = length_m * f * f;
-    float mid = 0.5 * (previous + next);
-    vec2 k = kernel[(j - 1) % 6] * cone * mid;
-    tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y) * (next - previous);
-    previous = next;
-  }
-  return tau;
-}
+layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 // Air between the camera and distance d along dir: in-scattered light (sky-like and sun-like parts)
 // and transmittance, by a short march of the clear-sky integrand of sky/sky_march.glsl (single
@@ -211,7 +140,12 @@ void main() {
   float earlyExit = cloud.march.y;
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float cone = cloud.march.w;
-  float dt = max(total / float(viewSteps), 1e-3);
+  bool uniformSteps = (cloud.steps.w & 8) != 0;
+  float uniformStep = max(total / float(viewSteps), 1e-3);
+  float baseStep = max(cloud.stepGrowth.x, 1e-3);
+  float growthStart = max(cloud.stepGrowth.y, 1.0);
+  float maxFactor = cloud.stepGrowth.z;
+  uint viewCount = 0u, lightCount = 0u;
   ivec2 blueSize = textureSize(blueNoise, 0);
   float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
   float phaseOctave[8];
@@ -222,7 +156,10 @@ void main() {
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
   vec3 skylike = vec3(0.0);  // cloud light with the sky's spectrum
   float depthSum = 0.0, depthWeight = 0.0;
-  int budget = 4 * viewSteps + 64;  // hard cap on samples (segment ends add partial steps)
+  // Hard cap on samples (segment ends add partial steps). Growing steps: a stretch [t0, t1] takes
+  // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
+  // D >= 1 km that stays below ~8 N for G >= 10, hence 8 N.
+  int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
   for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
     CloudLayer layer = layerAt(segmentLayer[s]);
     float t = segments[s].x;
@@ -230,12 +167,15 @@ void main() {
     int emptyRun = coarse;  // start in coarse mode
     while (t < end && transmittance > earlyExit && budget > 0) {
       --budget;
+      float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
       if (emptyRun >= coarse && coarse > 1) {
         // Coarse step: the shape-only density at one point of the next `coarse` fine steps.
         float span = min(float(coarse) * dt, end - t);
+        CloudLayer column;
         float ph;
         vec3 local;
-        if (shapeDensityAt(layer, origin + dir * (t + xi * span), ph, local) <= 0.0) {
+        ++viewCount;
+        if (shapeDensityAt(layer, origin + dir * (t + xi * span), column, ph, local) <= 0.0) {
           t += span;
           continue;
         }
@@ -244,6 +184,7 @@ void main() {
       float h = min(dt, end - t);
       vec3 p = origin + dir * (t + xi * h);
       float d = densityAt(layer, p);
+      ++viewCount;
       if (d <= 0.0) {
         ++emptyRun;
         t += h;
@@ -257,8 +198,20 @@ void main() {
       float ph = cloudHeightFraction(layer, rp);
       // Sun: atmosphere transmittance at the sample, cloud optical depth by the light march.
       vec3 sunLight = transmittanceToSun(transmittanceLut, atmosphere, rp, muS) * atmosphere.solar_irradiance;
-      float tau = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0
-                      ? opticalDepthToSun(layer, p, sun, lightSteps, lightLength, cone) : 0.0;
+      bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
+      float tau = 0.0;
+      if (sunVisible) {
+        // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
+        vec3 shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
+                                            cloud.shadowCentre.w, cloud.shadowAxisU.w);
+        if (cloud.shadowSize.z != 0 && all(greaterThanEqual(shadow.xy, vec2(0.0))) && all(lessThanEqual(shadow.xy, vec2(1.0)))) {
+          tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
+          lightCount += 1u;
+        } else {
+          tau = opticalDepthToSun(layer, p, sun, lightSteps, lightLength, cone);
+          lightCount += uint(lightSteps);
+        }
+      }
       float octaveSum = 0.0;
       for (int o = 0; o < octaves; ++o)
         octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * exp(-cloudOctaveExtinctionScale(a, o) * tau);
@@ -296,6 +249,8 @@ void main() {
 
   // 5. Composite.
   if (push.firstBatch != 0) {
+    atomicAdd(counters.viewSamples, viewCount);
+    atomicAdd(counters.lightSamples, lightCount);
     imageStore(cloudImage, pixel, vec4(light, transmittance));
     imageStore(skyImage, pixel, vec4(skyValue.rgb * transmittance + light, skyValue.a));
   } else {

@@ -8,6 +8,7 @@
 
 #include "clouds/reference_clouds.h"
 #include "core/color.h"
+#include "sky/scene_weather.h"
 #include "tests/clouds/cloud_test_support.h"
 
 namespace firmament {
@@ -34,8 +35,9 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   noise.update(settings.seed, o.cloudNoise, commands);
   commands.submitAndWait();
   const SceneView& view = gpu.view;
-  CloudMedium medium(sharedCloudLayers(settings, view.cameraRadius - scene.number("/camera/height_above_ground_m")),
-                     noise.downloadShape(), noise.downloadDetail(), noise.downloadCurl());
+  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+  CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
+                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
   CloudReferenceSettings rs;
   rs.samplesPerPixel = 48;
   CloudPathTracer tracer(medium, settings.lighting, view.atmosphere, view.sunDirection, CloudEnvironment{}, rs);

@@ -1,0 +1,114 @@
+// cloud_sampling.glsl: the cloud block and the density lookups shared by the cloud shaders
+// (render_clouds.comp, bake_shadow_map.comp): the layers, the noise and weather textures, and the
+// density at a point (common/cloud_density.glsl on the textures, common/cloud_weather.glsl columns).
+#ifndef FIRMAMENT_CLOUD_SAMPLING_GLSL
+#define FIRMAMENT_CLOUD_SAMPLING_GLSL
+
+#include "common/cloud_density.glsl"
+#include "common/cloud_weather.glsl"
+
+layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
+layout(set = 0, binding = 5) uniform sampler3D detailNoise;  // linear, repeat
+layout(set = 0, binding = 6) uniform sampler2D curlNoise;    // linear, repeat
+layout(std140, set = 0, binding = 10) uniform CloudBlock {
+  vec4 camera_position;  // planet-centred, m
+  vec4 camera_forward;   // xyz; w = horizontal fov (rad)
+  vec4 camera_right;     // xyz; w = yaw (rad)
+  vec4 camera_up;        // xyz
+  vec4 sun_direction;    // xyz; w = largest march distance (m)
+  ivec4 image;           // width, height, projection, layer count
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps)
+  vec4 octaves;          // a, b, c, light march length (m)
+  vec4 phase;            // g forward, g back, back weight, single-scattering albedo
+  vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
+  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, unused
+  vec4 weatherRegion;    // weather map: width (m), height (m), skew east, skew north (m per m)
+  vec4 weatherPlanet;    // planet (ground) radius (m), unused x3
+  vec4 shadowCentre;     // Beer shadow map: centre C (cloud frame, m); w = extent (m, square side)
+  vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
+  vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
+  ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
+  vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt
+} cloud;
+
+layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)
+
+
+CloudLayer layerAt(int i) {
+  vec4 a = cloud.layers[5 * i];
+  vec4 b = cloud.layers[5 * i + 1];
+  vec4 c = cloud.layers[5 * i + 2];
+  vec4 d = cloud.layers[5 * i + 3];
+  vec4 e = cloud.layers[5 * i + 4];
+  CloudLayer layer;
+  layer.bottom_radius = a.x;
+  layer.top_radius = a.y;
+  layer.coverage = a.z;
+  layer.extinction = a.w;
+  layer.density_scale = b.x;
+  layer.anvil = b.y;
+  layer.shape_period = b.z;
+  layer.detail_period = b.w;
+  layer.detail_strength = c.x;
+  layer.curl_period = c.y;
+  layer.curl_strength = c.z;
+  layer.wind_offset = d.xyz;
+  layer.skew = e.xy;
+  layer.kind = int(e.z + 0.5);
+  return layer;
+}
+
+// The shape-only density SN_nd at p (0 outside the shell or where the weather map has no cloud); the
+// weather map's column layer, ph and local are returned for the detail.
+float shapeDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
+  float r = length(p);
+  column = layer;
+  local = vec3(0.0);
+  ph = cloudHeightFraction(layer, r);
+  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+  float planet = cloud.weatherPlanet.x;
+  vec4 weather = textureLod(weatherMap, cloudWeatherCoordinate(p, planet, cloud.weatherRegion.xy, cloud.weatherRegion.zw), 0.0);
+  bool empty;
+  column = cloudColumnLayer(layer, weather, planet, empty);
+  if (empty) return 0.0;
+  ph = cloudHeightFraction(column, r);
+  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+  local = cloudLocalPosition(column, p);
+  vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(column, local), 0.0);
+  return cloudShapeDensity(column, ph, shape, weather.x);
+}
+
+// The full density d at p.
+float densityAt(CloudLayer layer, vec3 p) {
+  CloudLayer column;
+  float ph;
+  vec3 local;
+  float base = shapeDensityAt(layer, p, column, ph, local);
+  if (base <= 0.0) return 0.0;
+  vec2 curl = textureLod(curlNoise, cloudCurlCoordinate(column, local), 0.0).xy;
+  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(column, local, curl, ph), 0.0);
+  return cloudDensity(column, ph, base, detail);
+}
+
+// Optical depth towards the sun from p through `layer`: `n` samples at the midpoints of steps growing
+// quadratically (boundaries L (j/n)^2), each pushed sideways within a cone of half-angle atan(cone)
+// by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
+float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone) {
+  const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
+                                 vec2(0.95, 0.05), vec2(-0.45, 0.62));
+  vec3 t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
+  vec3 t2 = cross(sun, t1);
+  float tau = 0.0;
+  float previous = 0.0;
+  for (int j = 1; j <= n; ++j) {
+    float f = float(j) / float(n);
+    float next = length_m * f * f;
+    float mid = 0.5 * (previous + next);
+    vec2 k = kernel[(j - 1) % 6] * cone * mid;
+    tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y) * (next - previous);
+    previous = next;
+  }
+  return tau;
+}
+
+#endif  // FIRMAMENT_CLOUD_SAMPLING_GLSL

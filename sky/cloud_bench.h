@@ -1,0 +1,39 @@
+#pragma once
+// `firmament bench clouds`: the cloud march's error against run time (docs/clouds.md, "Benchmark").
+// Per scenario the CPU cloud path tracer (clouds/reference_clouds.h) renders the clouds' light over
+// the same medium (same noise texels, same weather map); the fast path sweeps one knob at a time
+// (view steps, light steps, octaves) around the defaults, plus the first milestone's fixed-step
+// baseline (64 uniform view steps, 6 light steps). Sunlight only on both sides (no ambient, no aerial
+// perspective), so the comparison isolates the march and its lighting approximation.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+
+namespace firmament {
+
+struct CloudBenchConfig {
+  std::filesystem::path outDir;
+  bool quick = false;
+  int repeats = 3;    // frame timing: median of this many after a warm-up
+  int threads = 0;    // path tracer threads (0: all cores)
+  std::string environmentNote;
+};
+
+struct CloudBenchRow {
+  std::string knob, value, scenario;
+  double precomputeMs = 0.0;      // the noise bake of the scenario's first render (once per seed)
+  double frameMs = 0.0;           // median GPU time of clouds/render_clouds
+  double relRmse = 0.0, psnrDb = 0.0, maxRelErr = 0.0;  // luminance of the clouds' light vs the path tracer
+  double samplesPerPixel = 0.0;   // density evaluations per pixel (view + light march)
+  std::string device;
+};
+
+std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config);
+// clouds_results.csv (knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,
+// samples_per_pixel,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
+// atmosphere's results.csv into the same folder).
+void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
+
+}  // namespace firmament

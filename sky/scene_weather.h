@@ -1,0 +1,29 @@
+#pragma once
+// The weather map a scene's clouds read (docs/clouds.md, "Weather map"): composition of weather/ (the
+// CPU simulation) and clouds/ (which knows only CloudWeatherMap).
+//
+// - A `weather` section: the simulation runs from the local mean solar midnight before the scene's
+//   time (time.utc; solar time = UTC + longitude / 15 degrees per hour) up to that time, so the map
+//   holds the day's convection so far (0 to 24 h of model time); its map (coverage, type,
+//   precipitation, top) is placed on the region centred on the scene's location, with the shear skew.
+//   Cached in memory by the weather section's hash, the location and the time.
+// - Otherwise: the procedural map of the cloud seed (clouds/cloud_weather_map.h).
+#include "clouds/cloud_weather_map.h"
+#include "core/scene.h"
+
+namespace firmament {
+
+struct SceneWeatherInfo {
+  double simulated_s = 0.0;  // model time run (0 for the procedural map)
+  double milliseconds = 0.0;  // wall clock of the simulation (0 when cached or procedural)
+  bool cached = false;
+};
+
+// The map for `scene` (which must have a clouds section; the seed comes from it).
+CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* info = nullptr);
+
+// Seconds from the local mean solar midnight before `utc` at longitude `longitude_deg` up to `utc`,
+// in [0, 86400).
+double secondsSinceSolarMidnight(const std::string& utc, double longitude_deg);
+
+}  // namespace firmament

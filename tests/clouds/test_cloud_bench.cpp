@@ -1,0 +1,49 @@
+// `firmament bench clouds --quick` as a library call: both scenarios, the fixed-step baseline and the
+// sweeps, with a samples-per-pixel column, written as CSV and Markdown.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "sky/cloud_bench.h"
+#include "tests/clouds/cloud_test_support.h"
+#include "tests/support/test_paths.h"
+
+namespace firmament {
+namespace {
+
+class CloudBench : public test::GpuTest {};
+
+TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
+  CloudBenchConfig config;
+  config.quick = true;
+  config.repeats = 1;
+  config.outDir = test::scratchDir("cloud_bench");
+  const std::vector<CloudBenchRow> rows = runCloudBench(context(), config);
+  writeCloudBenchOutputs(config, rows);
+  for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
+    int baseline = 0, defaults = 0;
+    double spp16 = 0.0, spp256 = 0.0;
+    for (const auto& r : rows) {
+      if (r.scenario != scenario) continue;
+      ASSERT_TRUE(std::isfinite(r.relRmse)) << r.knob << " " << r.value;
+      ASSERT_GT(r.frameMs, 0.0);
+      baseline += r.knob == "baseline_fixed_steps";
+      defaults += r.knob == "default";
+      if (r.knob == "view_steps" && r.value == "16") spp16 = r.samplesPerPixel;
+      if (r.knob == "view_steps" && r.value == "256") spp256 = r.samplesPerPixel;
+    }
+    EXPECT_EQ(baseline, 1) << scenario;
+    EXPECT_EQ(defaults, 1) << scenario;
+    EXPECT_GT(spp256, spp16) << scenario;
+  }
+  std::ifstream csv(config.outDir / "clouds_results.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,device");
+  EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
+}
+
+}  // namespace
+}  // namespace firmament

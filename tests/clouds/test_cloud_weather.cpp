@@ -1,0 +1,172 @@
+// The weather map in the cloud medium (common/cloud_weather.glsl): a map with no coverage gives no
+// cloud; a single covered disc gives cloud only over that disc, on the GPU and in the CPU path
+// tracer's medium alike; the procedural map; the thunderstorm scene's simulated map grows cumulonimbus.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "clouds/reference_clouds.h"
+#include "common/cloud_weather.glsl"
+#include "sky/scene_weather.h"
+#include "tests/clouds/cloud_test_support.h"
+#include "tests/support/test_paths.h"
+
+namespace firmament {
+namespace {
+
+class CloudWeather : public test::GpuTest {};
+
+// Coverage 1 inside a disc of `radius_m` around (east, north) = centre_m, 0 outside; cumulus type, no
+// top cap. 128^2 texels over the default 51.2 km region (400 m texels).
+CloudWeatherMap discMap(glm::dvec2 centre_m, double radius_m) {
+  CloudWeatherMap m = uniformCloudWeatherMap(glm::vec4(0.0f, 1.0f / 3.0f, 0.0f, float(shared::kCloudWeatherNoTop)), 128);
+  for (int row = 0; row < m.map.height; ++row)
+    for (int column = 0; column < m.map.width; ++column) {
+      const double east = ((column + 0.5) / m.map.width - 0.5) * m.width_m;
+      const double north = (0.5 - (row + 0.5) / m.map.height) * m.height_m;
+      if (glm::length(glm::dvec2(east, north) - centre_m) < radius_m) m.map.at(column, row)[0] = 1.0f;
+    }
+  return m;
+}
+
+// Optical depth of a vertical ray through the layers at (east, north) (m), midpoint rule, 20 m steps.
+double verticalOpticalDepth(const CloudMedium& medium, double ground, double east, double north) {
+  double tau = 0.0;
+  for (size_t i = 0; i < medium.layers().size(); ++i)
+    for (double r = medium.layers()[i].bottom_radius + 10.0; r < medium.layers()[i].top_radius; r += 20.0) {
+      // The point at height r - ground above the tangent-plane point (east, north): along the unit
+      // direction (east, north, R) (region coordinates are R atan2(x, z), exact for this direction).
+      const glm::dvec3 d = glm::normalize(glm::dvec3(std::tan(east / ground), std::tan(north / ground), 1.0));
+      tau += medium.extinction(i, d * r) * 20.0;
+    }
+  return tau;
+}
+
+CloudMedium mediumFor(const Scene& scene, CloudWeatherMap map, double ground) {
+  const CloudSettings settings = CloudSettings::fromScene(scene);
+  CloudNoise noise(test::GpuTest::context());
+  gpu::CommandList commands(test::GpuTest::context());
+  noise.update(settings.seed, test::smallCloudOptions().cloudNoise, commands);
+  commands.submitAndWait();
+  return CloudMedium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
+                     noise.downloadCurl(), std::move(map), ground);
+}
+
+double meanTransmittance(const Image& clouds) {
+  double sum = 0.0;
+  for (size_t i = 0; i < clouds.pixelCount(); ++i) sum += clouds.pixels[4 * i + 3];
+  return sum / double(clouds.pixelCount());
+}
+
+TEST_F(CloudWeather, NoCoverageMeansNoCloud) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  const Scene s = test::cloudScene({"/clouds/layers/0/coverage=1", "/camera/width=32", "/camera/height=18"});
+  o.cloudWeather = std::make_shared<CloudWeatherMap>(uniformCloudWeatherMap(glm::vec4(0.0f, 0.33f, 0.0f, 5000.0f)));
+  const RenderResult r = test::cloudRenderer().render(s, o);
+  for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_EQ(r.clouds.pixels[4 * i + 3], 1.0f);
+  const double ground = r.view.cameraRadius - 2.0;
+  const CloudMedium medium = mediumFor(s, *o.cloudWeather, ground);
+  for (double e = -30000.0; e <= 30000.0; e += 2500.0) EXPECT_EQ(verticalOpticalDepth(medium, ground, e, 0.5 * e), 0.0);
+}
+
+// A disc of 3 km radius: overhead (inside) the layer of coverage 1 is cloudy; 8 km east (outside) it
+// holds nothing: exactly zero optical depth on the CPU; the GPU looking straight up (30 degrees
+// field: a footprint of +-0.4 km at the 1.5 km base, +-1.1 km at the 4 km top) sees cloud over the
+// disc and none when the disc is moved 10 km away.
+TEST_F(CloudWeather, CloudOnlyOverTheCoveredDisc) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  const Scene s = test::cloudScene({"/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30",
+                                    "/camera/width=16", "/camera/height=16"});
+  o.cloudWeather = std::make_shared<CloudWeatherMap>(discMap({0.0, 0.0}, 3000.0));
+  const RenderResult over = test::cloudRenderer().render(s, o);
+  o.cloudWeather = std::make_shared<CloudWeatherMap>(discMap({10000.0, 0.0}, 3000.0));
+  const RenderResult away = test::cloudRenderer().render(s, o);
+  const double tOver = meanTransmittance(over.clouds), tAway = meanTransmittance(away.clouds);
+  std::printf("disc overhead: mean T %.4f; disc 10 km east: mean T %.4f\n", tOver, tAway);
+  EXPECT_LT(tOver, 0.5);
+  EXPECT_EQ(tAway, 1.0);
+
+  const double ground = over.view.cameraRadius - 2.0;
+  const CloudMedium medium = mediumFor(s, discMap({0.0, 0.0}, 3000.0), ground);
+  double inside = 0.0;
+  for (double e : {-1500.0, 0.0, 1500.0}) inside += verticalOpticalDepth(medium, ground, e, 0.0);
+  std::printf("CPU medium: optical depth over the disc %.2f\n", inside / 3.0);
+  EXPECT_GT(inside / 3.0, 1.0);
+  // Outside the disc by more than a texel (400 m) plus the skew: nothing.
+  for (double e : {4000.0, 8000.0, -6000.0}) EXPECT_EQ(verticalOpticalDepth(medium, ground, e, 0.0), 0.0) << e;
+  EXPECT_EQ(verticalOpticalDepth(medium, ground, 0.0, 5000.0), 0.0);
+}
+
+// The procedural map: deterministic per seed, with clear gaps and fully covered areas.
+TEST(CloudWeatherMapTest, ProceduralMapHasGapsAndCover) {
+  const CloudWeatherMap a = proceduralCloudWeatherMap(1), b = proceduralCloudWeatherMap(1), c = proceduralCloudWeatherMap(2);
+  EXPECT_EQ(a.map.pixels, b.map.pixels);
+  EXPECT_NE(a.map.pixels, c.map.pixels);
+  int clear = 0, full = 0;
+  double mean = 0.0;
+  for (size_t i = 0; i < a.map.pixelCount(); ++i) {
+    const float v = a.map.pixels[4 * i];
+    clear += v == 0.0f;
+    full += v == 1.0f;
+    mean += v;
+  }
+  const double n = double(a.map.pixelCount());
+  std::printf("procedural map: clear %.3f, full %.3f, mean coverage %.3f\n", clear / n, full / n, mean / n);
+  EXPECT_GT(clear / n, 0.05);
+  EXPECT_GT(full / n, 0.05);
+  // The CPU sampler repeats: u and u + 1 read the same.
+  const glm::dvec4 p = a.sample({0.3, 0.7}), q = a.sample({1.3, -0.3});
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(p[k], q[k], 1e-9 * (1.0 + std::abs(p[k])));
+}
+
+// The thunderstorm scene (afternoon): its simulated map holds cumulonimbus (type > 0.9, top > 8 km),
+// the CPU medium has cloud above 8 km there, and the render is finite and non-negative.
+TEST_F(CloudWeather, ThunderstormSceneGrowsCumulonimbus) {
+  const Scene s = Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
+                              {"/camera/width=32", "/camera/height=18"});
+  SceneWeatherInfo info;
+  const CloudWeatherMap map = cloudWeatherMapForScene(s, &info);
+  std::printf("thunderstorm: %.1f h simulated in %.0f ms\n", info.simulated_s / 3600.0, info.milliseconds);
+  double highestTop = 0.0, anyTop = 0.0, maxType = 0.0, maxCover = 0.0;
+  for (size_t i = 0; i < map.map.pixelCount(); ++i) {
+    anyTop = std::max(anyTop, double(map.map.pixels[4 * i + 3]));
+    maxType = std::max(maxType, double(map.map.pixels[4 * i + 1]));
+    maxCover = std::max(maxCover, double(map.map.pixels[4 * i]));
+  }
+  std::printf("map: highest top %.0f m, largest type %.2f, largest coverage %.2f\n", anyTop, maxType, maxCover);
+  glm::dvec2 tallest(0.0);
+  for (int row = 0; row < map.map.height; ++row)
+    for (int column = 0; column < map.map.width; ++column) {
+      const float* px = map.map.at(column, row);
+      if (px[1] > 0.9f && px[0] > 0.5f && px[3] > highestTop) {
+        highestTop = px[3];
+        tallest = {((column + 0.5) / map.map.width - 0.5) * map.width_m, (0.5 - (row + 0.5) / map.map.height) * map.height_m};
+      }
+    }
+  std::printf("tallest cumulonimbus column: top %.0f m at (%.0f, %.0f) m\n", highestTop, tallest.x, tallest.y);
+  ASSERT_GT(highestTop, 8000.0);
+
+  SkyRenderOptions o = test::smallCloudOptions();
+  const RenderResult r = test::cloudRenderer().render(s, o);
+  for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  for (float v : r.clouds.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+
+  // Cloud above 8 km somewhere within 2 km of the tallest column (the shape noise leaves holes).
+  const double ground = r.view.cameraRadius - s.number("/camera/height_above_ground_m");
+  const CloudMedium medium = mediumFor(s, map, ground);
+  double high = 0.0;
+  for (size_t layer = 0; layer < medium.layers().size(); ++layer)
+    for (double de = -2000.0; de <= 2000.0; de += 250.0)
+      for (double dn = -2000.0; dn <= 2000.0; dn += 250.0)
+        for (double z = 8000.0; z < highestTop; z += 250.0) {
+          const double e = tallest.x + de + map.skew.x * z, n = tallest.y + dn + map.skew.y * z;
+          const glm::dvec3 d = glm::normalize(glm::dvec3(std::tan(e / ground), std::tan(n / ground), 1.0));
+          high = std::max(high, medium.extinction(layer, d * (ground + z)));
+        }
+  std::printf("largest extinction above 8 km near it: %.4f 1/m\n", high);
+  EXPECT_GT(high, 0.0);
+}
+
+}  // namespace
+}  // namespace firmament
