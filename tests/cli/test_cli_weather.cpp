@@ -13,28 +13,14 @@
 #include <vector>
 
 #include "core/exr_io.h"
+#include "tests/cli/cli_runner.h"
 #include "tests/support/test_paths.h"
 
 namespace firmament {
 namespace {
 
-struct CommandRun {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CommandRun firmament(const std::string& arguments) {
-  std::string command = std::string(FIRMAMENT_EXE) + " " + arguments + " 2>&1";
-  CommandRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
-  int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using test::CommandRun;
+using test::firmament;
 
 std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path);
