@@ -40,14 +40,14 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc)
-# configure_and_build DIR [cmake options...]
+# configure_and_build DIR [cmake options...]; BUILD_TARGET limits what is built (default: all)
 configure_and_build() {
   local dir=$1
   shift
   if [ ! -f "$dir/build.ninja" ]; then
     cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
   fi
-  cmake --build "$dir" -j "$jobs"
+  cmake --build "$dir" -j "$jobs" ${BUILD_TARGET:+--target "$BUILD_TARGET"}
 }
 
 case "$action" in
@@ -55,7 +55,7 @@ case "$action" in
     configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
     ;;
   render)
-    configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
+    BUILD_TARGET=firmament configure_and_build "$build" -DCMAKE_BUILD_TYPE=Release
     scene=scenes/default.json
     if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scene=$1; shift; fi
     mkdir -p out
