@@ -203,9 +203,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeveri
 
 namespace {
 // lavapipe runs a dispatch on LP_NUM_THREADS threads (default: one per core), each taking one
-// contiguous block of workgroups. Twice as many threads as cores measured about 1.3x faster on the
-// 2-core machines here (finer blocks balance better, and a stalled thread costs less), so that is
-// the default unless the user set the variable. It must be set before the driver loads; GPUs ignore it.
+// contiguous block of workgroups. Twice as many threads as cores measured 1.5x faster on a 2-core
+// machine whose cores were contended, and the same when they were not (docs/gpu.md), so that is the
+// default unless the user set the variable. It must be set before the driver loads; GPUs ignore it.
 void preferMoreLavapipeThreads() {
   if (std::getenv("LP_NUM_THREADS") != nullptr) return;
   unsigned cores = std::max(1u, std::thread::hardware_concurrency());
