@@ -157,42 +157,33 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
   if (!shadowImage_ || shadowImage_.width() != shadowSize)
     shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
+  // The shadow bake and the march share one binding layout; only the last binding differs (the
+  // shadow map written by the bake, read by the march).
+  auto bindCloudPass = [&](const gpu::ComputePipeline& pipeline, size_t batch, gpu::Resource last) {
+    const AtmosphereLuts::Batch& lut = luts.batch(batch);
+    commands.bind(pipeline, {lut.block,
+                             {lut.transmittance, luts.linearClamp()},
+                             {lut.multipleScattering, luts.linearClamp()},
+                             {*skyIrradiance[batch], luts.linearClamp()},
+                             {noise_.shape(), noise_.linearRepeat()},
+                             {noise_.detail(), noise_.linearRepeat()},
+                             {noise_.curl(), noise_.linearRepeat()},
+                             {noise_.blueNoise(), noise_.nearestRepeat()},
+                             skyImage,
+                             cloudImage_,
+                             block_,
+                             counters_,
+                             {weatherImage_, noise_.linearRepeat()},
+                             last});
+  };
   if (m.beerShadowMap) {
-    const AtmosphereLuts::Batch& lut = luts.batch(0);
-    commands.bind(bakeShadow_, {lut.block,
-                                {lut.transmittance, luts.linearClamp()},
-                                {lut.multipleScattering, luts.linearClamp()},
-                                {*skyIrradiance[0], luts.linearClamp()},
-                                {noise_.shape(), noise_.linearRepeat()},
-                                {noise_.detail(), noise_.linearRepeat()},
-                                {noise_.curl(), noise_.linearRepeat()},
-                                {noise_.blueNoise(), noise_.nearestRepeat()},
-                                skyImage,
-                                cloudImage_,
-                                block_,
-                                counters_,
-                                {weatherImage_, noise_.linearRepeat()},
-                                shadowImage_});
+    bindCloudPass(bakeShadow_, 0, shadowImage_);
     const uint32_t groups = (shadowSize + 7) / 8;
     commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
     commands.barrier();
   }
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
-    const AtmosphereLuts::Batch& lut = luts.batch(batch);
-    commands.bind(pipeline_, {lut.block,
-                              {lut.transmittance, luts.linearClamp()},
-                              {lut.multipleScattering, luts.linearClamp()},
-                              {*skyIrradiance[batch], luts.linearClamp()},
-                              {noise_.shape(), noise_.linearRepeat()},
-                              {noise_.detail(), noise_.linearRepeat()},
-                              {noise_.curl(), noise_.linearRepeat()},
-                              {noise_.blueNoise(), noise_.nearestRepeat()},
-                              skyImage,
-                              cloudImage_,
-                              block_,
-                              counters_,
-                              {weatherImage_, noise_.linearRepeat()},
-                              {shadowImage_, luts.linearClamp()}});
+    bindCloudPass(pipeline_, batch, {shadowImage_, luts.linearClamp()});
     Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/render_clouds");

@@ -6,26 +6,10 @@
 #include <limits>
 #include <sstream>
 
+#include "core/svg_text.h"
+
 namespace firmament {
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
 
 // One axis: the data range mapped to pixels, linear or in log10, with tick positions.
 struct Axis {
@@ -99,32 +83,32 @@ std::string renderXySvg(const XyPlot& p) {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << p.width << "\" height=\"" << p.height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << left + w / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escape(p.title)
+      << "<text x=\"" << left + w / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << svgEscape(p.title)
       << "</text>\n";
   for (double t : ax.ticks()) {
     double x = px(t);
     svg << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + h
         << "\" stroke=\"#eeeeee\"/>\n<text x=\"" << x << "\" y=\"" << top + h + 16 << "\" text-anchor=\"middle\">"
-        << number(t) << "</text>\n";
+        << svgNumber(t) << "</text>\n";
   }
   for (double t : ay.ticks()) {
     double y = py(t);
     svg << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + w << "\" y2=\"" << y
         << "\" stroke=\"#eeeeee\"/>\n<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">"
-        << number(t) << "</text>\n";
+        << svgNumber(t) << "</text>\n";
   }
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << w << "\" height=\"" << h
       << "\" fill=\"none\" stroke=\"black\"/>\n"
       << "<text x=\"" << left + w / 2 << "\" y=\"" << p.height - 12 << "\" text-anchor=\"middle\">"
-      << escape(p.xLabel) << (p.logX ? " (log)" : "") << "</text>\n"
+      << svgEscape(p.xLabel) << (p.logX ? " (log)" : "") << "</text>\n"
       << "<text transform=\"translate(18," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << escape(p.yLabel) << (p.logY ? " (log)" : "") << "</text>\n";
+      << svgEscape(p.yLabel) << (p.logY ? " (log)" : "") << "</text>\n";
 
   double legendY = top + 10;
   auto legend = [&](const std::string& name, const std::string& colour, bool dashed) {
     svg << "<line x1=\"" << left + w + 12 << "\" y1=\"" << legendY << "\" x2=\"" << left + w + 36 << "\" y2=\""
         << legendY << "\" stroke=\"" << colour << "\" stroke-width=\"2\"" << (dashed ? " stroke-dasharray=\"6 4\"" : "")
-        << "/>\n<text x=\"" << left + w + 42 << "\" y=\"" << legendY + 4 << "\">" << escape(name) << "</text>\n";
+        << "/>\n<text x=\"" << left + w + 42 << "\" y=\"" << legendY + 4 << "\">" << svgEscape(name) << "</text>\n";
     legendY += 18;
   };
   for (const auto& l : p.lines) {
@@ -148,7 +132,7 @@ std::string renderXySvg(const XyPlot& p) {
       svg << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"3.5\" fill=\"" << s.colour << "\"/>\n";
       if (i < s.labels.size() && !s.labels[i].empty())
         svg << "<text x=\"" << x + 5 << "\" y=\"" << y - 5 << "\" font-size=\"10\" fill=\"" << s.colour << "\">"
-            << escape(s.labels[i]) << "</text>\n";
+            << svgEscape(s.labels[i]) << "</text>\n";
     }
     if (s.connect && !path.str().empty())
       svg << "<path d=\"" << path.str() << "\" fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"1.5\"/>\n";

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/svg_text.h"
+
 namespace firmament::weather {
 namespace {
 
@@ -14,23 +16,6 @@ double niceStep(double span, int count) {
   double raw = span / count, power = std::pow(10.0, std::floor(std::log10(raw)));
   double m = raw / power;
   return (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0) * power;
-}
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
-
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
 }
 
 }  // namespace
@@ -55,27 +40,27 @@ std::string renderSvg(const LinePlot& p) {
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << p.width << "\" height=\"" << p.height
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << p.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escape(p.title) << "</text>\n";
+  o << "<text x=\"" << p.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << svgEscape(p.title) << "</text>\n";
   // Grid and ticks.
   double xs = niceStep(xMax - xMin, 8);
   for (double x = std::ceil(xMin / xs) * xs; x <= xMax + 1e-9; x += xs)
     o << "<line x1=\"" << px(x) << "\" y1=\"" << top << "\" x2=\"" << px(x) << "\" y2=\"" << top + h
       << "\" stroke=\"#ddd\"/><text x=\"" << px(x) << "\" y=\"" << top + h + 16 << "\" text-anchor=\"middle\">"
-      << number(x) << "</text>\n";
+      << svgNumber(x) << "</text>\n";
   for (int r = 0; r < 2; ++r) {
     double ys = niceStep(yMax[r], 5);
     for (double y = 0; y <= yMax[r] + 1e-9; y += ys) {
       if (r == 0) o << "<line x1=\"" << left << "\" y1=\"" << py(y, 0) << "\" x2=\"" << left + w << "\" y2=\"" << py(y, 0) << "\" stroke=\"#ddd\"/>";
       o << "<text x=\"" << (r ? left + w + 6 : left - 6) << "\" y=\"" << py(y, r) + 4 << "\" text-anchor=\""
-        << (r ? "start" : "end") << "\">" << number(y) << "</text>\n";
+        << (r ? "start" : "end") << "\">" << svgNumber(y) << "</text>\n";
     }
   }
   o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << w << "\" height=\"" << h
     << "\" fill=\"none\" stroke=\"black\"/>\n";
-  o << "<text x=\"" << left + w / 2 << "\" y=\"" << p.height - 10 << "\" text-anchor=\"middle\">" << escape(p.xLabel) << "</text>\n";
-  o << "<text transform=\"translate(16," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << escape(p.leftLabel) << "</text>\n";
+  o << "<text x=\"" << left + w / 2 << "\" y=\"" << p.height - 10 << "\" text-anchor=\"middle\">" << svgEscape(p.xLabel) << "</text>\n";
+  o << "<text transform=\"translate(16," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << svgEscape(p.leftLabel) << "</text>\n";
   o << "<text transform=\"translate(" << p.width - 14 << "," << top + h / 2 << ") rotate(90)\" text-anchor=\"middle\">"
-    << escape(p.rightLabel) << "</text>\n";
+    << svgEscape(p.rightLabel) << "</text>\n";
   // Lines.
   int legend = 0;
   for (const auto& s : p.series) {
@@ -96,7 +81,7 @@ std::string renderSvg(const LinePlot& p) {
     double ly = top + 14 + 16 * legend++;
     o << "<line x1=\"" << left + 10 << "\" y1=\"" << ly << "\" x2=\"" << left + 34 << "\" y2=\"" << ly << "\" stroke=\""
       << s.colour << "\" stroke-width=\"2\"" << (s.rightAxis ? " stroke-dasharray=\"6,3\"" : "") << "/><text x=\""
-      << left + 40 << "\" y=\"" << ly + 4 << "\">" << escape(s.name) << (s.rightAxis ? " (right axis)" : "") << "</text>\n";
+      << left + 40 << "\" y=\"" << ly + 4 << "\">" << svgEscape(s.name) << (s.rightAxis ? " (right axis)" : "") << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();
