@@ -51,15 +51,15 @@ CloudPass::CloudPass(gpu::Context& context)
       pipeline_(context, {"clouds/render_clouds",
                           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                           gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                           gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                           sizeof(Push)}),
       bakeShadow_(context, {"clouds/bake_shadow_map",
                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                             gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                             gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
                             0}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
@@ -77,7 +77,7 @@ void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
 CloudSampleCounts CloudPass::sampleCounts() const {
   uint32_t c[2] = {0, 0};
   counters_.download(c, sizeof(c));
-  const double pixels = double(std::max<uint32_t>(cloudImage_ ? cloudImage_.width() * cloudImage_.height() : 1u, 1u));
+  const double pixels = double(std::max<size_t>(cloudPixels_, 1));
   return {c[0] / pixels, c[1] / pixels};
 }
 
@@ -86,7 +86,7 @@ bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSett
 }
 
 void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Image& skyImage,
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                        const gpu::TileDispatch& tiles, gpu::CommandList& commands) {
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
@@ -152,8 +152,11 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   counters_.upload(zero, sizeof(zero));
 
   const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
-  if (!cloudImage_ || cloudImage_.width() != width || cloudImage_.height() != height)
-    cloudImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, false, "cloud image"});
+  if (skyFrame.size() != VkDeviceSize(width) * height * 4 * sizeof(float))
+    throw std::logic_error("CloudPass: the sky frame must hold the view's RGBA32F pixels");
+  if (!cloudFrame_ || cloudFrame_.size() != skyFrame.size())
+    cloudFrame_ = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+  cloudPixels_ = size_t(width) * height;
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
   if (!shadowImage_ || shadowImage_.width() != shadowSize)
     shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
@@ -169,8 +172,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                              {noise_.detail(), noise_.linearRepeat()},
                              {noise_.curl(), noise_.linearRepeat()},
                              {noise_.blueNoise(), noise_.nearestRepeat()},
-                             skyImage,
-                             cloudImage_,
+                             skyFrame,
+                             cloudFrame_,
                              block_,
                              counters_,
                              {weatherImage_, noise_.linearRepeat()},

@@ -41,16 +41,16 @@ class CloudPass {
   // record().
   void setWeatherMap(const CloudWeatherMap& map);
 
-  // Records the march over `skyImage` (RGBA32F, the view's size), one dispatch per batch of `luts`
+  // Records the march over `skyFrame` (RGBA32F pixels of the view, row-major), one dispatch per batch of `luts`
   // with skyIrradiance[b] the batch's sky irradiance table. The noise must be prepared and baked
   // (a barrier between) and the sky written before (a barrier between).
   void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Image& skyImage, const gpu::TileDispatch& tiles,
+              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, const gpu::TileDispatch& tiles,
               gpu::CommandList& commands);
 
-  // RGBA32F, the view's size: rgb = the clouds' light in front of the sky (cd/m^2, aerial perspective
-  // included), a = the clouds' transmittance. Valid after the recorded commands ran.
-  const gpu::Image& cloudImage() const { return cloudImage_; }
+  // RGBA32F pixels of the view, row-major: rgb = the clouds' light in front of the sky (cd/m^2, aerial
+  // perspective included), a = the clouds' transmittance. Valid after the recorded commands ran.
+  const gpu::Buffer& cloudFrame() const { return cloudFrame_; }
   // The Beer shadow map of the last record() with it enabled (RGBA32F: front depth m, mean extinction
   // 1/m, total optical depth, 0; common/cloud_shadow.glsl).
   const gpu::Image& shadowMap() const { return shadowImage_; }
@@ -67,7 +67,8 @@ class CloudPass {
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
   glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)
-  gpu::Image cloudImage_;
+  gpu::Buffer cloudFrame_;
+  size_t cloudPixels_ = 0;
 };
 
 }  // namespace firmament

@@ -62,7 +62,7 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
                                  4 * sizeof(float)}),
       skyPipeline_(context, {"sky/render_sky",
                              {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                              gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
                               gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                               gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                              sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)}),
@@ -161,7 +161,10 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
     skyView_ = gpu::Image(context_, {uint32_t(options.skyViewWidth), uint32_t(options.skyViewHeight), 1,
                                      gpu::Format::RGBA32F, true, true, "sky-view LUT"});
 
-  gpu::Image output(context_, {uint32_t(width), uint32_t(height), 1, gpu::Format::RGBA32F, true, false, "sky image"});
+  // The frame is a storage buffer of RGBA32F pixels, row-major, not a storage image: on lavapipe an
+  // image store costs ~4x a buffer store (bench/output_write.cpp, docs/gpu.md), and it is read back as is.
+  gpu::Buffer output(context_, VkDeviceSize(width) * VkDeviceSize(height) * 4 * sizeof(float),
+                     gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "sky frame");
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
   const size_t batches = luts_.batchCount();
@@ -193,7 +196,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
           context_, gpu::PipelineDesc{"sky/render_sky_tables",
                                       {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                                        gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                       gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                                       gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
                                        gpu::BindingType::UniformBuffer},
                                       sizeof(TablesPush)});
     const gpu::Sampler& linear = luts_.linearClamp();
@@ -246,10 +249,10 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   result.timingNote = commands.timingNote();
 
   result.image = Image(width, height, 4);
-  result.image.pixels = output.downloadFloats();
+  result.image.pixels = output.download<float>();
   if (clouds) {
     result.clouds = Image(width, height, 4);
-    result.clouds.pixels = clouds_->cloudImage().downloadFloats();
+    result.clouds.pixels = clouds_->cloudFrame().download<float>();
     result.cloudSamples = clouds_->sampleCounts();
   }
   Image& image = result.image;

@@ -33,8 +33,9 @@ layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3) uniform sampler2D skyIrradianceLut;
 layout(set = 0, binding = 7) uniform sampler2D blueNoise;    // read with texelFetch
-layout(set = 0, binding = 8, rgba32f) uniform image2D skyImage;    // read, composited, written
-layout(set = 0, binding = 9, rgba32f) uniform image2D cloudImage;  // rgb: cloud light L; a: T_cloud
+// The frames (one vec4 per pixel, row-major; storage buffers, see sky/render_sky.comp):
+layout(std430, set = 0, binding = 8) buffer SkyFrame { vec4 pixels[]; } skyFrame;      // read, composited, written
+layout(std430, set = 0, binding = 9) buffer CloudFrame { vec4 pixels[]; } cloudFrame;  // rgb: cloud light L; a: T_cloud
 // Sample counters (summed over the pixels by the first batch): view-march density evaluations (coarse
 // and fine), light-march density evaluations.
 layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
@@ -94,9 +95,10 @@ void main() {
   camera.height = cloud.image.y;
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
-  vec4 skyValue = imageLoad(skyImage, pixel);
+  uint index = uint(pixel.y) * uint(cloud.image.x) + uint(pixel.x);
+  vec4 skyValue = skyFrame.pixels[index];
   if (!valid) {
-    if (push.firstBatch != 0) imageStore(cloudImage, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+    if (push.firstBatch != 0) cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
   vec3 sun = cloud.sun_direction.xyz;
@@ -251,11 +253,11 @@ void main() {
   if (push.firstBatch != 0) {
     atomicAdd(counters.viewSamples, viewCount);
     atomicAdd(counters.lightSamples, lightCount);
-    imageStore(cloudImage, pixel, vec4(light, transmittance));
-    imageStore(skyImage, pixel, vec4(skyValue.rgb * transmittance + light, skyValue.a));
+    cloudFrame.pixels[index] = vec4(light, transmittance);
+    skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
   } else {
-    vec4 previous = imageLoad(cloudImage, pixel);
-    imageStore(cloudImage, pixel, vec4(previous.rgb + light, previous.a));
-    imageStore(skyImage, pixel, vec4(skyValue.rgb + light, skyValue.a));
+    vec4 previous = cloudFrame.pixels[index];
+    cloudFrame.pixels[index] = vec4(previous.rgb + light, previous.a);
+    skyFrame.pixels[index] = vec4(skyValue.rgb + light, skyValue.a);
   }
 }

@@ -10,7 +10,9 @@
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
-layout(set = 0, binding = 3, rgba32f) uniform image2D outputImage;
+// The frame: one vec4 per pixel, row-major (a storage buffer: on lavapipe a storage-image store costs
+// ~4x a buffer store, bench/output_write.cpp).
+layout(std430, set = 0, binding = 3) buffer OutputFrame { vec4 pixels[]; } outputFrame;
 layout(std140, set = 0, binding = 4) uniform FrameBlock {
   vec4 camera_position;  // planet-centred, m (the ground point's ENU axes)
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -48,6 +50,7 @@ void main() {
   uvec2 tile_pixel;
   if (!tilePixel(push.tiles, tile_pixel)) return;
   ivec2 pixel = ivec2(tile_pixel);
+  uint index = tile_pixel.y * push.tiles.width + tile_pixel.x;
 
   AtmosphereParameters atmosphere = atmosphereFromBlock();
   CameraParameters camera;
@@ -62,7 +65,7 @@ void main() {
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
   if (!valid) {
-    imageStore(outputImage, pixel, vec4(0.0));
+    outputFrame.pixels[index] = vec4(0.0);
     return;
   }
   vec3 sun = frame.sun_direction.xyz;
@@ -98,7 +101,7 @@ void main() {
       rgb += textureLod(sunRadianceLut, uv, 0.0).rgb * limb;
     }
   }
-  if (push.accumulate != 0) rgb += imageLoad(outputImage, pixel).rgb;
+  if (push.accumulate != 0) rgb += outputFrame.pixels[index].rgb;
   if (push.last != 0) rgb = max(rgb, vec3(0.0));
-  imageStore(outputImage, pixel, vec4(rgb, 1.0));
+  outputFrame.pixels[index] = vec4(rgb, 1.0);
 }

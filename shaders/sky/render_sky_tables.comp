@@ -22,7 +22,7 @@ layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler3D scatteringTable;
 layout(set = 0, binding = 3) uniform sampler3D singleMieTable;
 layout(set = 0, binding = 4) uniform sampler2D irradianceTable;
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D outputImage;
+layout(std430, set = 0, binding = 5) writeonly buffer OutputFrame { vec4 pixels[]; } outputFrame;  // row-major
 layout(std140, set = 0, binding = 6) uniform FrameBlock {
   vec4 camera_position;  // planet-centred, m (the ground point's ENU axes)
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -59,7 +59,7 @@ void main() {
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
   if (!valid) {
-    imageStore(outputImage, pixel, vec4(0.0));
+    outputFrame.pixels[tile_pixel.y * push.tiles.width + tile_pixel.x] = vec4(0.0);
     return;
   }
   vec3 sun = frame.sun_direction.xyz;
@@ -117,5 +117,5 @@ void main() {
   }
   vec3 rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
   if (!hitsGround) rgb += sunRadianceToRgb() * (throughput * sunDiscRadiance(atmosphere, nu));
-  imageStore(outputImage, pixel, vec4(max(rgb, vec3(0.0)), 1.0));
+  outputFrame.pixels[tile_pixel.y * push.tiles.width + tile_pixel.x] = vec4(max(rgb, vec3(0.0)), 1.0);
 }
