@@ -50,7 +50,7 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)",
                              "the view: one sky-view lookup per pixel, plus the sun disc", true});
     } else {
-      plan.passes.push_back({"sky/render_sky", "HDR image (cd/m^2)",
+      plan.passes.push_back({"sky/render_sky_march", "HDR image (cd/m^2)",
                              std::string("the view: a march per pixel") +
                                  (inside ? "" : " (camera above the atmosphere)") + each + ", plus the sun disc",
                              true});

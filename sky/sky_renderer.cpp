@@ -16,7 +16,7 @@
 namespace firmament {
 namespace {
 
-// std140 mirror of FrameBlock in shaders/sky/render_sky.comp.
+// std140 mirror of FrameBlock in shaders/sky/render_sky.glsl.
 struct FrameBlock {
   float cameraPosition[4];
   float cameraForward[4];  // w = fov
@@ -50,6 +50,15 @@ std::string formatVector(const glm::dvec3& v) {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
+// sky/render_sky and sky/render_sky_march: one layout (shaders/sky/render_sky.glsl), two variants.
+gpu::PipelineDesc renderSkyPipeline(const char* shader) {
+  return {shader,
+          {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+           gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+          sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)};
+}
+
 }  // namespace
 
 SkyRenderer::SkyRenderer(gpu::Context& context)
@@ -60,12 +69,7 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
                                   gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
                                   gpu::BindingType::SampledImage},
                                  4 * sizeof(float)}),
-      skyPipeline_(context, {"sky/render_sky",
-                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                              gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                              gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
-                             sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)}),
+      skyPipeline_(context, renderSkyPipeline("sky/render_sky")),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
 
 PlanOptions planOptions(const SkyRenderOptions& options) {
@@ -210,6 +214,9 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   }
   // The image: one pass reading the sky-view table, or one march per spectral batch.
   const size_t renderPasses = useTables ? 0 : useSkyView ? 1 : batches;
+  if (!useTables && !useSkyView && !skyMarchPipeline_)
+    skyMarchPipeline_ = std::make_unique<gpu::ComputePipeline>(context_, renderSkyPipeline("sky/render_sky_march"));
+  const gpu::ComputePipeline& skyPipeline = useSkyView ? skyPipeline_ : *skyMarchPipeline_;
   for (size_t b = 0; b < renderPasses; ++b) {
     const AtmosphereLuts::Batch& batch = luts_.batch(b);
     struct {
@@ -219,7 +226,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
       int32_t last;
       int32_t pad;
     } push{tiles, b > 0 ? 1 : 0, b == 0 ? 1 : 0, b + 1 == renderPasses ? 1 : 0, 0};
-    commands.bind(skyPipeline_, {batch.block,
+    commands.bind(skyPipeline, {batch.block,
                                  {batch.transmittance, luts_.linearClamp()},
                                  {batch.multipleScattering, luts_.linearClamp()},
                                  output,
@@ -228,7 +235,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
                                  {luts_.sunRadiance(), luts_.linearClamp()},
                                  {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()}});
     commands.pushConstants(push);
-    commands.dispatchTiles(tiles, "sky/render_sky");
+    commands.dispatchTiles(tiles, useSkyView ? "sky/render_sky" : "sky/render_sky_march");
     if (b + 1 < renderPasses) commands.barrier();
   }
   if (clouds) {

@@ -77,7 +77,8 @@ class SkyRenderer {
   std::vector<std::unique_ptr<FmsSkyIrradiance>> fmsSkyIrradiance_;  // one per spectral batch
   std::unique_ptr<ScatteringTables> tables_;  // created on first use (5 pipelines)
   gpu::ComputePipeline skyViewPipeline_;
-  gpu::ComputePipeline skyPipeline_;
+  gpu::ComputePipeline skyPipeline_;                       // sky/render_sky: the sky-view table read
+  std::unique_ptr<gpu::ComputePipeline> skyMarchPipeline_;  // sky/render_sky_march: a march per pixel
   std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
   std::unique_ptr<CloudPass> clouds_;  // created for the first scene with clouds
   gpu::Buffer frameBlock_;

@@ -1,0 +1,66 @@
+// bench_sky_frame [SCENE.json] [width height repeats]
+// Times the clear-sky frame passes of a scene (default: the built-in default scene) at a size,
+// rendered `repeats` times by one SkyRenderer after a warm-up render (tables, JIT compile, first
+// touch of the frame's memory). Prints the median GPU time (timestamp queries) of every pass.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "gpu/context.h"
+#include "core/scene.h"
+#include "sky/sky_renderer.h"
+
+using namespace firmament;
+
+namespace {
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    int arg = 1;
+    std::string scenePath;
+    if (argc > 1 && std::string(argv[1]).find(".json") != std::string::npos) scenePath = argv[arg++];
+    const std::string width = argc > arg ? argv[arg] : "1280";
+    const std::string height = argc > arg + 1 ? argv[arg + 1] : "720";
+    const int repeats = argc > arg + 2 ? std::stoi(argv[arg + 2]) : 9;
+    const std::vector<std::string> overrides = {"/camera/width=" + width, "/camera/height=" + height};
+    const Scene scene = scenePath.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
+                                          : Scene::load(scenePath, overrides);
+
+    gpu::ContextOptions options;
+    options.device = std::getenv("FIRMAMENT_DEVICE") ? std::getenv("FIRMAMENT_DEVICE") : "";
+    gpu::Context context(options);
+    SkyRenderer renderer(context);
+    SkyRenderOptions renderOptions;
+    renderer.render(scene, renderOptions);  // warm-up
+    std::map<std::string, std::vector<double>> passes;
+    std::vector<double> frame;
+    for (int i = 0; i < repeats; ++i) {
+      RenderResult r = renderer.render(scene, renderOptions);
+      frame.push_back(r.frameMilliseconds);
+      for (const auto& t : r.timings) passes[t.label].push_back(t.milliseconds);
+    }
+    std::printf("device: %s\nscene %s, %sx%s, median of %d after a warm-up\n", context.description().c_str(),
+                scene.source().c_str(), width.c_str(), height.c_str(), repeats);
+    for (const auto& [label, ms] : passes) std::printf("  %-32s %9.2f ms\n", label.c_str(), median(ms));
+    std::printf("  %-32s %9.2f ms\n", "frame (per-frame passes)", median(frame));
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRuntime;
+  }
+}
