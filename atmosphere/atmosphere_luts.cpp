@@ -1,10 +1,12 @@
 #include "atmosphere/atmosphere_luts.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/table_file.h"
 #include "core/hash.h"
+#include "gpu/shaders.h"
 
 namespace firmament {
 namespace {
@@ -21,13 +23,23 @@ bool fits(const TableData& data, const gpu::Image& image) {
   return data.width == image.width() && data.height == image.height() && data.depth == 1 && data.channels == 4;
 }
 
+// Both variants of shaders/atmosphere/multiple_scattering_lut.glsl share one layout.
+gpu::PipelineDesc multipleScatteringPipeline(const char* shader) {
+  return {shader,
+          {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+           gpu::BindingType::StorageImage},
+          6 * sizeof(int32_t)};
+}
+
 }  // namespace
 
 std::string AtmosphereLutSettings::hash() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%dx%ds%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
+  std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%dx%ds%do%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
                 transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringThetaSamples,
-                multipleScatteringPhiSamples, multipleScatteringSteps, multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
+                multipleScatteringPhiSamples, multipleScatteringSteps, multipleScatteringOrders,
+                multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
                 wavelengthsNm.y, wavelengthsNm.z);
   return text;
 }
@@ -38,15 +50,15 @@ AtmosphereLuts::AtmosphereLuts(gpu::Context& context)
                                        {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageImage,
                                         gpu::BindingType::StorageImage},
                                        2 * sizeof(int32_t)}),
-      multipleScatteringPipeline_(context, {"atmosphere/multiple_scattering_lut",
-                                            {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                             gpu::BindingType::StorageImage},
-                                            3 * sizeof(int32_t)}),
+      multipleScatteringPipeline_(context, multipleScatteringPipeline("atmosphere/multiple_scattering_lut")),
+      multipleScatteringOrderPipeline_(context, multipleScatteringPipeline("atmosphere/multiple_scattering_order")),
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {}
 
 AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphere,
                                               const AtmosphereLutSettings& settings) {
-  std::string key = "atmosphere-luts-v2/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description();
+  static const std::string code = gpu::shaderCodeHash(
+      {"atmosphere/transmittance_lut", "atmosphere/multiple_scattering_lut", "atmosphere/multiple_scattering_order"});
+  std::string key = "atmosphere-luts-v2/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
   Update result;
   if (key == key_) return result;
 
@@ -108,17 +120,36 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
                       "atmosphere/transmittance_lut");
     commands.barrier();
     if (!settings.multipleScatteringLut) continue;
-    struct {
-      int32_t thetaSamples;
-      int32_t phiSamples;
-      int32_t steps;
-    } multiplePush{settings.multipleScatteringThetaSamples, settings.multipleScatteringPhiSamples,
-                   settings.multipleScatteringSteps};
-    commands.bind(multipleScatteringPipeline_, {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering});
-    commands.pushConstants(multiplePush);
-    commands.dispatch(groups(settings.multipleScatteringSize), groups(settings.multipleScatteringSize), 1,
-                      "atmosphere/multiple_scattering_lut");
-    commands.barrier();
+    // Psi_ms order by order: order k reads J_{k-1} and E_{k-1} from one scratch pair, writes J_k and E_k
+    // to the other, and adds J_k (the last order also its geometric tail) to the table.
+    const int size = settings.multipleScatteringSize;
+    for (int i = 0; i < 2; ++i) {
+      if (!orders_[i] || int(orders_[i].width()) != size) {
+        orders_[i] = makeTable(context_, size, size, "multiple-scattering order");
+        groundOrders_[i] = makeTable(context_, size, 1, "multiple-scattering ground irradiance order");
+      }
+    }
+    const int orders = std::max(settings.multipleScatteringOrders, 1);
+    for (int k = 1; k <= orders; ++k) {
+      struct {
+        int32_t thetaSamples;
+        int32_t phiSamples;
+        int32_t steps;
+        int32_t order;
+        int32_t last;
+        int32_t realPhase;
+      } multiplePush{settings.multipleScatteringThetaSamples, settings.multipleScatteringPhiSamples,
+                     settings.multipleScatteringSteps, k, k == orders ? 1 : 0, orders > 1 ? 1 : 0};
+      const int read = k % 2, write = 1 - k % 2;
+      commands.bind(k == 1 ? multipleScatteringPipeline_ : multipleScatteringOrderPipeline_,
+                    {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering,
+                     {orders_[read], linearClamp_}, {groundOrders_[read], linearClamp_}, orders_[write],
+                     groundOrders_[write]});
+      commands.pushConstants(multiplePush);
+      commands.dispatch(groups(size), groups(size), 1,
+                        k == 1 ? "atmosphere/multiple_scattering_lut" : "atmosphere/multiple_scattering_order");
+      commands.barrier();
+    }
   }
   commands.submitAndWait();
   result.timings = commands.passTimings();

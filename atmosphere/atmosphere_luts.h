@@ -28,6 +28,10 @@ struct AtmosphereLutSettings {
   int multipleScatteringThetaSamples = 32;    // zenith bands of the sphere of directions
   int multipleScatteringPhiSamples = 2;       // azimuth samples per band (32 x 2 = 64 directions)
   int multipleScatteringSteps = 20;           // march steps per direction
+  // Scattering orders iterated explicitly before the geometric tail (shaders/atmosphere/
+  // multiple_scattering_lut.glsl); 1 = Hillaire 2020 exactly (isotropic phase, f_ms series). From 2
+  // on the first order also uses the real phase functions.
+  int multipleScatteringOrders = 1;
   bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
   // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
@@ -72,8 +76,12 @@ class AtmosphereLuts {
  private:
   gpu::Context& context_;
   gpu::ComputePipeline transmittancePipeline_;
-  gpu::ComputePipeline multipleScatteringPipeline_;
+  gpu::ComputePipeline multipleScatteringPipeline_;       // order 1 (from the sun)
+  gpu::ComputePipeline multipleScatteringOrderPipeline_;  // orders 2 and up
   std::vector<Batch> batches_;
+  // Scratch of the order iteration: J_k and the ground irradiance E_k, ping-pong (shared by batches).
+  gpu::Image orders_[2];
+  gpu::Image groundOrders_[2];
   gpu::Image sunRadiance_;
   gpu::Sampler linearClamp_;
   std::string key_;  // atmosphere hash + settings hash + device of the current tables
