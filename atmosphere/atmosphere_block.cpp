@@ -18,6 +18,21 @@ void putLayer(float* flat, int first, const shared::DensityLayer& layer) {
   flat[first + 4] = float(layer.constant_term);
 }
 
+// Legendre moments a_l = 2 pi ∫_-1^1 p(mu) P_l(mu) dmu, l = 1, 2, of the aerosol's Cornette-Shanks
+// phase (shared with the shaders), by the midpoint rule on 4096 intervals (the forward peak of g = 0.8 is
+// ~10 degrees wide: converged to ~1e-6). They weight the anisotropy of multiple scattering
+// (atmosphere/multiple_scattering_lut.glsl).
+glm::dvec2 miePhaseMoments(double g) {
+  constexpr int kIntervals = 4096;
+  glm::dvec2 sum(0.0);
+  for (int i = 0; i < kIntervals; ++i) {
+    const double mu = -1.0 + 2.0 * (i + 0.5) / kIntervals;
+    const double p = shared::cornetteShanksPhase(g, mu);
+    sum += p * glm::dvec2(mu, 0.5 * (3.0 * mu * mu - 1.0));
+  }
+  return sum * (2.0 * 3.14159265358979323846 * 2.0 / kIntervals);
+}
+
 }  // namespace
 
 AtmosphereBlock packAtmosphereBlock(const shared::AtmosphereParameters& a, const glm::dmat3& sky, const glm::dmat3& sun) {
@@ -39,6 +54,9 @@ AtmosphereBlock packAtmosphereBlock(const shared::AtmosphereParameters& a, const
   putLayer(flat, 15, a.mie_density.layer1);
   putLayer(flat, 20, a.absorption_density.layer0);
   putLayer(flat, 25, a.absorption_density.layer1);
+  const glm::dvec2 moments = miePhaseMoments(a.mie_phase_g);
+  flat[30] = float(moments.x);
+  flat[31] = float(moments.y);
   for (int c = 0; c < 3; ++c) {
     put3(b.skyRadianceToRgb[c], sky[c]);
     put3(b.sunRadianceToRgb[c], sun[c]);

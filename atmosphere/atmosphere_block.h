@@ -17,7 +17,8 @@ struct AtmosphereBlock {
   float mieExtinction[4];
   float absorptionExtinction[4];
   float groundAlbedo[4];
-  float profiles[8][4];             // 3 profiles x 2 layers x 5 values, flat
+  float profiles[8][4];             // 3 profiles x 2 layers x 5 values, flat; then the aerosol phase's
+                                    // Legendre moments a_1, a_2 (profiles[7].zw)
   float skyRadianceToRgb[3][4];     // columns
   float sunRadianceToRgb[3][4];     // columns
 };

@@ -16,11 +16,12 @@ gpu::Image makeTable(gpu::Context& context, int width, int height, const char* n
 }
 
 TableData download(const gpu::Image& image) {
-  return TableData{image.width(), image.height(), 1, 4, image.downloadFloats()};
+  return TableData{image.width(), image.height(), image.depth(), 4, image.downloadFloats()};
 }
 
 bool fits(const TableData& data, const gpu::Image& image) {
-  return data.width == image.width() && data.height == image.height() && data.depth == 1 && data.channels == 4;
+  return data.width == image.width() && data.height == image.height() && data.depth == image.depth() &&
+         data.channels == 4;
 }
 
 // Both variants of shaders/atmosphere/multiple_scattering_lut.glsl share one layout.
@@ -28,7 +29,7 @@ gpu::PipelineDesc multipleScatteringPipeline(const char* shader) {
   return {shader,
           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-           gpu::BindingType::StorageImage},
+           gpu::BindingType::StorageImage, gpu::BindingType::StorageImage},
           6 * sizeof(int32_t)};
 }
 
@@ -58,7 +59,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
                                               const AtmosphereLutSettings& settings) {
   static const std::string code = gpu::shaderCodeHash(
       {"atmosphere/transmittance_lut", "atmosphere/multiple_scattering_lut", "atmosphere/multiple_scattering_order"});
-  std::string key = "atmosphere-luts-v2/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
+  std::string key = "atmosphere-luts-v3/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
   Update result;
   if (key == key_) return result;
 
@@ -79,6 +80,11 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     if (!batch.multipleScattering || int(batch.multipleScattering.width()) != settings.multipleScatteringSize)
       batch.multipleScattering = makeTable(context_, settings.multipleScatteringSize, settings.multipleScatteringSize,
                                            "multiple-scattering LUT");
+    if (!batch.multipleScatteringAnisotropy ||
+        int(batch.multipleScatteringAnisotropy.width()) != settings.multipleScatteringSize)
+      batch.multipleScatteringAnisotropy =
+          gpu::Image(context_, {uint32_t(settings.multipleScatteringSize), uint32_t(settings.multipleScatteringSize),
+                                5, gpu::Format::RGBA32F, true, true, "multiple-scattering anisotropy"});
   }
   if (!sunRadiance_ || int(sunRadiance_.width()) != settings.transmittanceWidth ||
       int(sunRadiance_.height()) != settings.transmittanceHeight)
@@ -89,14 +95,17 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     file = context_.cacheDir() / "tables" / ("atmosphere-" + atmosphere.hash() + "-" + hex16(fnv1a(key)) + ".bin");
   if (!file.empty()) {
     auto tables = readTableFile(file, key);
-    if (tables && tables->size() == 2 * batches_.size() + 1) {
+    if (tables && tables->size() == 3 * batches_.size() + 1) {
       bool ok = fits(tables->back(), sunRadiance_);
       for (size_t b = 0; b < batches_.size() && ok; ++b)
-        ok = fits((*tables)[2 * b], batches_[b].transmittance) && fits((*tables)[2 * b + 1], batches_[b].multipleScattering);
+        ok = fits((*tables)[3 * b], batches_[b].transmittance) &&
+             fits((*tables)[3 * b + 1], batches_[b].multipleScattering) &&
+             fits((*tables)[3 * b + 2], batches_[b].multipleScatteringAnisotropy);
       if (ok) {
         for (size_t b = 0; b < batches_.size(); ++b) {
-          batches_[b].transmittance.uploadFloats((*tables)[2 * b].values);
-          batches_[b].multipleScattering.uploadFloats((*tables)[2 * b + 1].values);
+          batches_[b].transmittance.uploadFloats((*tables)[3 * b].values);
+          batches_[b].multipleScattering.uploadFloats((*tables)[3 * b + 1].values);
+          batches_[b].multipleScatteringAnisotropy.uploadFloats((*tables)[3 * b + 2].values);
         }
         sunRadiance_.uploadFloats(tables->back().values);
         key_ = key;
@@ -144,7 +153,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
       commands.bind(k == 1 ? multipleScatteringPipeline_ : multipleScatteringOrderPipeline_,
                     {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering,
                      {orders_[read], linearClamp_}, {groundOrders_[read], linearClamp_}, orders_[write],
-                     groundOrders_[write]});
+                     groundOrders_[write], batch.multipleScatteringAnisotropy});
       commands.pushConstants(multiplePush);
       commands.dispatch(groups(size), groups(size), 1,
                         k == 1 ? "atmosphere/multiple_scattering_lut" : "atmosphere/multiple_scattering_order");
@@ -160,6 +169,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     for (const auto& batch : batches_) {
       tables.push_back(download(batch.transmittance));
       tables.push_back(download(batch.multipleScattering));
+      tables.push_back(download(batch.multipleScatteringAnisotropy));
     }
     tables.push_back(download(sunRadiance_));
     writeTableFile(file, key, tables);

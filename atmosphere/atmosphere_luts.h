@@ -31,7 +31,7 @@ struct AtmosphereLutSettings {
   // Scattering orders iterated explicitly before the geometric tail (shaders/atmosphere/
   // multiple_scattering_lut.glsl); 1 = Hillaire 2020 exactly (isotropic phase, f_ms series). From 2
   // on the first order also uses the real phase functions.
-  int multipleScatteringOrders = 1;
+  int multipleScatteringOrders = 4;
   bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
   // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
@@ -59,6 +59,8 @@ class AtmosphereLuts {
     gpu::Buffer block;  // the AtmosphereBlock of this batch's wavelengths
     gpu::Image transmittance;
     gpu::Image multipleScattering;
+    // size x size x 5: the multiple-scattering field's anisotropy (zero for Hillaire's one-order form).
+    gpu::Image multipleScatteringAnisotropy;
     shared::AtmosphereParameters parameters{};
   };
   size_t batchCount() const { return batches_.size(); }

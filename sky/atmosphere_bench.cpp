@@ -202,6 +202,9 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
   add("ms_theta_samples", "directions of the multiple-scattering integral: zenith bands over the sphere",
       std::to_string(d.luts.multipleScatteringThetaSamples),
       ints({4, 8, 16, 32, 64}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringThetaSamples = v; }), true);
+  add("ms_orders", "multiple-scattering orders iterated before the geometric tail; 1 = Hillaire 2020 (isotropic, f_ms series)",
+      std::to_string(d.luts.multipleScatteringOrders),
+      ints({1, 2, 3, 4, 6}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringOrders = v; }), true);
   add("ms_phi_samples", "directions of the multiple-scattering integral: azimuth samples per zenith band",
       std::to_string(d.luts.multipleScatteringPhiSamples),
       ints({1, 2, 4, 8}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringPhiSamples = v; }), true);
@@ -218,8 +221,9 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
       {{"lut", [](SkyRenderOptions& o) { o.method = SkyMethod::SkyViewLut; }},
        {"per-pixel", [](SkyRenderOptions& o) { o.method = SkyMethod::PerPixel; }}});
   add("spectral_samples", "wavelengths: 3 (Bruneton's conversion to Rec.709) or N over 360-830 nm integrated to luminance",
-      std::to_string(d.luts.spectralSamples),
+      d.luts.spectralSamples == kSpectralSamplesAuto ? std::string("auto") : std::to_string(d.luts.spectralSamples),
       ints({3, 6, 12, 24, 48}, [](SkyRenderOptions& o, int v) { o.luts.spectralSamples = v; }), true);
+  knobs.back().quickValues = {"3", "12"};  // the two that the default (auto) chooses between
   add("fms_sky_irradiance_size", "f_ms form: the ground's skylight table, mu_s x r",
       sizeLabel(d.fmsSkyIrradiance.width, d.fmsSkyIrradiance.height),
       sizes({{16, 4}, {32, 8}, {64, 16}, {128, 32}},

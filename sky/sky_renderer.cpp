@@ -55,7 +55,7 @@ gpu::PipelineDesc renderSkyPipeline(const char* shader) {
   return {shader,
           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
            gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
           sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)};
 }
 
@@ -67,7 +67,7 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
       skyViewPipeline_(context, {"sky/sky_view_lut",
                                  {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
                                   gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                                  gpu::BindingType::SampledImage},
+                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                                  4 * sizeof(float)}),
       skyPipeline_(context, renderSkyPipeline("sky/render_sky")),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
@@ -81,14 +81,24 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   return plan;
 }
 
-RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
+int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool tables) {
+  if (requested != kSpectralSamplesAuto) return requested;
+  if (clouds || tables) return 3;  // the cloud march runs once per batch; the 4D tables carry three
+  return sunZenithRad * kRadToDeg >= kSpectralSamplesAutoZenithDeg ? 12 : 3;
+}
+
+RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& requestedOptions) {
   RenderResult result;
-  const bool useTables = options.multipleScattering == MultipleScattering::BrunetonTables;
-  if (useTables && options.luts.spectralSamples != 3)
+  const bool useTables = requestedOptions.multipleScattering == MultipleScattering::BrunetonTables;
+  if (useTables && requestedOptions.luts.spectralSamples != 3 && requestedOptions.luts.spectralSamples != kSpectralSamplesAuto)
     throw InputError("the 4D scattering tables carry three wavelengths: use spectral samples 3 with them");
-  result.plan = planRender(scene, planOptions(options));
   result.view = makeSceneView(scene);
   const SceneView& view = result.view;
+  SkyRenderOptions options = requestedOptions;
+  const bool hasClouds = scene.hasSection("clouds") && !scene.at("/clouds/layers").empty();
+  options.luts.spectralSamples = resolveSpectralSamples(options.luts.spectralSamples, view.sunZenith, hasClouds, useTables);
+  result.spectralSamples = options.luts.spectralSamples;
+  result.plan = planRender(scene, planOptions(options));
   const int width = view.camera.width;
   const int height = view.camera.height;
 
@@ -186,7 +196,8 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
                                        {batch.transmittance, luts_.linearClamp()},
                                        {batch.multipleScattering, luts_.linearClamp()},
                                        skyView_,
-                                       {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()}});
+                                       {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()},
+                                       {batch.multipleScatteringAnisotropy, luts_.linearClamp()}});
       commands.pushConstants(push);
       commands.dispatch(uint32_t((options.skyViewWidth + 7) / 8), uint32_t((options.skyViewHeight + 7) / 8), 1,
                         "sky/sky_view_lut");
@@ -233,7 +244,8 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
                                  frameBlock_,
                                  {skyView_, luts_.linearClamp()},
                                  {luts_.sunRadiance(), luts_.linearClamp()},
-                                 {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()}});
+                                 {fmsSkyIrradiance_[b]->irradiance(), luts_.linearClamp()},
+                                 {batch.multipleScatteringAnisotropy, luts_.linearClamp()}});
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, useSkyView ? "sky/render_sky" : "sky/render_sky_march");
     if (b + 1 < renderPasses) commands.barrier();
@@ -323,6 +335,7 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   j["precompute_ms"] = result.precomputeMilliseconds;
   j["frame_ms"] = result.frameMilliseconds;
   j["tables"] = result.tablesSource;
+  j["spectral_samples"] = result.spectralSamples;
   if (result.clouds.pixelCount() > 0)
     j["clouds"] = {{"view_samples_per_pixel", result.cloudSamples.viewPerPixel},
                    {"light_samples_per_pixel", result.cloudSamples.lightPerPixel}};

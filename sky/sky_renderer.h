@@ -27,8 +27,15 @@ enum class SkyMethod {
   PerPixel,    // march every pixel (slower; used automatically for cameras above the atmosphere)
 };
 
+// luts.spectralSamples = kSpectralSamplesAuto: three wavelengths while the sun is high, 12 when it is
+// within 15 degrees of the horizon or below it (where three wavelengths' colour conversion fails:
+// docs/bench.md), three always with clouds or the 4D tables.
+inline constexpr int kSpectralSamplesAuto = 0;
+inline constexpr double kSpectralSamplesAutoZenithDeg = 75.0;
+int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool tables);
+
 struct SkyRenderOptions {
-  AtmosphereLutSettings luts;
+  AtmosphereLutSettings luts{.spectralSamples = kSpectralSamplesAuto};
   MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
   ScatteringTableSettings tables;              // BrunetonTables: orders (tables.scatteringOrders), sizes
   FmsSkyIrradianceSettings fmsSkyIrradiance;   // HillaireFms: the ground's skylight table
@@ -56,6 +63,7 @@ struct RenderResult {
   bool tablesReused = false;     // from memory or the disk cache
   std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
+  int spectralSamples = 3;               // the wavelengths used (kSpectralSamplesAuto resolved)
   std::string timingNote;                // non-empty when timings are wall clock
   // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
   // is sky * a + rgb). Empty without clouds.

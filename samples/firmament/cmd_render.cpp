@@ -32,10 +32,12 @@ int runRender(const Args& args) {
   }
   options.tables.scatteringOrders = args.integer("orders", options.tables.scatteringOrders, 1, 64);
   options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
-  options.luts.spectralSamples = args.integer("spectral-samples", options.luts.spectralSamples, 3, 48);
-  if (options.luts.spectralSamples % 3 != 0)
-    throw InputError("--spectral-samples " + std::to_string(options.luts.spectralSamples) +
-                     ": allowed: 3 (three wavelengths) or a multiple of 3 from 6 to 48");
+  if (args.getOr("spectral-samples", "auto") != "auto") {
+    options.luts.spectralSamples = args.integer("spectral-samples", 3, 3, 48);
+    if (options.luts.spectralSamples % 3 != 0)
+      throw InputError("--spectral-samples " + std::to_string(options.luts.spectralSamples) +
+                       ": allowed: auto, 3 (three wavelengths) or a multiple of 3 from 6 to 48");
+  }
   std::string method = args.getOr("sky", "lut");
   if (method == "lut") {
     options.method = SkyMethod::SkyViewLut;
@@ -89,7 +91,7 @@ int runRender(const Args& args) {
 const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
-                               "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples N] [--sky lut|march] "
+                               "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
                                "[--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
@@ -100,7 +102,7 @@ const CommandRegistration reg{{"render",
                                                 "with -o also render"},
                                 {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
                                 {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
-                                {"spectral-samples", "N", "wavelengths: 3 (default) or 6..48 integrated to luminance"},
+                                {"spectral-samples", "N", "wavelengths: auto (default: 3, or 12 with the sun within 15 deg of the horizon or below), 3, or 6..48 integrated to luminance"},
                                 {"multiple-scattering", "fms|tables",
                                  "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
                                  "4D tables of N orders"},

@@ -19,10 +19,14 @@ layout(std140, set = 0, binding = ATMOSPHERE_BLOCK_BINDING) uniform AtmosphereBl
   vec4 absorption_extinction;  // xyz
   vec4 ground_albedo;          // xyz
   vec4 profiles[8];            // rayleigh, mie, absorption; 2 layers each of
-                               // (width, exp_term, exp_scale, linear_term, constant_term), flat
+                               // (width, exp_term, exp_scale, linear_term, constant_term), flat;
+                               // profiles[7].zw: the aerosol phase's Legendre moments a_1, a_2
   vec4 sky_radiance_to_rgb[3]; // columns of the 3x3 matrix: linear Rec.709 (cd m^-2) per unit radiance
   vec4 sun_radiance_to_rgb[3]; // the same for the sun's direct radiance
 } atmosphereBlock;
+
+// Legendre moments a_1, a_2 of the aerosol phase (atmosphere/atmosphere_block.cpp).
+vec2 miePhaseMoments() { return atmosphereBlock.profiles[7].zw; }
 
 float profileValue(int k) { return atmosphereBlock.profiles[k / 4][k % 4]; }
 

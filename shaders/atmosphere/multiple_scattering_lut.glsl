@@ -21,6 +21,15 @@
 // the previous one at the points y of its rays, and the orders past the last are the geometric tail
 // J_N q / (1 - q) with q = J_N / J_{N-1} measured per texel (f_ms when there is one order).
 //
+// Anisotropy. The render scatters Psi_ms into the view with the real phase functions where it pays:
+// with the radiance field written in real spherical harmonics up to l = 2, L = sum c_lm Y_lm, the
+// Funk-Hecke theorem gives ∫ p(w.v) L(w) dw = sum a_l c_lm Y_lm(v), a_l = 2 pi ∫ p(mu) P_l(mu) dmu the
+// phase's Legendre moments (a_0 = 1; Rayleigh a_1 = 0, a_2 = 1/10; the aerosol's from its phase). The
+// field is symmetric about the plane of the zenith and the sun, so in the local frame (z up, y towards
+// the sun's azimuth) five coefficients besides c_00 remain: Y_1y, Y_1z, Y_2yz, Y_2zz, Y_2(xx-yy)
+// (common/atmosphere_lut.glsl). Their sums over the orders are the anisotropy table (size x size x 5);
+// c_00 is Psi_ms itself (J = c_00 Y_00). Without it (one order) the render is Hillaire's isotropic one.
+//
 // Two compiled variants (FIRST_ORDER 1: multiple_scattering_lut.comp, the sun's light; 0:
 // multiple_scattering_order.comp, reading the previous order): a uniform branch would run both sides
 // on lavapipe (docs/gpu.md).
@@ -41,6 +50,7 @@ layout(set = 0, binding = 3) uniform sampler2D previousOrder;                  /
 layout(set = 0, binding = 4) uniform sampler2D previousGroundIrradiance;       // E_{k-1}(mu_s), width x 1 (k >= 2)
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D currentOrder;             // J_k
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D currentGroundIrradiance;  // E_k (row 0 writes it)
+layout(set = 0, binding = 7, rgba32f) uniform image3D anisotropyLut;  // sum of c_lm, l >= 1 (see above)
 layout(push_constant) uniform Push {
   int theta_samples;
   int phi_samples;
@@ -52,20 +62,28 @@ layout(push_constant) uniform Push {
 
 const int kPhaseSubsamples = 4;
 
-// The mean of the Rayleigh and aerosol phase functions over the cell of directions
-// cos(theta) in [c0, c1], phi in [phi0, phi1], for the sun direction `sun`.
-vec2 cellMeanPhase(AtmosphereParameters atmosphere, vec3 sun, float c0, float c1, float phi0, float phi1) {
-  vec2 sum = vec2(0.0);
+// Means over the cell of directions cos(theta) in [c0, c1], phi in [phi0, phi1] (sun in the y-z plane):
+// of the Rayleigh and aerosol phase functions (x, y of `phase`), and of the five anisotropy harmonics.
+void cellMeans(AtmosphereParameters atmosphere, vec3 sun, float c0, float c1, float phi0, float phi1,
+               bool with_phase, out vec2 phase, out float harmonics[kAnisotropyTerms]) {
+  phase = vec2(0.0);
+  for (int h = 0; h < kAnisotropyTerms; ++h) harmonics[h] = 0.0;
   for (int a = 0; a < kPhaseSubsamples; ++a) {
     float c = mix(c0, c1, (float(a) + 0.5) / float(kPhaseSubsamples));
     float s = sqrt(max(1.0 - c * c, 0.0));
     for (int b = 0; b < kPhaseSubsamples; ++b) {
       float phi = mix(phi0, phi1, (float(b) + 0.5) / float(kPhaseSubsamples));
-      float nu = dot(vec3(s * cos(phi), s * sin(phi), c), sun);
-      sum += vec2(rayleighPhase(nu), cornetteShanksPhase(atmosphere.mie_phase_g, nu));
+      vec3 w = vec3(s * cos(phi), s * sin(phi), c);
+      if (with_phase) {
+        float nu = dot(w, sun);
+        phase += vec2(rayleighPhase(nu), cornetteShanksPhase(atmosphere.mie_phase_g, nu));
+      }
+      for (int h = 0; h < kAnisotropyTerms; ++h) harmonics[h] += anisotropyHarmonic(h, w);
     }
   }
-  return sum / float(kPhaseSubsamples * kPhaseSubsamples);
+  float n = float(kPhaseSubsamples * kPhaseSubsamples);
+  phase /= n;
+  for (int h = 0; h < kAnisotropyTerms; ++h) harmonics[h] /= n;
 }
 
 vec3 previousOrderAt(AtmosphereParameters atmosphere, float r, float mu_s) {
@@ -96,6 +114,8 @@ void main() {
   vec3 mean_radiance = vec3(0.0);
   vec3 transfer = vec3(0.0);
   vec3 ground_irradiance = vec3(0.0);
+  vec3 moments[kAnisotropyTerms];
+  for (int h = 0; h < kAnisotropyTerms; ++h) moments[h] = vec3(0.0);
   for (int i = 0; i < n_theta; ++i) {
     float c0 = 1.0 - 2.0 * float(i) / float(n_theta);
     float c1 = 1.0 - 2.0 * float(i + 1) / float(n_theta);
@@ -110,8 +130,11 @@ void main() {
       float phi1 = 2.0 * kPi * float(j + 1) / float(n_phi);
       float phi = 0.5 * (phi0 + phi1);
       vec3 dir = vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+      vec2 phase;
+      float harmonics[kAnisotropyTerms];
+      cellMeans(atmosphere, sun, c0, c1, phi0, phi1, FIRST_ORDER != 0, phase, harmonics);
 #if FIRST_ORDER
-      vec2 phase = push.real_phase != 0 ? cellMeanPhase(atmosphere, sun, c0, c1, phi0, phi1) : vec2(1.0 / (4.0 * kPi));
+      if (push.real_phase == 0) phase = vec2(1.0 / (4.0 * kPi));
 #endif
       vec3 throughput = vec3(1.0);
       vec3 radiance = vec3(0.0);
@@ -154,6 +177,7 @@ void main() {
       mean_radiance += radiance;
       transfer += l_f;
       if (cos_theta > 0.0) ground_irradiance += radiance * cos_theta * cell;
+      for (int h = 0; h < kAnisotropyTerms; ++h) moments[h] += radiance * harmonics[h] * cell;
     }
   }
   float samples = float(n_theta * n_phi);
@@ -163,6 +187,7 @@ void main() {
   // space, the ground and absorption every order; the clamps guard albedo 1 without absorption and
   // texels where an order is numerically zero).
   vec3 tail = vec3(0.0);
+  vec3 tail_factor = vec3(0.0);  // the orders past this one, relative to this one
   if (push.last != 0) {
     vec3 q = transfer;
 #if !FIRST_ORDER
@@ -170,7 +195,8 @@ void main() {
     q = mix(transfer, j_k / max(previous, vec3(1e-30)), greaterThan(previous, vec3(1e-30)));
 #endif
     q = clamp(q, vec3(0.0), vec3(0.98));
-    tail = j_k * q / (vec3(1.0) - q);
+    tail_factor = q / (vec3(1.0) - q);
+    tail = j_k * tail_factor;
   }
 #if FIRST_ORDER
   vec3 psi = j_k + tail;
@@ -178,6 +204,17 @@ void main() {
   vec3 psi = imageLoad(multipleScatteringLut, texel).rgb + j_k + tail;
 #endif
   imageStore(multipleScatteringLut, texel, vec4(psi, 1.0));
+  for (int h = 0; h < kAnisotropyTerms; ++h) {
+    ivec3 at = ivec3(texel, h);
+#if FIRST_ORDER
+    vec3 sum = vec3(0.0);
+#else
+    vec3 sum = imageLoad(anisotropyLut, at).rgb;
+#endif
+    // Hillaire's form (one order, isotropic phase) has no anisotropy.
+    if (push.real_phase != 0) sum += moments[h] * (vec3(1.0) + tail_factor);
+    imageStore(anisotropyLut, at, vec4(sum, 0.0));
+  }
   imageStore(currentOrder, texel, vec4(j_k, 1.0));
   if (texel.y == 0) imageStore(currentGroundIrradiance, ivec2(texel.x, 0), vec4(ground_irradiance, 1.0));
 }

@@ -115,6 +115,22 @@ SHARED_INLINE void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere,
 }
 
 
+// The anisotropy of the multiple-scattering field (atmosphere/multiple_scattering_lut.glsl): real
+// spherical harmonics of l = 1, 2 that survive the field's mirror symmetry about the plane of the
+// zenith and the sun, in the local frame (z up, y towards the sun's azimuth, x across), w a unit
+// direction in it. Normalised: ∫ Y_h^2 dw = 1.
+#define kAnisotropyTerms 5
+SHARED_INLINE Real anisotropyHarmonic(int h, vec3 w) {
+  if (h == 0) return 0.4886025119 * w.y;                        // Y_1,-1
+  if (h == 1) return 0.4886025119 * w.z;                        // Y_1,0
+  if (h == 2) return 1.0925484306 * w.y * w.z;                  // Y_2,-1
+  if (h == 3) return 0.3153915653 * (3.0 * w.z * w.z - 1.0);    // Y_2,0
+  return 0.5462742153 * (w.x * w.x - w.y * w.y);                // Y_2,2
+}
+
+// Legendre moments a_1, a_2 (a_l = 2 pi ∫ p(mu) P_l(mu) dmu) of the Rayleigh phase: 0 and 1/10.
+#define kRayleighPhaseMoment2 0.1
+
 // Sky-view LUT parametrization (after Hillaire 2020, section 5.3): for a camera at radius r, a view
 // direction is given by its zenith angle theta and its azimuth phi relative to the sun (0..pi, the
 // sky is symmetric about the sun's vertical plane). v puts the horizon (theta_h, the tangent to the

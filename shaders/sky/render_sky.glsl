@@ -30,6 +30,7 @@ layout(std140, set = 0, binding = 4) uniform FrameBlock {
 layout(set = 0, binding = 5) uniform sampler2D skyViewLut;
 layout(set = 0, binding = 6) uniform sampler2D sunRadianceLut;  // see atmosphere/transmittance_lut.comp
 layout(set = 0, binding = 7) uniform sampler2D skyIrradianceLut;  // see atmosphere/fms_sky_irradiance.comp
+layout(set = 0, binding = 8) uniform sampler3D multipleScatteringAnisotropy;  // see atmosphere/multiple_scattering_lut.glsl
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   int accumulate;  // add to the pixel: per-pixel marching runs once per spectral batch
@@ -83,7 +84,7 @@ void main() {
   rgb = skyFromLut(atmosphere, origin, dir, sun);
   hits_ground = rayIntersectsGround(atmosphere, max(r, atmosphere.bottom_radius + 0.01), mu);
 #else
-  SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, skyIrradianceLut, origin, dir, sun, frame.image.w);
+  SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, skyIrradianceLut, origin, dir, sun, frame.image.w);
   rgb = m.rgb;
   hits_ground = m.hits_ground;
 #endif

@@ -24,10 +24,43 @@ vec3 stepIntegral(vec3 extinction, float dt, vec3 step_transmittance) {
   return mix(dt * (1.0 - step_transmittance) / max(k, vec3(1e-12)), vec3(dt), lessThan(k, vec3(1e-4)));
 }
 
+// The multiply scattered light at p scattered into the view direction `dir` by Rayleigh (.rayleigh) and
+// aerosol (.mie) scattering, per unit scattering coefficient: the isotropic part Psi_ms plus the
+// anisotropy table's harmonics weighted by the phases' Legendre moments (Funk-Hecke; see
+// atmosphere/multiple_scattering_lut.glsl). Zero anisotropy (Hillaire's form) leaves Psi_ms.
+struct MultipleScatteringSource {
+  vec3 rayleigh;
+  vec3 mie;
+};
+MultipleScatteringSource multipleScatteringInto(AtmosphereParameters atmosphere, sampler2D multiple_scattering_lut,
+                                                sampler3D anisotropy_lut, vec3 p, float r_p, float mu_s_p, vec3 sun,
+                                                vec3 dir) {
+  vec3 up = p / r_p;
+  vec3 sun_h = sun - mu_s_p * up;
+  float sun_h_length = length(sun_h);
+  // With the sun at the zenith the field is symmetric about the vertical: any horizontal y will do.
+  vec3 y = sun_h_length > 1e-6 ? sun_h / sun_h_length : normalize(cross(up, abs(up.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  vec3 w = vec3(dot(dir, cross(y, up)), dot(dir, y), dot(dir, up));
+  ivec2 size = textureSize(multiple_scattering_lut, 0);
+  vec2 uv = multipleScatteringUv(atmosphere, r_p, mu_s_p, size);
+  vec3 psi = textureLod(multiple_scattering_lut, uv, 0.0).rgb;
+  vec3 l1 = vec3(0.0), l2 = vec3(0.0);
+  for (int h = 0; h < kAnisotropyTerms; ++h) {
+    vec3 c = textureLod(anisotropy_lut, vec3(uv, (float(h) + 0.5) / float(kAnisotropyTerms)), 0.0).rgb;
+    vec3 term = c * anisotropyHarmonic(h, w);
+    if (h < 2) l1 += term; else l2 += term;
+  }
+  vec2 mie_moments = miePhaseMoments();
+  MultipleScatteringSource s;
+  s.rayleigh = max(psi + kRayleighPhaseMoment2 * l2, vec3(0.0));
+  s.mie = max(psi + mie_moments.x * l1 + mie_moments.y * l2, vec3(0.0));
+  return s;
+}
+
 // origin: planet-centred (m); dir, sun: unit vectors in the same frame.
 // sky_irradiance_lut: E_sky(r, mu_s) on a horizontal surface (atmosphere/fms_sky_irradiance.comp).
 SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, sampler2D multiple_scattering_lut,
-                  sampler2D sky_irradiance_lut, vec3 origin, vec3 dir, vec3 sun, int steps) {
+                  sampler3D anisotropy_lut, sampler2D sky_irradiance_lut, vec3 origin, vec3 dir, vec3 sun, int steps) {
   SkyMarch result;
   result.rgb = vec3(0.0);
   result.throughput = vec3(1.0);
@@ -69,8 +102,9 @@ SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, 
     vec3 mie = mieScatteringAt(atmosphere, r_p);
     vec3 extinction = extinctionAt(atmosphere, r_p);
     vec3 sun_light = transmittanceToSun(transmittance_lut, atmosphere, r_p, mu_s_p) * atmosphere.solar_irradiance;
-    vec3 sky_source = rayleigh * phase_r * sun_light +
-                      (rayleigh + mie) * multipleScattering(multiple_scattering_lut, atmosphere, r_p, mu_s_p);
+    MultipleScatteringSource ms = multipleScatteringInto(atmosphere, multiple_scattering_lut, anisotropy_lut, p, r_p,
+                                                         mu_s_p, sun, dir);
+    vec3 sky_source = rayleigh * (phase_r * sun_light + ms.rayleigh) + mie * ms.mie;
     vec3 sunlike_source = mie * phase_m * sun_light;
     vec3 step_transmittance = exp(-extinction * dt);
     vec3 integral = stepIntegral(extinction, dt, step_transmittance);

@@ -11,6 +11,7 @@ layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3, rgba32f) uniform image2D skyViewLut;
 layout(set = 0, binding = 4) uniform sampler2D skyIrradianceLut;
+layout(set = 0, binding = 5) uniform sampler3D multipleScatteringAnisotropy;
 layout(push_constant) uniform Push {
   float camera_radius;  // m from the planet centre (inside the atmosphere)
   float mu_s;           // cosine of the sun zenith angle at the camera
@@ -30,7 +31,7 @@ void main() {
   vec3 origin = vec3(0.0, 0.0, push.camera_radius);
   vec3 sun = vec3(sqrt(max(1.0 - push.mu_s * push.mu_s, 0.0)), 0.0, push.mu_s);
   vec3 dir = vec3(sin(theta) * cos_phi, sin(theta) * sin_phi, cos(theta));
-  SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, skyIrradianceLut, origin, dir, sun, push.steps);
+  SkyMarch m = marchSky(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, skyIrradianceLut, origin, dir, sun, push.steps);
   vec3 rgb = m.rgb;
   if (push.accumulate != 0) rgb += imageLoad(skyViewLut, texel).rgb;
   imageStore(skyViewLut, texel, vec4(rgb, 1.0));
