@@ -2,15 +2,64 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "weather/fast_math.h"
 #include "weather/physical_constants.h"
 #include "weather/thermodynamics.h"
 
 namespace firmament::weather {
+namespace {
+
+struct Thermals {
+  float invRhoH, p0, tRef, deardorff, environment, inflowPerKelvin;
+};
+
+// The cloud base (LCL) of every cell: the dew point from Tetens inverted with logFast (dewPoint in
+// thermodynamics.h; |error| < 1e-4 K against the double formula), then Espy. Also the parcel-table cell
+// and the thermal's kinetic energy ½(w* + max(0, w_l) + s w)², computed exactly as the trigger does.
+// Restrict parameters: GCC trusts them here, not on pointers taken from vectors inside the caller.
+void cloudBaseAndThermal(size_t n, const float* __restrict vapour, const float* __restrict anomalyT,
+                         const float* __restrict heatFlux, const float* __restrict lift,
+                         const float* __restrict updraft, const float* __restrict warming,
+                         const ParcelTable::Indexer locate, const Thermals k, float* __restrict base,
+                         int32_t* __restrict index, float* __restrict fractionA, float* __restrict fractionD,
+                         float* __restrict kinetic) {
+  const float eps = float(kEpsilon), espy = float(kLclMetresPerKelvin), invE0 = 1.0f / 610.78f;
+  for (size_t c = 0; c < n; ++c) {
+    const float anomaly = anomalyT[c];
+    const float mixing = vapour[c] * k.invRhoH;
+    const float e = std::max(k.p0 * mixing / (eps + mixing), 1e-3f);
+    const float x = std::min(logFast(e * invE0), 17.0f);
+    const float dew = (17.27f * 273.15f - 35.85f * x) / (17.27f - x);
+    const float lcl = espy * std::max(0.0f, k.tRef + anomaly - dew);
+    base[c] = lcl;
+    index[c] = locate(anomaly - warming[c], lcl * float(1.0 / kLclMetresPerKelvin), fractionA[c], fractionD[c]);
+    const float heat = heatFlux[c];
+    const float wStar = heat > 0.0f ? cbrtFast(k.deardorff * heat / (k.tRef + anomaly)) : 0.0f;
+    const float inflow = std::clamp(1.0f + (anomaly - k.environment) * k.inflowPerKelvin, 0.0f, 1.0f);
+    const float thermal = wStar + std::max(0.0f, lift[c]) + updraft[c] * inflow;
+    kinetic[c] = 0.5f * thermal * thermal;
+  }
+}
+
+// Cells the trigger must visit: those with an updraft, and those whose thermal pays the least CIN of
+// their table cell where that cell has CAPE anywhere (a bound: the trigger decides with the interpolated
+// values, so a cell left out is one it would have left unchanged). The table loads in a loop of their
+// own: GCC vectorises gathers only in a loop without if-converted selects.
+void mayTrigger(size_t n, const int32_t* __restrict index, const float* __restrict kinetic,
+                const float* __restrict updraft, const float* __restrict maxCape, const float* __restrict minCin,
+                uint8_t* __restrict active) {
+  for (size_t c = 0; c < n; ++c) {
+    const float cape = maxCape[index[c]], cin = minCin[index[c]];
+    active[c] = uint8_t(((cape > 0.0f) & (kinetic[c] >= cin)) | (updraft[c] != 0.0f));
+  }
+}
+
+}  // namespace
 
 ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, const BoundaryLayer& layer,
-                                 const ConvectionParameters& p, double dt_s) {
+                                 const ConvectionParameters& p, double dt_s, ColumnScratch& work) {
   constexpr float kCoreFraction = 0.1f, kUpdraftTime_s = 600.0f, kBuoyancyFrequency = 0.02f;
   constexpr float kMeanMoistLapse = 6.0e-3f;
   const float dt = float(dt_s);
@@ -28,56 +77,75 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
   const size_t n = s.cells();
   // The cold pool is cold against its surroundings: T′ relative to the domain mean.
   const float environment = float(sumField(s.temperature) / double(n));
-  // Cloud base (LCL) of every cell first, in a loop that vectorises: the dew point from Tetens inverted
-  // with logFast (dewPoint in thermodynamics.h; |error| < 1e-4 K against the double formula).
-  {
-    const float eps = float(kEpsilon), espy = float(kLclMetresPerKelvin);
-    const float invE0 = 1.0f / 610.78f;
-    for (size_t c = 0; c < n; ++c) {
-      const float mixing = s.vapour[c] * invRhoH;
-      const float e = std::max(p0 * mixing / (eps + mixing), 1e-3f);
-      const float x = std::min(logFast(e * invE0), 17.0f);
-      const float dew = (17.27f * 273.15f - 35.85f * x) / (17.27f - x);
-      s.cloudBase[c] = espy * std::max(0.0f, tRef + s.temperature[c] - dew);
-    }
-  }
+  work.active.resize(n);
+  work.index.resize(n);
+  for (Field& f : work.value) f.resize(n);
+  float* __restrict kinetic = work.value[0].data();
+  float* __restrict fractionA = work.value[1].data();
+  float* __restrict fractionD = work.value[2].data();
+  // First pass, over every cell in loops that vectorise: the cloud base, and which cells the second
+  // pass must visit.
+  Field noWarming;
+  if (!p.subsidenceWarming_K) noWarming.assign(n, 0.0f);
+  const Field& warming = p.subsidenceWarming_K ? *p.subsidenceWarming_K : noWarming;
+  Thermals thermals{invRhoH, p0, tRef, deardorff, environment, inflowPerKelvin};
+  cloudBaseAndThermal(n, s.vapour.data(), s.temperature.data(), s.surfaceHeatFlux.data(), s.lift.data(),
+                      s.updraft.data(), warming.data(), table.indexer(), thermals, s.cloudBase.data(),
+                      work.index.data(), fractionA, fractionD, kinetic);
+  mayTrigger(n, work.index.data(), kinetic, s.updraft.data(), table.maxCapeData(), table.minCinData(),
+             work.active.data());
   const float ownShare = float(1.0 - p.inflowFraction);
   double updraftSum = 0.0, drawn = 0.0;
-  for (size_t c = 0; c < n; ++c) {
+  // Second pass, over the cells the first one marked: the trigger with the interpolated parcel, the
+  // updraft, and top and condensation where it runs. A node's four values interpolate as one vector
+  // (lanes: CAPE, v_c, LNB, LFC), the same arithmetic as ParcelTable::lookup lane by lane; next to the
+  // edge of free convection the table's own lookup decides.
+  using Lanes = float __attribute__((vector_size(16)));
+  const ParcelTable::Node* nodes = table.nodes();
+  const uint8_t* allFree = table.allFreeData();
+  const float* minCin = table.minCinData();
+  const float* maxCape = table.maxCapeData();
+  const int32_t stride = table.rowStride();
+  const int32_t* index = work.index.data();
+  auto node = [nodes](int32_t i) {
+    Lanes v;
+    std::memcpy(&v, &nodes[i], sizeof v);
+    return v;
+  };
+  forEachActiveCell(work.active, [&](size_t c) {
     const float anomaly = s.temperature[c];
     const float surfaceT = tRef + anomaly;
     const float vapour = s.vapour[c];
     const float lcl = s.cloudBase[c];
-    const float depression = lcl * float(1.0 / kLclMetresPerKelvin);
-
-    // Trigger; the table cell's bounds reject most clear cells with one load.
-    const float shift = p.subsidenceWarming_K ? (*p.subsidenceWarming_K)[c] : 0.0f;
-    const ParcelTable::Position at = table.locate(anomaly - shift, depression);
-    const ParcelTable::CellBounds& bounds = table.bounds(at);
+    const int32_t at = index[c];
     float w = s.updraft[c];
     bool triggered = false;
-    ParcelProperties parcel;
-    if (bounds.maxCape > 0.0f) {
-      const float heat = s.surfaceHeatFlux[c];
-      const float wStar = heat > 0.0f ? cbrtFast(deardorff * heat / surfaceT) : 0.0f;
-      const float inflow = std::clamp(1.0f + (anomaly - environment) * inflowPerKelvin, 0.0f, 1.0f);
-      const float thermal = wStar + std::max(0.0f, s.lift[c]) + w * inflow;
-      const float kinetic = 0.5f * thermal * thermal;
-      if (kinetic >= bounds.minCin) {
-        parcel = table.lookup(at);
-        triggered = parcel.cape_J_kg > 0.0f && kinetic >= parcel.cin_J_kg;
+    float cape = 0.0f, neutralBuoyancy = 0.0f;
+    if (maxCape[at] > 0.0f && kinetic[c] >= minCin[at]) {
+      const float ta = fractionA[c], td = fractionD[c];
+      const Lanes v00 = node(at), v10 = node(at + 1), v01 = node(at + stride), v11 = node(at + stride + 1);
+      const Lanes lo = v00 + ta * (v10 - v00), hi = v01 + ta * (v11 - v01), v = lo + td * (hi - lo);
+      cape = v[0];
+      float cin = 0.5f * v[1] * v[1];
+      neutralBuoyancy = v[2];
+      if (cape > 0.0f && !allFree[at]) {
+        const ParcelProperties parcel = table.lookup(ParcelTable::Position{size_t(at), ta, td});
+        cape = parcel.cape_J_kg;
+        cin = parcel.cin_J_kg;
+        neutralBuoyancy = parcel.neutralBuoyancyLevel_m;
       }
+      triggered = cape > 0.0f && kinetic[c] >= cin;
     }
-    if (!triggered && w == 0.0f) continue;
-    const float target = triggered ? std::min(0.5f * std::sqrt(2.0f * parcel.cape_J_kg), 60.0f) : 0.0f;
+    if (!triggered && w == 0.0f) return;
+    const float target = triggered ? std::min(0.5f * std::sqrt(2.0f * cape), 60.0f) : 0.0f;
     w += (target - w) * relax;
     if (w < 0.01f) w = 0.0f;  // a dead updraft is zero, not an endless exponential tail
     s.updraft[c] = w;
     updraftSum += w;
-    if (!triggered || w < 0.05f) continue;
+    if (!triggered || w < 0.05f) return;
 
     // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
-    const float topTarget = std::min(std::max(parcel.neutralBuoyancyLevel_m, lcl) + w / kBuoyancyFrequency, maxTop);
+    const float topTarget = std::min(std::max(neutralBuoyancy, lcl) + w / kBuoyancyFrequency, maxTop);
     float top = std::max(s.cloudTop[c], lcl);
     top = top < topTarget ? std::min(topTarget, top + w * dt) : topTarget + (top - topTarget) * (1.0f - relax);
     s.cloudTop[c] = top;
@@ -100,7 +168,7 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     s.convectiveFraction[c] = cloud + dq > 0.0f ? (conv * cloud + dq) / (cloud + dq) : 1.0f;
     // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
     if (anomaly > environment) s.temperature[c] = environment + (anomaly - environment) * (1.0f - exchange);
-  }
+  });
   return {double(kCoreFraction) * updraftSum / double(n), drawn};
 }
 

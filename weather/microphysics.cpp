@@ -9,7 +9,7 @@
 
 namespace firmament::weather {
 
-double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_s) {
+double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_s, ColumnScratch& work) {
   constexpr float kAutoconversionRate = 1e-3f, kThresholdMixingRatio = 0.5e-3f, kFallSpeed = 6.0f;
   const float dt = float(dt_s);
   const float rho = float(layer.density_kg_m3);
@@ -19,12 +19,30 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
   const float p0 = float(layer.surfacePressure_Pa);
   double out = 0.0;
   const size_t n = s.cells();
-  for (size_t c = 0; c < n; ++c) {
-    float cloud = s.cloudWater[c], rain = s.rain[c];
-    if (cloud <= 0.0f && rain <= 0.0f) {
-      s.precipitationRate[c] = 0.0f;
-      continue;
+  // Which cells have work, in a loop that vectorises: a column without rain whose cloud is below the
+  // autoconversion threshold converts nothing (accretion needs rain) and drops nothing, so the full
+  // update would leave it as it is. Everywhere else the rate is zero until the sparse pass sets it.
+  {
+    work.active.resize(n);
+    const float* __restrict cloudW = s.cloudWater.data();
+    const float* __restrict rainW = s.rain.data();
+    const float* __restrict baseZ = s.cloudBase.data();
+    const float* __restrict topZ = s.cloudTop.data();
+    float* __restrict rate = s.precipitationRate.data();
+    uint8_t* __restrict active = work.active.data();
+    const float thresholdPerMetre = rho * kThresholdMixingRatio;
+    for (size_t c = 0; c < n; ++c) {
+      const float cloud = cloudW[c], rain = rainW[c], base = baseZ[c];
+      const float top = std::max(topZ[c], base + 100.0f);
+      const float threshold = thresholdPerMetre * std::min(top - base, 2000.0f);
+      const bool empty = cloud <= 0.0f && rain <= 0.0f;
+      const bool idle = rain == 0.0f && cloud <= threshold;
+      active[c] = uint8_t(!(empty || idle));
+      rate[c] = 0.0f;
     }
+  }
+  forEachActiveCell(work.active, [&](size_t c) {
+    float cloud = s.cloudWater[c], rain = s.rain[c];
     float base = s.cloudBase[c], top = std::max(s.cloudTop[c], base + 100.0f);
     float depth = top - base;
     // Cloud → rain.
@@ -55,7 +73,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     s.temperature[c] -= kelvinPerKg * evaporated;
     s.precipitationRate[c] = float(left / dt_s);
     out += left;
-  }
+  });
   return out * s.cellArea();
 }
 

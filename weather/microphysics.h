@@ -8,12 +8,13 @@
 // speed): F = W_r (1 − e^{−Δt V_t / z_m}). On the way down a fraction f = min(0.9, ½ (1 − RH) z_base/km)
 // evaporates into the boundary layer and cools it by L_v/(ρ c_p h) per kg/m², which makes the cold pool;
 // the rest reaches the ground and leaves the domain.
+#include "weather/active_cells.h"
 #include "weather/sounding.h"
 #include "weather/weather_state.h"
 
 namespace firmament::weather {
 
-// Returns the water that reached the ground in this step (kg).
-double applyMicrophysics(WeatherState& state, const BoundaryLayer& layer, double dt_s);
+// Returns the water that reached the ground in this step (kg). `work` is scratch (the active cells).
+double applyMicrophysics(WeatherState& state, const BoundaryLayer& layer, double dt_s, ColumnScratch& work);
 
 }  // namespace firmament::weather

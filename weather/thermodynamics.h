@@ -75,16 +75,18 @@ inline float dewPointFast(float e) {
 }
 
 // Cube root by bit estimate and two Newton steps (relative error < 1e-6 for x > 0; 0 for x ≤ 0).
+// Branch-free (x ≤ 0 computes the root of 1 and discards it), so loops that call it vectorise.
 inline float cbrtFast(float x) {
-  if (!(x > 0.0f)) return 0.0f;
+  const bool positive = x > 0.0f;
+  const float a = positive ? x : 1.0f;
   uint32_t bits;
-  std::memcpy(&bits, &x, 4);
+  std::memcpy(&bits, &a, 4);
   bits = bits / 3u + 709921077u;
   float y;
   std::memcpy(&y, &bits, 4);
-  y = y - (y * y * y - x) / (3.0f * y * y);
-  y = y - (y * y * y - x) / (3.0f * y * y);
-  return y;
+  y = y - (y * y * y - a) / (3.0f * y * y);
+  y = y - (y * y * y - a) / (3.0f * y * y);
+  return positive ? y : 0.0f;
 }
 
 }  // namespace firmament::weather

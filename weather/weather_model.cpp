@@ -232,14 +232,14 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   ConvectionParameters convection;
   convection.tropopause_m = std::max(p.tropopause_m, p.stableLayerBase_m);
   convection.subsidenceWarming_K = &subsidenceWarming_;
-  const ConvectionResult convected = applyConvection(s, parcelTable_, layer, convection, dt);
+  const ConvectionResult convected = applyConvection(s, parcelTable_, layer, convection, dt, columnScratch_);
   s.meanMassFlux_m_s = convected.massFlux_m_s;
   s.pendingVapour -= convected.drawnVapour;  // taken from the catchment at the next mass fix
   subsidence_.apply(s, kConvectiveCoreFraction, p.lapseRate_K_per_km * 1e-3, dt, subsidenceWarming_);
   s.subsidenceWarming_K = subsidence_.domainMean_K();
   clock.charge(5);
 
-  s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
+  s.precipitatedOut_kg += applyMicrophysics(s, layer, dt, columnScratch_);
   clock.charge(6);
 
   // Housekeeping: remnants of cloud and rain below 1e-3 kg/m² (cloud optical depth ≈ 0.15, cover 0.02;
