@@ -7,8 +7,23 @@
 #include "weather/thermodynamics.h"
 
 namespace firmament::weather {
+namespace {
 
-void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const StratiformParameters& p, double dt_s) {
+// Cells with work: cloud to evaporate, or vapour above a lower bound of the saturation path
+// W_sat(T′) ≥ s₀ + s₁ T′ (the tangent at T′ = 0: r_s is convex in T, and the tabulated e_s interpolates a
+// convex function from above, so the line is below every value the update compares with; the bound is
+// lowered by 1e-4 relative more for float rounding). Branch-free; restrict parameters, which GCC trusts
+// here and not on pointers taken from vectors inside the caller.
+void markColumns(size_t n, float s0, float s1, const float* __restrict anomaly, const float* __restrict vapour,
+                 const float* __restrict cloud, uint8_t* __restrict active) {
+  for (size_t c = 0; c < n; ++c)
+    active[c] = uint8_t((cloud[c] > 0.0f) | (vapour[c] > s0 + s1 * anomaly[c]));
+}
+
+}  // namespace
+
+void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const StratiformParameters& p, double dt_s,
+                     ColumnScratch& work) {
   constexpr double kCondensationTime_s = 300.0, kEvaporationTime_s = 600.0;
   const float condense = float(1.0 - std::exp(-dt_s / kCondensationTime_s));
   const float evaporate = float(1.0 - std::exp(-dt_s / kEvaporationTime_s));
@@ -21,40 +36,61 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
   const double lx = s.nx * s.cellSize_m, ly = s.ny * s.cellSize_m;
   const double period = std::fabs(p.frontDirectionX) * lx + std::fabs(p.frontDirectionY) * ly;
   const bool lifting = p.largeScaleLift_m_s != 0.0 || (p.frontLift_m_s != 0.0 && period > 0.0);
-  for (int j = 0; j < s.ny; ++j) {
-    for (int i = 0; i < s.nx; ++i) {
-      size_t c = s.index(i, j);
-      // Large-scale ascent, with the frontal band at periodic distance d along the front's motion.
-      float lift = float(p.largeScaleLift_m_s);
-      if (lifting) {
+  const size_t n = s.cells();
+  // Large-scale ascent and its adiabatic cooling, with the frontal band at periodic distance d along the
+  // front's motion.
+  Field& lift = work.value[0];
+  lift.assign(n, float(p.largeScaleLift_m_s));
+  if (lifting) {
+    for (int j = 0; j < s.ny; ++j) {
+      for (int i = 0; i < s.nx; ++i) {
+        size_t c = s.index(i, j);
+        float w = float(p.largeScaleLift_m_s);
         if (p.frontLift_m_s != 0.0 && period > 0.0) {
           double along = ((i + 0.5) * p.frontDirectionX + (j + 0.5) * p.frontDirectionY) * s.cellSize_m;
           double d = std::remainder(along - p.frontPosition_m, period);
-          lift += float(p.frontLift_m_s * std::exp(-(d * d) / (p.frontWidth_m * p.frontWidth_m)));
+          w += float(p.frontLift_m_s * std::exp(-(d * d) / (p.frontWidth_m * p.frontWidth_m)));
         }
-        s.lift[c] += lift;
-        s.temperature[c] -= float(kDryAdiabaticLapseRate) * lift * float(dt_s);
-      }
-
-      float topTemperature = float(layer.referenceTemperature_K) + s.temperature[c] - topCooling;
-      float saturated = rhoH * saturationMixingRatioFast(topTemperature, topPressure);
-      float vapour = s.vapour[c], cloud = s.cloudWater[c], conv = s.convectiveFraction[c];
-      if (vapour > saturated) {
-        float dq = (vapour - saturated) * condense;
-        transferWater(s.vapour[c], s.cloudWater[c], dq);
-        s.temperature[c] += kelvinPerKg * dq;
-        // The new water is stratiform: the convective share drops by mass weighting.
-        s.convectiveFraction[c] = cloud + dq > 0.0f ? conv * cloud / (cloud + dq) : 0.0f;
-        float stratiformTop = depth + std::min(8000.0f, std::max(lift, 0.0f) * 1e5f);
-        if (conv < 0.5f || s.cloudTop[c] < stratiformTop) s.cloudTop[c] = std::max(s.cloudTop[c] * conv, stratiformTop);
-      } else if (cloud > 0.0f) {
-        float layerDeficit = saturated > 0.0f ? std::clamp(1.0f - vapour / saturated, 0.0f, 1.0f) : 1.0f;
-        float e = cloud * evaporate * (conv * ftDeficit + (1.0f - conv) * layerDeficit);
-        transferWater(s.cloudWater[c], s.vapour[c], e);
-        s.temperature[c] -= (1.0f - conv) * kelvinPerKg * e;
+        lift[c] = w;
+        s.lift[c] += w;
+        s.temperature[c] -= float(kDryAdiabaticLapseRate) * w * float(dt_s);
       }
     }
   }
+
+  // Tangent of W_sat at T′ = 0 (double; the slope from d ln e_s/dT = 17.27 · 237.3/(T − 35.85)² and
+  // dr/de = ε p/(p − e)²).
+  {
+    const double t0 = layer.referenceTemperature_K - kDryAdiabaticLapseRate * layer.depth_m;
+    const double p1 = layer.topPressure_Pa, e0 = saturationVapourPressure(t0);
+    const double slopeE = e0 * 17.27 * (273.15 - 35.85) / ((t0 - 35.85) * (t0 - 35.85));
+    const double s0 = layer.massPerArea_kg_m2 * saturationMixingRatio(t0, p1);
+    const double s1 = layer.massPerArea_kg_m2 * kEpsilon * p1 / ((p1 - e0) * (p1 - e0)) * slopeE;
+    work.active.resize(n);
+    markColumns(n, float(s0 * (1.0 - 1e-4)), float(s1), s.temperature.data(), s.vapour.data(), s.cloudWater.data(),
+                work.active.data());
+  }
+
+  forEachActiveCell(work.active, [&](size_t c) {
+    const float w = lift[c];
+    float topTemperature = float(layer.referenceTemperature_K) + s.temperature[c] - topCooling;
+    float saturated = rhoH * saturationMixingRatioFast(topTemperature, topPressure);
+    float vapour = s.vapour[c], cloud = s.cloudWater[c], conv = s.convectiveFraction[c];
+    if (vapour > saturated) {
+      float dq = (vapour - saturated) * condense;
+      transferWater(s.vapour[c], s.cloudWater[c], dq);
+      s.temperature[c] += kelvinPerKg * dq;
+      // The new water is stratiform: the convective share drops by mass weighting.
+      s.convectiveFraction[c] = cloud + dq > 0.0f ? conv * cloud / (cloud + dq) : 0.0f;
+      float stratiformTop = depth + std::min(8000.0f, std::max(w, 0.0f) * 1e5f);
+      if (conv < 0.5f || s.cloudTop[c] < stratiformTop) s.cloudTop[c] = std::max(s.cloudTop[c] * conv, stratiformTop);
+    } else if (cloud > 0.0f) {
+      float layerDeficit = saturated > 0.0f ? std::clamp(1.0f - vapour / saturated, 0.0f, 1.0f) : 1.0f;
+      float e = cloud * evaporate * (conv * ftDeficit + (1.0f - conv) * layerDeficit);
+      transferWater(s.cloudWater[c], s.vapour[c], e);
+      s.temperature[c] -= (1.0f - conv) * kelvinPerKg * e;
+    }
+  });
 }
 
 }  // namespace firmament::weather

@@ -226,7 +226,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   stratiform.frontDirectionY = direction.y;
   stratiform.frontPosition_m = speed * s.time_s;
   stratiform.freeTroposphereRH = p.freeTroposphereRH;
-  applyStratiform(s, layer, stratiform, dt);
+  applyStratiform(s, layer, stratiform, dt, columnScratch_);
   clock.charge(4);
 
   ConvectionParameters convection;
