@@ -188,7 +188,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   double vapourBefore = sumField(s.vapour) + s.pendingVapour, cloudBefore = sumField(s.cloudWater),
          rainBefore = sumField(s.rain);
   s.pendingVapour = 0.0;
-  const bool convective = sumField(s.cloudTop) > 0.0 || sumField(s.updraft) > 0.0;
+  const bool convective = anyNonZero(s.cloudTop) || anyNonZero(s.updraft);  // both are ≥ 0
   advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
   if (convective)
     advection_.advectFields({&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
