@@ -5,38 +5,6 @@
 #include <cstring>
 
 namespace firmament::weather {
-namespace {
-
-// Departure points of one row, in a loop that vectorises (restrict parameters, which GCC trusts here and
-// not on pointers taken from vectors inside the caller). In cell units and in double, so that long steps
-// keep their sub-cell fraction; the floor is a 32-bit truncation corrected for negative values (the
-// clamp to ±1e9 keeps it in range; std::floor is a library call without SSE4.1). Departures within one
-// domain width wrap here; farther ones are left outside [0, n) for the caller.
-void departureRow(int nx, int j, double scale, const float* __restrict u, const float* __restrict v,
-                  int32_t* __restrict i0, int32_t* __restrict j0, float* __restrict fx, float* __restrict fy, int ny) {
-  constexpr double kLimit = 1e9;
-  for (int i = 0; i < nx; ++i) {
-    double x = double(i) - double(u[i]) * scale, y = double(j) - double(v[i]) * scale;
-    x = x < -kLimit ? -kLimit : (x > kLimit ? kLimit : x);
-    y = y < -kLimit ? -kLimit : (y > kLimit ? kLimit : y);
-    // Truncate, then step down where that rounded up (negative x); in double, so that the select's mask
-    // has the width of the comparison.
-    double floorX = double(int32_t(x)), floorY = double(int32_t(y));
-    floorX -= floorX > x ? 1.0 : 0.0;
-    floorY -= floorY > y ? 1.0 : 0.0;
-    fx[i] = float(x - floorX);
-    fy[i] = float(y - floorY);
-    int32_t ix = int32_t(floorX), iy = int32_t(floorY);
-    ix += ix < 0 ? nx : 0;
-    ix -= ix >= nx ? nx : 0;
-    iy += iy < 0 ? ny : 0;
-    iy -= iy >= ny ? ny : 0;
-    i0[i] = ix;
-    j0[i] = iy;
-  }
-}
-
-}  // namespace
 
 void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, int nx, int ny, double cellSize_m,
                                       double dt_s) {
@@ -48,15 +16,26 @@ void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, in
   fx_.resize(n);
   fy_.resize(n);
   const double scale = dt_s / cellSize_m;
-  for (int j = 0; j < ny; ++j) {
-    const size_t row = size_t(j) * nx;
-    departureRow(nx, j, scale, &windU[row], &windV[row], &i0_[row], &j0_[row], &fx_[row], &fy_[row], ny);
-  }
-  // Departures more than a domain width away (only with extreme winds or steps): the full modulo.
-  for (size_t c = 0; c < n; ++c) {
-    if (uint32_t(i0_[c]) >= uint32_t(nx)) i0_[c] = ((i0_[c] % nx) + nx) % nx;
-    if (uint32_t(j0_[c]) >= uint32_t(ny)) j0_[c] = ((j0_[c] % ny) + ny) % ny;
-  }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      size_t c = size_t(j) * nx + i;
+      // Departure point in cell units, in double so that long steps keep their sub-cell fraction. The
+      // floor is a truncation corrected for negative values (std::floor is a library call without
+      // SSE4.1); only departures beyond the domain need the modulo.
+      double x = i - windU[c] * scale, y = j - windV[c] * scale;
+      double limit = 1e9;
+      x = std::clamp(x, -limit, limit);
+      y = std::clamp(y, -limit, limit);
+      long long ix = (long long)x, iy = (long long)y;
+      ix -= double(ix) > x;
+      iy -= double(iy) > y;
+      fx_[c] = float(x - double(ix));
+      fy_[c] = float(y - double(iy));
+      if (ix < 0 || ix >= nx) ix = ((ix % nx) + nx) % nx;  // far departures only
+      if (iy < 0 || iy >= ny) iy = ((iy % ny) + ny) % ny;
+      i0_[c] = int32_t(ix);
+      j0_[c] = int32_t(iy);
+    }
 }
 
 void SemiLagrangianAdvection::advect(Field& f) { advectFields({&f}); }
