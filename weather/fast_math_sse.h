@@ -62,5 +62,56 @@ inline F4 cbrtFast(F4 x) {
   return _mm_and_ps(positive, y);
 }
 
+inline F4 negate(F4 x) { return _mm_xor_ps(x, set1(-0.0f)); }
+
+// expFast, lane by lane.
+inline F4 expFast(F4 x) {
+  x = _mm_max_ps(set1(-87.0f), x);
+  x = _mm_min_ps(set1(88.0f), x);
+  const F4 kRound = set1(12582912.0f);
+  const F4 t = _mm_add_ps(_mm_mul_ps(x, set1(1.44269504f)), kRound);
+  const F4 n = _mm_sub_ps(t, kRound);
+  const F4 r = _mm_sub_ps(_mm_sub_ps(x, _mm_mul_ps(n, set1(0.693359375f))), _mm_mul_ps(n, set1(-2.12194440e-4f)));
+  F4 p = _mm_add_ps(set1(1.0f / 120), _mm_mul_ps(r, set1(1.0f / 720)));
+  p = _mm_add_ps(set1(1.0f / 24), _mm_mul_ps(r, p));
+  p = _mm_add_ps(set1(1.0f / 6), _mm_mul_ps(r, p));
+  p = _mm_add_ps(set1(0.5f), _mm_mul_ps(r, p));
+  p = _mm_add_ps(set1(1.0f), _mm_mul_ps(r, p));
+  p = _mm_add_ps(set1(1.0f), _mm_mul_ps(r, p));
+  const I4 bits = _mm_slli_epi32(_mm_add_epi32(_mm_sub_epi32(_mm_castps_si128(t), _mm_set1_epi32(0x4B400000)), _mm_set1_epi32(127)), 23);
+  return _mm_mul_ps(p, _mm_castsi128_ps(bits));
+}
+
+// oneMinusExpFast, lane by lane (both forms, selected).
+inline F4 oneMinusExpFast(F4 x) {
+  F4 p = _mm_sub_ps(set1(1.0f / 720), _mm_mul_ps(x, set1(1.0f / 5040)));
+  p = _mm_sub_ps(set1(1.0f / 120), _mm_mul_ps(x, p));
+  p = _mm_sub_ps(set1(1.0f / 24), _mm_mul_ps(x, p));
+  p = _mm_sub_ps(set1(1.0f / 6), _mm_mul_ps(x, p));
+  p = _mm_sub_ps(set1(0.5f), _mm_mul_ps(x, p));
+  p = _mm_sub_ps(set1(1.0f), _mm_mul_ps(x, p));
+  const F4 series = _mm_mul_ps(x, p);
+  const F4 direct = _mm_sub_ps(set1(1.0f), expFast(negate(x)));
+  return select(_mm_cmpge_ps(x, set1(0.25f)), direct, series);
+}
+
+// powFast, lane by lane (0 for x ≤ 0).
+inline F4 powFast(F4 x, float y) {
+  return _mm_and_ps(_mm_cmpgt_ps(x, _mm_setzero_ps()), expFast(_mm_mul_ps(set1(y), logFast(x))));
+}
+
+// transferWater (weather_state.h), lane by lane: both candidate moves computed, the exact one selected.
+inline void transferWater(F4& from, F4& to, F4 amount) {
+  const F4 f = from, t = to;
+  const F4 move = _mm_cmpgt_ps(amount, _mm_setzero_ps());
+  const F4 a = _mm_min_ps(amount, f);  // amount < f ? amount : f
+  const F4 toA = _mm_add_ps(t, a), gained = _mm_sub_ps(toA, t), fromA = _mm_sub_ps(f, gained);
+  const F4 exactA = _mm_and_ps(_mm_cmple_ps(gained, f), _mm_cmpeq_ps(_mm_sub_ps(f, fromA), gained));
+  const F4 fromB = _mm_sub_ps(f, a), lost = _mm_sub_ps(f, fromB), toB = _mm_add_ps(t, lost);
+  const F4 exactB = _mm_cmpeq_ps(_mm_sub_ps(toB, t), lost);
+  from = select(move, select(exactA, fromA, select(exactB, fromB, f)), f);
+  to = select(move, select(exactA, toA, select(exactB, toB, t)), t);
+}
+
 }  // namespace firmament::weather::sse
 #endif
