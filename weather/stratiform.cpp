@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "weather/fast_math_sse.h"
 #include "weather/physical_constants.h"
 #include "weather/thermodynamics.h"
 
@@ -60,16 +61,61 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
 
   // Tangent of W_sat at T′ = 0 (double; the slope from d ln e_s/dT = 17.27 · 237.3/(T − 35.85)² and
   // dr/de = ε p/(p − e)²).
+  const double t0 = layer.referenceTemperature_K - kDryAdiabaticLapseRate * layer.depth_m;
+  const double p1 = layer.topPressure_Pa, e0 = saturationVapourPressure(t0);
+  const double slopeE = e0 * 17.27 * (273.15 - 35.85) / ((t0 - 35.85) * (t0 - 35.85));
+  const float s0 = float(layer.massPerArea_kg_m2 * saturationMixingRatio(t0, p1) * (1.0 - 1e-4));
+  const float s1 = float(layer.massPerArea_kg_m2 * kEpsilon * p1 / ((p1 - e0) * (p1 - e0)) * slopeE);
+  size_t start = 0;
+#if defined(__SSE2__)
+  // Four cells at a time, the same operations as the scalar update below lane by lane (fast_math_sse.h),
+  // its branches as selects; four cells without work (the bound above) are skipped.
   {
-    const double t0 = layer.referenceTemperature_K - kDryAdiabaticLapseRate * layer.depth_m;
-    const double p1 = layer.topPressure_Pa, e0 = saturationVapourPressure(t0);
-    const double slopeE = e0 * 17.27 * (273.15 - 35.85) / ((t0 - 35.85) * (t0 - 35.85));
-    const double s0 = layer.massPerArea_kg_m2 * saturationMixingRatio(t0, p1);
-    const double s1 = layer.massPerArea_kg_m2 * kEpsilon * p1 / ((p1 - e0) * (p1 - e0)) * slopeE;
-    work.active.resize(n);
-    markColumns(n, float(s0 * (1.0 - 1e-4)), float(s1), s.temperature.data(), s.vapour.data(), s.cloudWater.data(),
-                work.active.data());
+    using namespace sse;
+    const F4 zero = _mm_setzero_ps(), one = set1(1.0f);
+    const F4 tRef = set1(float(layer.referenceTemperature_K)), topCoolingV = set1(topCooling);
+    const F4 topPressureV = set1(topPressure), rhoHV = set1(rhoH);
+    float* anomalyT = s.temperature.data();
+    float* vapourW = s.vapour.data();
+    float* cloudW = s.cloudWater.data();
+    float* convective = s.convectiveFraction.data();
+    float* cloudTop = s.cloudTop.data();
+    const float* ascent = lift.data();
+    for (; start + 4 <= n; start += 4) {
+      const size_t c = start;
+      const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
+      const F4 cloudy = _mm_cmpgt_ps(cloud, zero);
+      if (_mm_movemask_ps(_mm_or_ps(cloudy, _mm_cmpgt_ps(vapour, _mm_add_ps(set1(s0), _mm_mul_ps(set1(s1), anomaly))))) == 0)
+        continue;
+      const F4 conv = _mm_loadu_ps(convective + c), top = _mm_loadu_ps(cloudTop + c);
+      const F4 saturated = _mm_mul_ps(rhoHV, saturationMixingRatioFast4(_mm_sub_ps(_mm_add_ps(tRef, anomaly), topCoolingV), topPressureV));
+      const F4 condensing = _mm_cmpgt_ps(vapour, saturated);
+      const F4 evaporating = _mm_andnot_ps(condensing, cloudy);
+      const F4 dq = _mm_mul_ps(_mm_sub_ps(vapour, saturated), set1(condense));
+      const F4 layerDeficit = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_sub_ps(one, _mm_div_ps(vapour, saturated)), zero, one), one);
+      const F4 stratiformShare = _mm_sub_ps(one, conv);
+      const F4 e = _mm_mul_ps(_mm_mul_ps(cloud, set1(evaporate)),
+                              _mm_add_ps(_mm_mul_ps(conv, set1(ftDeficit)), _mm_mul_ps(stratiformShare, layerDeficit)));
+      F4 from = select(condensing, vapour, cloud), to = select(condensing, cloud, vapour);
+      transferWater(from, to, select(condensing, dq, _mm_and_ps(evaporating, e)));
+      _mm_storeu_ps(vapourW + c, select(condensing, from, to));
+      _mm_storeu_ps(cloudW + c, select(condensing, to, from));
+      const F4 warmed = _mm_add_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), dq));
+      const F4 cooled = _mm_sub_ps(anomaly, _mm_mul_ps(_mm_mul_ps(stratiformShare, set1(kelvinPerKg)), e));
+      _mm_storeu_ps(anomalyT + c, select(condensing, warmed, select(evaporating, cooled, anomaly)));
+      const F4 total = _mm_add_ps(cloud, dq);
+      const F4 mixedShare = _mm_and_ps(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_mul_ps(conv, cloud), total));
+      _mm_storeu_ps(convective + c, select(condensing, mixedShare, conv));
+      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(_mm_loadu_ps(ascent + c), zero), set1(1e5f))));
+      const F4 lower = _mm_or_ps(_mm_cmplt_ps(conv, set1(0.5f)), _mm_cmplt_ps(top, stratiformTop));
+      _mm_storeu_ps(cloudTop + c, select(_mm_and_ps(condensing, lower), maxStd(_mm_mul_ps(top, conv), stratiformTop), top));
+    }
   }
+#endif
+  // The remaining cells (all of them without SSE2): those with work, then the update.
+  work.active.assign(n, 0);
+  markColumns(n - start, s0, s1, s.temperature.data() + start, s.vapour.data() + start, s.cloudWater.data() + start,
+              work.active.data() + start);
 
   forEachActiveCell(work.active, [&](size_t c) {
     const float w = lift[c];
