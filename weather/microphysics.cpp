@@ -30,7 +30,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     using namespace sse;
     const F4 zero = _mm_setzero_ps(), rhoV = set1(rho);
     const F4 thresholdPerMetre = set1(rho * kThresholdMixingRatio);
-    const __m128d invDt = _mm_set1_pd(dt_s);
+    const __m128d dtPair = _mm_set1_pd(dt_s);
     __m128d leftLo = _mm_setzero_pd(), leftHi = _mm_setzero_pd();
     float* cloudW = s.cloudWater.data();
     float* rainW = s.rain.data();
@@ -68,16 +68,24 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 saturated = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), anomaly), set1(p0)));
       const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(vapour, saturated), zero, set1(1.0f)), set1(1.0f));
       const F4 share = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
-      const F4 evaporated = _mm_mul_ps(fallen, share);
-      const F4 newRain = _mm_sub_ps(rainNow, fallen), newVapour = _mm_add_ps(vapour, evaporated);
+      F4 evaporated = _mm_mul_ps(fallen, share);
+      const F4 newRain = _mm_sub_ps(rainNow, fallen);
+      F4 newVapour = _mm_add_ps(vapour, evaporated);
+      // A trace below the vapour path's resolution cannot evaporate exactly: the rounded gain could
+      // exceed what the rain lost (a negative rate at the ground); it falls out instead (both
+      // differences are exact in double).
+      const __m128d lostA = _mm_sub_pd(_mm_cvtps_pd(rainNow), _mm_cvtps_pd(newRain));
+      const __m128d lostB = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(rainNow, rainNow)), _mm_cvtps_pd(_mm_movehl_ps(newRain, newRain)));
+      const __m128d gainA = _mm_sub_pd(_mm_cvtps_pd(newVapour), _mm_cvtps_pd(vapour));
+      const __m128d gainB = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)), _mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)));
+      const F4 inexact = _mm_shuffle_ps(_mm_castpd_ps(_mm_cmpgt_pd(gainA, lostA)), _mm_castpd_ps(_mm_cmpgt_pd(gainB, lostB)),
+                                        _MM_SHUFFLE(2, 0, 2, 0));
+      evaporated = _mm_andnot_ps(inexact, evaporated);
+      newVapour = select(inexact, vapour, newVapour);
       // What left the fields is exactly what the stored values lost (round-off included), in double.
-      const __m128d leftA = _mm_sub_pd(_mm_sub_pd(_mm_cvtps_pd(rainNow), _mm_cvtps_pd(newRain)),
-                                       _mm_sub_pd(_mm_cvtps_pd(newVapour), _mm_cvtps_pd(vapour)));
-      const F4 rainHi = _mm_movehl_ps(rainNow, rainNow), newRainHi = _mm_movehl_ps(newRain, newRain);
-      const F4 newVapourHi = _mm_movehl_ps(newVapour, newVapour), vapourHi = _mm_movehl_ps(vapour, vapour);
-      const __m128d leftB = _mm_sub_pd(_mm_sub_pd(_mm_cvtps_pd(rainHi), _mm_cvtps_pd(newRainHi)),
-                                       _mm_sub_pd(_mm_cvtps_pd(newVapourHi), _mm_cvtps_pd(vapourHi)));
-      const F4 precipitation = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(leftA, invDt)), _mm_cvtpd_ps(_mm_div_pd(leftB, invDt)));
+      const __m128d leftA = _mm_sub_pd(lostA, _mm_and_pd(_mm_cmple_pd(gainA, lostA), gainA));
+      const __m128d leftB = _mm_sub_pd(lostB, _mm_and_pd(_mm_cmple_pd(gainB, lostB), gainB));
+      const F4 precipitation = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(leftA, dtPair)), _mm_cvtpd_ps(_mm_div_pd(leftB, dtPair)));
       // Lanes without work keep everything (their update would change nothing: see the scalar pass).
       const __m128d activeLo = _mm_castps_pd(_mm_unpacklo_ps(active, active));
       const __m128d activeHi = _mm_castps_pd(_mm_unpackhi_ps(active, active));
@@ -134,6 +142,12 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     float evaporated = fallen * evaporatedShare;
     float newRain = rain - fallen;
     float newVapour = vapour + evaporated;
+    // A trace below the vapour path's resolution cannot evaporate exactly: the rounded gain could exceed
+    // what the rain lost (a negative rate at the ground); it falls out instead.
+    if (double(newVapour) - double(vapour) > double(rain) - double(newRain)) {
+      newVapour = vapour;
+      evaporated = 0.0f;
+    }
     // What left the fields is exactly what the stored values lost (round-off included).
     double left = (double(rain) - double(newRain)) - (double(newVapour) - double(vapour));
     s.rain[c] = newRain;
