@@ -150,6 +150,110 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     std::memcpy(&v, &nodes[i], sizeof v);
     return v;
   };
+#if defined(__SSE2__)
+  // Four cells at a time where any of them is marked: the scalar update below with its branches as
+  // selects (fast_math_sse.h), the four parcels interpolated as above and transposed into lanes. The
+  // updraft and drawn-vapour sums run in pairs of double lanes (round-off against the scalar order).
+  size_t start = 0;
+  {
+    using namespace sse;
+    const F4 zero = _mm_setzero_ps(), one = set1(1.0f);
+    const F4 relaxV = set1(relax), tRefV = set1(tRef), environmentV = set1(environment);
+    __m128d updraftLo = _mm_setzero_pd(), updraftHi = _mm_setzero_pd(), drawnLo = _mm_setzero_pd(), drawnHi = _mm_setzero_pd();
+    const uint8_t* marked = work.active.data();
+    float* anomalyT = s.temperature.data();
+    float* vapourW = s.vapour.data();
+    float* cloudW = s.cloudWater.data();
+    float* updraftW = s.updraft.data();
+    float* cloudTopZ = s.cloudTop.data();
+    float* convective = s.convectiveFraction.data();
+    const float* baseZ = s.cloudBase.data();
+    for (; start + 4 <= n; start += 4) {
+      const size_t c = start;
+      uint32_t any;
+      std::memcpy(&any, marked + c, 4);
+      if (any == 0) continue;
+      alignas(16) float parcel[4][4];  // per lane: CAPE, v_c, LNB, LFC
+      alignas(16) float boundCape[4], boundCin[4];
+      alignas(16) int32_t edge[4] = {0, 0, 0, 0};
+      for (int l = 0; l < 4; ++l) {
+        const int32_t at = index[c + l];
+        boundCape[l] = maxCape[at];
+        boundCin[l] = minCin[at];
+        const float ta = fractionA[c + l], td = fractionD[c + l];
+        const Lanes v00 = node(at), v10 = node(at + 1), v01 = node(at + stride), v11 = node(at + stride + 1);
+        const Lanes lo = v00 + ta * (v10 - v00), hi = v01 + ta * (v11 - v01), v = lo + td * (hi - lo);
+        std::memcpy(parcel[l], &v, sizeof v);
+        if (v[0] > 0.0f && !allFree[at]) {  // next to the edge of free convection: the table decides
+          const ParcelProperties exact = table.lookup(ParcelTable::Position{size_t(at), ta, td});
+          parcel[l][0] = exact.cape_J_kg;
+          parcel[l][2] = exact.neutralBuoyancyLevel_m;
+          parcel[l][3] = exact.cin_J_kg;  // the CIN itself, flagged by edge[l]
+          edge[l] = -1;
+        }
+      }
+      F4 cape = _mm_load_ps(parcel[0]), speed = _mm_load_ps(parcel[1]), neutral = _mm_load_ps(parcel[2]), edgeCin = _mm_load_ps(parcel[3]);
+      _MM_TRANSPOSE4_PS(cape, speed, neutral, edgeCin);
+      const F4 isEdge = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(edge)));
+      const F4 cin = select(isEdge, edgeCin, _mm_mul_ps(_mm_mul_ps(set1(0.5f), speed), speed));
+      const F4 kineticV = _mm_loadu_ps(kinetic + c);
+      const F4 bound = _mm_and_ps(_mm_cmpgt_ps(_mm_load_ps(boundCape), zero), _mm_cmpge_ps(kineticV, _mm_load_ps(boundCin)));
+      const F4 triggered = _mm_and_ps(bound, _mm_and_ps(_mm_cmpgt_ps(cape, zero), _mm_cmpge_ps(kineticV, cin)));
+      // The updraft.
+      const F4 w0 = _mm_loadu_ps(updraftW + c);
+      const F4 target = _mm_and_ps(triggered, minStd(_mm_mul_ps(set1(0.5f), _mm_sqrt_ps(_mm_mul_ps(set1(2.0f), cape))), set1(60.0f)));
+      F4 w = _mm_add_ps(w0, _mm_mul_ps(_mm_sub_ps(target, w0), relaxV));
+      w = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.01f)), w);
+      const F4 visited = _mm_or_ps(triggered, _mm_cmpneq_ps(w0, zero));
+      w = select(visited, w, w0);
+      _mm_storeu_ps(updraftW + c, w);
+      const F4 wVisited = _mm_and_ps(visited, w);
+      updraftLo = _mm_add_pd(updraftLo, _mm_cvtps_pd(wVisited));
+      updraftHi = _mm_add_pd(updraftHi, _mm_cvtps_pd(_mm_movehl_ps(wVisited, wVisited)));
+      const F4 runs = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.05f)), triggered);
+      if (_mm_movemask_ps(runs) == 0) continue;
+      // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
+      const F4 lcl = _mm_loadu_ps(baseZ + c);
+      const F4 topTarget = minStd(_mm_add_ps(maxStd(neutral, lcl), _mm_div_ps(w, set1(kBuoyancyFrequency))), set1(maxTop));
+      const F4 oldTop = _mm_loadu_ps(cloudTopZ + c);
+      F4 top = maxStd(oldTop, lcl);
+      top = select(_mm_cmplt_ps(top, topTarget), minStd(topTarget, _mm_add_ps(top, _mm_mul_ps(w, set1(dt)))),
+                   _mm_add_ps(topTarget, _mm_mul_ps(_mm_sub_ps(top, topTarget), _mm_sub_ps(one, relaxV))));
+      _mm_storeu_ps(cloudTopZ + c, select(runs, top, oldTop));
+      // Condensation into the core.
+      const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
+      const F4 lclTemperature = _mm_sub_ps(_mm_add_ps(tRefV, anomaly), _mm_mul_ps(set1(float(kDryAdiabaticLapseRate)), lcl));
+      const F4 topTemperature = _mm_sub_ps(lclTemperature, _mm_mul_ps(set1(kMeanMoistLapse), _mm_sub_ps(top, lcl)));
+      const F4 topPressure = _mm_mul_ps(set1(p0), expFast(_mm_mul_ps(top, set1(invScaleHeight))));
+      const F4 remaining = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(topTemperature, topPressure));
+      const F4 exchange = oneMinusExpFast(_mm_mul_ps(set1(exchangePerUpdraft), w));
+      const F4 dq = _mm_mul_ps(maxStd(zero, _mm_sub_ps(vapour, remaining)), exchange);
+      const F4 newCloud = _mm_add_ps(cloud, dq), newVapour = maxStd(zero, _mm_sub_ps(vapour, _mm_mul_ps(set1(ownShare), dq)));
+      const __m128d gainLo = _mm_sub_pd(_mm_cvtps_pd(newCloud), _mm_cvtps_pd(cloud));
+      const __m128d gainHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newCloud, newCloud)), _mm_cvtps_pd(_mm_movehl_ps(cloud, cloud)));
+      const __m128d lossLo = _mm_sub_pd(_mm_cvtps_pd(vapour), _mm_cvtps_pd(newVapour));
+      const __m128d lossHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)), _mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)));
+      drawnLo = _mm_add_pd(drawnLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(runs, runs)), _mm_sub_pd(gainLo, lossLo)));
+      drawnHi = _mm_add_pd(drawnHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(runs, runs)), _mm_sub_pd(gainHi, lossHi)));
+      _mm_storeu_ps(cloudW + c, select(runs, newCloud, cloud));
+      _mm_storeu_ps(vapourW + c, select(runs, newVapour, vapour));
+      const F4 conv = _mm_loadu_ps(convective + c), total = _mm_add_ps(cloud, dq);
+      const F4 mixed = select(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_add_ps(_mm_mul_ps(conv, cloud), dq), total), one);
+      _mm_storeu_ps(convective + c, select(runs, mixed, conv));
+      // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
+      const F4 vented = _mm_add_ps(environmentV, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), _mm_sub_ps(one, exchange)));
+      _mm_storeu_ps(anomalyT + c, select(_mm_and_ps(runs, _mm_cmpgt_ps(anomaly, environmentV)), vented, anomaly));
+    }
+    alignas(16) double parts[8];
+    _mm_store_pd(parts, updraftLo);
+    _mm_store_pd(parts + 2, updraftHi);
+    _mm_store_pd(parts + 4, drawnLo);
+    _mm_store_pd(parts + 6, drawnHi);
+    updraftSum = (parts[0] + parts[1]) + (parts[2] + parts[3]);
+    drawn = (parts[4] + parts[5]) + (parts[6] + parts[7]);
+    std::fill(work.active.begin(), work.active.begin() + ptrdiff_t(start), uint8_t(0));  // done
+  }
+#endif
   forEachActiveCell(work.active, [&](size_t c) {
     const float anomaly = s.temperature[c];
     const float surfaceT = tRef + anomaly;
