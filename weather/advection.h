@@ -35,6 +35,8 @@ class SemiLagrangianAdvection {
   std::vector<int32_t> i0_, j0_;
   std::vector<float> fx_, fy_;
   std::vector<Field> scratchMany_;
+  Field packed_;  // several fields interleaved, 4 or 8 floats per cell (advectFields)
+  Field zeros_;   // the lanes of the interleaved fields that no field fills
 };
 
 }  // namespace firmament::weather

@@ -34,22 +34,21 @@ double applyLayerGrowth(WeatherState& s, const LayerGrowthParameters& p, double 
     after = h0 + (before - h0) * std::exp(-dt_s / kLayerCollapseTime_s);
   }
   s.layerDepth_m = after;
+  // The exchange is booked as the change of the field's total (the totals the budget is checked with;
+  // a running sum of per-cell changes would be one long chain of dependent double additions).
   double exchanged = 0.0;
+  float* vapour = s.vapour.data();
   if (after > before || vented > 0.0) {
     const float added = float(p.density_kg_m3 * (grown + vented) * p.entrainedMixingRatio);
     const float kept = float((before - vented) / before);
-    for (size_t c = 0; c < n; ++c) {
-      float v = s.vapour[c], mixed = v * kept + added;
-      exchanged += double(mixed) - double(v);
-      s.vapour[c] = mixed;
-    }
+    exchanged = -sumField(s.vapour);
+    for (size_t c = 0; c < n; ++c) vapour[c] = vapour[c] * kept + added;
+    exchanged += sumField(s.vapour);
   } else if (after < before) {
     const float kept = float(after / before);
-    for (size_t c = 0; c < n; ++c) {
-      float v = s.vapour[c], shrunk = v * kept;
-      exchanged += double(shrunk) - double(v);
-      s.vapour[c] = shrunk;
-    }
+    exchanged = -sumField(s.vapour);
+    for (size_t c = 0; c < n; ++c) vapour[c] = vapour[c] * kept;
+    exchanged += sumField(s.vapour);
   }
   return exchanged * s.cellArea();
 }

@@ -2,15 +2,102 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "weather/fast_math.h"
+#include "weather/fast_math_sse.h"
 #include "weather/physical_constants.h"
 #include "weather/thermodynamics.h"
 
 namespace firmament::weather {
+namespace {
+
+struct Thermals {
+  float invRhoH, p0, tRef, deardorff, environment, inflowPerKelvin;
+};
+
+// The cloud base (LCL) of every cell: the dew point from Tetens inverted with logFast (dewPoint in
+// thermodynamics.h; |error| < 1e-4 K against the double formula), then Espy. Also the parcel-table cell
+// and the thermal's kinetic energy ½(w* + max(0, w_l) + s w)², computed exactly as the trigger does.
+// Restrict parameters: GCC trusts them here, not on pointers taken from vectors inside the caller.
+void cloudBaseAndThermal(size_t n, const float* __restrict vapour, const float* __restrict anomalyT,
+                         const float* __restrict heatFlux, const float* __restrict lift,
+                         const float* __restrict updraft, const float* __restrict warming,
+                         const ParcelTable::Indexer locate, const Thermals k, float* __restrict base,
+                         int32_t* __restrict index, float* __restrict fractionA, float* __restrict fractionD,
+                         float* __restrict kinetic) {
+  const float eps = float(kEpsilon), espy = float(kLclMetresPerKelvin), invE0 = 1.0f / 610.78f;
+  size_t c = 0;
+#if defined(__SSE2__)
+  // Four cells at a time, the same operations as the scalar loop below (fast_math_sse.h).
+  {
+    using namespace sse;
+    const F4 invRhoH = set1(k.invRhoH), p0 = set1(k.p0), tRef = set1(k.tRef), epsV = set1(eps);
+    const F4 zero = _mm_setzero_ps(), one = set1(1.0f);
+    const F4 perDegree = set1(float(1.0 / kLclMetresPerKelvin));
+    const F4 maxA = set1(locate.maxA), maxD = set1(locate.maxD), rowLength = set1(float(locate.nAnomaly));
+    for (; c + 4 <= n; c += 4) {
+      const F4 anomaly = _mm_loadu_ps(anomalyT + c);
+      const F4 mixing = _mm_mul_ps(_mm_loadu_ps(vapour + c), invRhoH);
+      const F4 e = maxStd(_mm_div_ps(_mm_mul_ps(p0, mixing), _mm_add_ps(epsV, mixing)), set1(1e-3f));
+      const F4 x = minStd(logFast(_mm_mul_ps(e, set1(invE0))), set1(17.0f));
+      const F4 dew = _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
+      const F4 surfaceT = _mm_add_ps(tRef, anomaly);
+      const F4 lcl = _mm_mul_ps(set1(espy), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
+      _mm_storeu_ps(base + c, lcl);
+      // ParcelTable::Indexer: clamped fractional position, cell index (in float: exact below 2²⁴).
+      F4 fa = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(anomaly, _mm_loadu_ps(warming + c)), set1(ParcelTable::kMinAnomaly)),
+                         set1(1.0f / ParcelTable::kAnomalyStep));
+      F4 fd = _mm_mul_ps(_mm_mul_ps(lcl, perDegree), set1(1.0f / ParcelTable::kDepressionStep));
+      fa = _mm_max_ps(zero, _mm_min_ps(maxA, fa));
+      fd = _mm_max_ps(zero, _mm_min_ps(maxD, fd));
+      const F4 a = _mm_cvtepi32_ps(_mm_cvttps_epi32(fa)), d = _mm_cvtepi32_ps(_mm_cvttps_epi32(fd));
+      _mm_storeu_ps(fractionA + c, _mm_sub_ps(fa, a));
+      _mm_storeu_ps(fractionD + c, _mm_sub_ps(fd, d));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(index + c), _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(d, rowLength), a)));
+      // The thermal.
+      const F4 heat = _mm_loadu_ps(heatFlux + c);
+      const F4 wStar = _mm_and_ps(_mm_cmpgt_ps(heat, zero), cbrtFast(_mm_div_ps(_mm_mul_ps(set1(k.deardorff), heat), surfaceT)));
+      const F4 inflow = clampStd(_mm_add_ps(one, _mm_mul_ps(_mm_sub_ps(anomaly, set1(k.environment)), set1(k.inflowPerKelvin))), zero, one);
+      const F4 thermal = _mm_add_ps(_mm_add_ps(wStar, maxStd(zero, _mm_loadu_ps(lift + c))), _mm_mul_ps(_mm_loadu_ps(updraft + c), inflow));
+      _mm_storeu_ps(kinetic + c, _mm_mul_ps(_mm_mul_ps(set1(0.5f), thermal), thermal));
+    }
+  }
+#endif
+  for (; c < n; ++c) {
+    const float anomaly = anomalyT[c];
+    const float mixing = vapour[c] * k.invRhoH;
+    const float e = std::max(k.p0 * mixing / (eps + mixing), 1e-3f);
+    const float x = std::min(logFast(e * invE0), 17.0f);
+    const float dew = (17.27f * 273.15f - 35.85f * x) / (17.27f - x);
+    const float lcl = espy * std::max(0.0f, k.tRef + anomaly - dew);
+    base[c] = lcl;
+    index[c] = locate(anomaly - warming[c], lcl * float(1.0 / kLclMetresPerKelvin), fractionA[c], fractionD[c]);
+    const float heat = heatFlux[c];
+    const float wStar = heat > 0.0f ? cbrtFast(k.deardorff * heat / (k.tRef + anomaly)) : 0.0f;
+    const float inflow = std::clamp(1.0f + (anomaly - k.environment) * k.inflowPerKelvin, 0.0f, 1.0f);
+    const float thermal = wStar + std::max(0.0f, lift[c]) + updraft[c] * inflow;
+    kinetic[c] = 0.5f * thermal * thermal;
+  }
+}
+
+// Cells the trigger must visit: those with an updraft, and those whose thermal pays the least CIN of
+// their table cell where that cell has CAPE anywhere (a bound: the trigger decides with the interpolated
+// values, so a cell left out is one it would have left unchanged). The table loads in a loop of their
+// own: GCC vectorises gathers only in a loop without if-converted selects.
+void mayTrigger(size_t n, const int32_t* __restrict index, const float* __restrict kinetic,
+                const float* __restrict updraft, const float* __restrict maxCape, const float* __restrict minCin,
+                uint8_t* __restrict active) {
+  for (size_t c = 0; c < n; ++c) {
+    const float cape = maxCape[index[c]], cin = minCin[index[c]];
+    active[c] = uint8_t(((cape > 0.0f) & (kinetic[c] >= cin)) | (updraft[c] != 0.0f));
+  }
+}
+
+}  // namespace
 
 ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, const BoundaryLayer& layer,
-                                 const ConvectionParameters& p, double dt_s) {
+                                 const ConvectionParameters& p, double dt_s, ColumnScratch& work) {
   constexpr float kCoreFraction = 0.1f, kUpdraftTime_s = 600.0f, kBuoyancyFrequency = 0.02f;
   constexpr float kMeanMoistLapse = 6.0e-3f;
   const float dt = float(dt_s);
@@ -28,56 +115,179 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
   const size_t n = s.cells();
   // The cold pool is cold against its surroundings: T′ relative to the domain mean.
   const float environment = float(sumField(s.temperature) / double(n));
-  // Cloud base (LCL) of every cell first, in a loop that vectorises: the dew point from Tetens inverted
-  // with logFast (dewPoint in thermodynamics.h; |error| < 1e-4 K against the double formula).
-  {
-    const float eps = float(kEpsilon), espy = float(kLclMetresPerKelvin);
-    const float invE0 = 1.0f / 610.78f;
-    for (size_t c = 0; c < n; ++c) {
-      const float mixing = s.vapour[c] * invRhoH;
-      const float e = std::max(p0 * mixing / (eps + mixing), 1e-3f);
-      const float x = std::min(logFast(e * invE0), 17.0f);
-      const float dew = (17.27f * 273.15f - 35.85f * x) / (17.27f - x);
-      s.cloudBase[c] = espy * std::max(0.0f, tRef + s.temperature[c] - dew);
-    }
-  }
+  work.active.resize(n);
+  work.index.resize(n);
+  for (Field& f : work.value) f.resize(n);
+  float* __restrict kinetic = work.value[0].data();
+  float* __restrict fractionA = work.value[1].data();
+  float* __restrict fractionD = work.value[2].data();
+  // First pass, over every cell in loops that vectorise: the cloud base, and which cells the second
+  // pass must visit.
+  Field noWarming;
+  if (!p.subsidenceWarming_K) noWarming.assign(n, 0.0f);
+  const Field& warming = p.subsidenceWarming_K ? *p.subsidenceWarming_K : noWarming;
+  Thermals thermals{invRhoH, p0, tRef, deardorff, environment, inflowPerKelvin};
+  cloudBaseAndThermal(n, s.vapour.data(), s.temperature.data(), s.surfaceHeatFlux.data(), s.lift.data(),
+                      s.updraft.data(), warming.data(), table.indexer(), thermals, s.cloudBase.data(),
+                      work.index.data(), fractionA, fractionD, kinetic);
+  mayTrigger(n, work.index.data(), kinetic, s.updraft.data(), table.maxCapeData(), table.minCinData(),
+             work.active.data());
   const float ownShare = float(1.0 - p.inflowFraction);
   double updraftSum = 0.0, drawn = 0.0;
-  for (size_t c = 0; c < n; ++c) {
+  // Second pass, over the cells the first one marked: the trigger with the interpolated parcel, the
+  // updraft, and top and condensation where it runs. A node's four values interpolate as one vector
+  // (lanes: CAPE, v_c, LNB, LFC), the same arithmetic as ParcelTable::lookup lane by lane; next to the
+  // edge of free convection the table's own lookup decides.
+  using Lanes = float __attribute__((vector_size(16)));
+  const ParcelTable::Node* nodes = table.nodes();
+  const uint8_t* allFree = table.allFreeData();
+  const float* minCin = table.minCinData();
+  const float* maxCape = table.maxCapeData();
+  const int32_t stride = table.rowStride();
+  const int32_t* index = work.index.data();
+  auto node = [nodes](int32_t i) {
+    Lanes v;
+    std::memcpy(&v, &nodes[i], sizeof v);
+    return v;
+  };
+#if defined(__SSE2__)
+  // Four cells at a time where any of them is marked: the scalar update below with its branches as
+  // selects (fast_math_sse.h), the four parcels interpolated as above and transposed into lanes. The
+  // updraft and drawn-vapour sums run in pairs of double lanes (round-off against the scalar order).
+  size_t start = 0;
+  {
+    using namespace sse;
+    const F4 zero = _mm_setzero_ps(), one = set1(1.0f);
+    const F4 relaxV = set1(relax), tRefV = set1(tRef), environmentV = set1(environment);
+    __m128d updraftLo = _mm_setzero_pd(), updraftHi = _mm_setzero_pd(), drawnLo = _mm_setzero_pd(), drawnHi = _mm_setzero_pd();
+    const uint8_t* marked = work.active.data();
+    float* anomalyT = s.temperature.data();
+    float* vapourW = s.vapour.data();
+    float* cloudW = s.cloudWater.data();
+    float* updraftW = s.updraft.data();
+    float* cloudTopZ = s.cloudTop.data();
+    float* convective = s.convectiveFraction.data();
+    const float* baseZ = s.cloudBase.data();
+    for (; start + 4 <= n; start += 4) {
+      const size_t c = start;
+      uint32_t any;
+      std::memcpy(&any, marked + c, 4);
+      if (any == 0) continue;
+      alignas(16) float parcel[4][4];  // per lane: CAPE, v_c, LNB, LFC
+      alignas(16) float boundCape[4], boundCin[4];
+      alignas(16) int32_t edge[4] = {0, 0, 0, 0};
+      for (int l = 0; l < 4; ++l) {
+        const int32_t at = index[c + l];
+        boundCape[l] = maxCape[at];
+        boundCin[l] = minCin[at];
+        const float ta = fractionA[c + l], td = fractionD[c + l];
+        const Lanes v00 = node(at), v10 = node(at + 1), v01 = node(at + stride), v11 = node(at + stride + 1);
+        const Lanes lo = v00 + ta * (v10 - v00), hi = v01 + ta * (v11 - v01), v = lo + td * (hi - lo);
+        std::memcpy(parcel[l], &v, sizeof v);
+        if (v[0] > 0.0f && !allFree[at]) {  // next to the edge of free convection: the table decides
+          const ParcelProperties exact = table.lookup(ParcelTable::Position{size_t(at), ta, td});
+          parcel[l][0] = exact.cape_J_kg;
+          parcel[l][2] = exact.neutralBuoyancyLevel_m;
+          parcel[l][3] = exact.cin_J_kg;  // the CIN itself, flagged by edge[l]
+          edge[l] = -1;
+        }
+      }
+      F4 cape = _mm_load_ps(parcel[0]), speed = _mm_load_ps(parcel[1]), neutral = _mm_load_ps(parcel[2]), edgeCin = _mm_load_ps(parcel[3]);
+      _MM_TRANSPOSE4_PS(cape, speed, neutral, edgeCin);
+      const F4 isEdge = _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(edge)));
+      const F4 cin = select(isEdge, edgeCin, _mm_mul_ps(_mm_mul_ps(set1(0.5f), speed), speed));
+      const F4 kineticV = _mm_loadu_ps(kinetic + c);
+      const F4 bound = _mm_and_ps(_mm_cmpgt_ps(_mm_load_ps(boundCape), zero), _mm_cmpge_ps(kineticV, _mm_load_ps(boundCin)));
+      const F4 triggered = _mm_and_ps(bound, _mm_and_ps(_mm_cmpgt_ps(cape, zero), _mm_cmpge_ps(kineticV, cin)));
+      // The updraft.
+      const F4 w0 = _mm_loadu_ps(updraftW + c);
+      const F4 target = _mm_and_ps(triggered, minStd(_mm_mul_ps(set1(0.5f), _mm_sqrt_ps(_mm_mul_ps(set1(2.0f), cape))), set1(60.0f)));
+      F4 w = _mm_add_ps(w0, _mm_mul_ps(_mm_sub_ps(target, w0), relaxV));
+      w = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.01f)), w);
+      const F4 visited = _mm_or_ps(triggered, _mm_cmpneq_ps(w0, zero));
+      w = select(visited, w, w0);
+      _mm_storeu_ps(updraftW + c, w);
+      const F4 wVisited = _mm_and_ps(visited, w);
+      updraftLo = _mm_add_pd(updraftLo, _mm_cvtps_pd(wVisited));
+      updraftHi = _mm_add_pd(updraftHi, _mm_cvtps_pd(_mm_movehl_ps(wVisited, wVisited)));
+      const F4 runs = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.05f)), triggered);
+      if (_mm_movemask_ps(runs) == 0) continue;
+      // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
+      const F4 lcl = _mm_loadu_ps(baseZ + c);
+      const F4 topTarget = minStd(_mm_add_ps(maxStd(neutral, lcl), _mm_div_ps(w, set1(kBuoyancyFrequency))), set1(maxTop));
+      const F4 oldTop = _mm_loadu_ps(cloudTopZ + c);
+      F4 top = maxStd(oldTop, lcl);
+      top = select(_mm_cmplt_ps(top, topTarget), minStd(topTarget, _mm_add_ps(top, _mm_mul_ps(w, set1(dt)))),
+                   _mm_add_ps(topTarget, _mm_mul_ps(_mm_sub_ps(top, topTarget), _mm_sub_ps(one, relaxV))));
+      _mm_storeu_ps(cloudTopZ + c, select(runs, top, oldTop));
+      // Condensation into the core.
+      const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
+      const F4 lclTemperature = _mm_sub_ps(_mm_add_ps(tRefV, anomaly), _mm_mul_ps(set1(float(kDryAdiabaticLapseRate)), lcl));
+      const F4 topTemperature = _mm_sub_ps(lclTemperature, _mm_mul_ps(set1(kMeanMoistLapse), _mm_sub_ps(top, lcl)));
+      const F4 topPressure = _mm_mul_ps(set1(p0), expFast(_mm_mul_ps(top, set1(invScaleHeight))));
+      const F4 remaining = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(topTemperature, topPressure));
+      const F4 exchange = oneMinusExpFast(_mm_mul_ps(set1(exchangePerUpdraft), w));
+      const F4 dq = _mm_mul_ps(maxStd(zero, _mm_sub_ps(vapour, remaining)), exchange);
+      const F4 newCloud = _mm_add_ps(cloud, dq), newVapour = maxStd(zero, _mm_sub_ps(vapour, _mm_mul_ps(set1(ownShare), dq)));
+      const __m128d gainLo = _mm_sub_pd(_mm_cvtps_pd(newCloud), _mm_cvtps_pd(cloud));
+      const __m128d gainHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newCloud, newCloud)), _mm_cvtps_pd(_mm_movehl_ps(cloud, cloud)));
+      const __m128d lossLo = _mm_sub_pd(_mm_cvtps_pd(vapour), _mm_cvtps_pd(newVapour));
+      const __m128d lossHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)), _mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)));
+      drawnLo = _mm_add_pd(drawnLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(runs, runs)), _mm_sub_pd(gainLo, lossLo)));
+      drawnHi = _mm_add_pd(drawnHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(runs, runs)), _mm_sub_pd(gainHi, lossHi)));
+      _mm_storeu_ps(cloudW + c, select(runs, newCloud, cloud));
+      _mm_storeu_ps(vapourW + c, select(runs, newVapour, vapour));
+      const F4 conv = _mm_loadu_ps(convective + c), total = _mm_add_ps(cloud, dq);
+      const F4 mixed = select(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_add_ps(_mm_mul_ps(conv, cloud), dq), total), one);
+      _mm_storeu_ps(convective + c, select(runs, mixed, conv));
+      // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
+      const F4 vented = _mm_add_ps(environmentV, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), _mm_sub_ps(one, exchange)));
+      _mm_storeu_ps(anomalyT + c, select(_mm_and_ps(runs, _mm_cmpgt_ps(anomaly, environmentV)), vented, anomaly));
+    }
+    alignas(16) double parts[8];
+    _mm_store_pd(parts, updraftLo);
+    _mm_store_pd(parts + 2, updraftHi);
+    _mm_store_pd(parts + 4, drawnLo);
+    _mm_store_pd(parts + 6, drawnHi);
+    updraftSum = (parts[0] + parts[1]) + (parts[2] + parts[3]);
+    drawn = (parts[4] + parts[5]) + (parts[6] + parts[7]);
+    std::fill(work.active.begin(), work.active.begin() + ptrdiff_t(start), uint8_t(0));  // done
+  }
+#endif
+  forEachActiveCell(work.active, [&](size_t c) {
     const float anomaly = s.temperature[c];
     const float surfaceT = tRef + anomaly;
     const float vapour = s.vapour[c];
     const float lcl = s.cloudBase[c];
-    const float depression = lcl * float(1.0 / kLclMetresPerKelvin);
-
-    // Trigger; the table cell's bounds reject most clear cells with one load.
-    const float shift = p.subsidenceWarming_K ? (*p.subsidenceWarming_K)[c] : 0.0f;
-    const ParcelTable::Position at = table.locate(anomaly - shift, depression);
-    const ParcelTable::CellBounds& bounds = table.bounds(at);
+    const int32_t at = index[c];
     float w = s.updraft[c];
     bool triggered = false;
-    ParcelProperties parcel;
-    if (bounds.maxCape > 0.0f) {
-      const float heat = s.surfaceHeatFlux[c];
-      const float wStar = heat > 0.0f ? cbrtFast(deardorff * heat / surfaceT) : 0.0f;
-      const float inflow = std::clamp(1.0f + (anomaly - environment) * inflowPerKelvin, 0.0f, 1.0f);
-      const float thermal = wStar + std::max(0.0f, s.lift[c]) + w * inflow;
-      const float kinetic = 0.5f * thermal * thermal;
-      if (kinetic >= bounds.minCin) {
-        parcel = table.lookup(at);
-        triggered = parcel.cape_J_kg > 0.0f && kinetic >= parcel.cin_J_kg;
+    float cape = 0.0f, neutralBuoyancy = 0.0f;
+    if (maxCape[at] > 0.0f && kinetic[c] >= minCin[at]) {
+      const float ta = fractionA[c], td = fractionD[c];
+      const Lanes v00 = node(at), v10 = node(at + 1), v01 = node(at + stride), v11 = node(at + stride + 1);
+      const Lanes lo = v00 + ta * (v10 - v00), hi = v01 + ta * (v11 - v01), v = lo + td * (hi - lo);
+      cape = v[0];
+      float cin = 0.5f * v[1] * v[1];
+      neutralBuoyancy = v[2];
+      if (cape > 0.0f && !allFree[at]) {
+        const ParcelProperties parcel = table.lookup(ParcelTable::Position{size_t(at), ta, td});
+        cape = parcel.cape_J_kg;
+        cin = parcel.cin_J_kg;
+        neutralBuoyancy = parcel.neutralBuoyancyLevel_m;
       }
+      triggered = cape > 0.0f && kinetic[c] >= cin;
     }
-    if (!triggered && w == 0.0f) continue;
-    const float target = triggered ? std::min(0.5f * std::sqrt(2.0f * parcel.cape_J_kg), 60.0f) : 0.0f;
+    if (!triggered && w == 0.0f) return;
+    const float target = triggered ? std::min(0.5f * std::sqrt(2.0f * cape), 60.0f) : 0.0f;
     w += (target - w) * relax;
     if (w < 0.01f) w = 0.0f;  // a dead updraft is zero, not an endless exponential tail
     s.updraft[c] = w;
     updraftSum += w;
-    if (!triggered || w < 0.05f) continue;
+    if (!triggered || w < 0.05f) return;
 
     // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
-    const float topTarget = std::min(std::max(parcel.neutralBuoyancyLevel_m, lcl) + w / kBuoyancyFrequency, maxTop);
+    const float topTarget = std::min(std::max(neutralBuoyancy, lcl) + w / kBuoyancyFrequency, maxTop);
     float top = std::max(s.cloudTop[c], lcl);
     top = top < topTarget ? std::min(topTarget, top + w * dt) : topTarget + (top - topTarget) * (1.0f - relax);
     s.cloudTop[c] = top;
@@ -100,7 +310,7 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     s.convectiveFraction[c] = cloud + dq > 0.0f ? (conv * cloud + dq) / (cloud + dq) : 1.0f;
     // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
     if (anomaly > environment) s.temperature[c] = environment + (anomaly - environment) * (1.0f - exchange);
-  }
+  });
   return {double(kCoreFraction) * updraftSum / double(n), drawn};
 }
 

@@ -41,6 +41,7 @@
 // moist lapse rate), so the condensation rate is  C = (σ w / h) (W_v − ρ h r_s(T_top)), integrated
 // exactly over the step. The same exchange ventilates the layer's warm anomaly toward its surroundings,
 // dT′/dt = −(σ w/h)(T′ − T̄′) where T′ > T̄′.
+#include "weather/active_cells.h"
 #include "weather/parcel_table.h"
 #include "weather/sounding.h"
 #include "weather/weather_state.h"
@@ -59,7 +60,8 @@ struct ConvectionResult {
   double drawnVapour = 0.0;   // Σ over cells (kg/m²) of vapour condensed from the catchment
 };
 
+// `work` is scratch (the cells with an updraft or a chance to trigger).
 ConvectionResult applyConvection(WeatherState& state, const ParcelTable& table, const BoundaryLayer& layer,
-                                 const ConvectionParameters& p, double dt_s);
+                                 const ConvectionParameters& p, double dt_s, ColumnScratch& work);
 
 }  // namespace firmament::weather

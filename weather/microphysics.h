@@ -7,13 +7,15 @@
 // Rain falls out with terminal speed V_t = 6 m/s from the cloud's mid height z_m (Kessler's mean fall
 // speed): F = W_r (1 − e^{−Δt V_t / z_m}). On the way down a fraction f = min(0.9, ½ (1 − RH) z_base/km)
 // evaporates into the boundary layer and cools it by L_v/(ρ c_p h) per kg/m², which makes the cold pool;
-// the rest reaches the ground and leaves the domain.
+// the rest reaches the ground and leaves the domain. A trace too small to change the vapour path exactly
+// (below half its ulp) does not evaporate but falls out, so the rate at the ground is never negative.
+#include "weather/active_cells.h"
 #include "weather/sounding.h"
 #include "weather/weather_state.h"
 
 namespace firmament::weather {
 
-// Returns the water that reached the ground in this step (kg).
-double applyMicrophysics(WeatherState& state, const BoundaryLayer& layer, double dt_s);
+// Returns the water that reached the ground in this step (kg). `work` is scratch (the active cells).
+double applyMicrophysics(WeatherState& state, const BoundaryLayer& layer, double dt_s, ColumnScratch& work);
 
 }  // namespace firmament::weather

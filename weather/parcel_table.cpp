@@ -88,6 +88,10 @@ void ParcelTable::build(const Sounding& s) {
   size_t n = size_t(nAnomaly_) * nDepression_;
   for (auto* v : {&cin_, &cape_, &lfc_, &lnb_}) v->resize(n);
   bounds_.resize(n);
+  minCin_.resize(n);
+  maxCape_.resize(n);
+  nodes_.resize(n);
+  allFree_.resize(n);
   // The parcel profiles depend on the surface temperature and pressure only: a new layer depth or
   // inversion (the daytime growth of the mixed layer) reuses them and only re-integrates the buoyancy.
   if (profiles_.size() != n * kLevels || profileTemperature_ != s.surfaceTemperature_K ||
@@ -122,6 +126,10 @@ void ParcelTable::build(const Sounding& s) {
       float minSpeed = std::min(std::min(cin_[i], cin_[right]), std::min(cin_[i + up], cin_[right + up]));
       bounds_[i].minCin = 0.5f * minSpeed * minSpeed;
       bounds_[i].maxCape = std::max(std::max(cape_[i], cape_[right]), std::max(cape_[i + up], cape_[right + up]));
+      minCin_[i] = bounds_[i].minCin;
+      maxCape_[i] = bounds_[i].maxCape;
+      nodes_[i] = {cape_[i], cin_[i], lnb_[i], lfc_[i]};
+      allFree_[i] = cape_[i] > 0 && cape_[right] > 0 && cape_[i + up] > 0 && cape_[right + up] > 0;
     }
 }
 

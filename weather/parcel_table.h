@@ -13,6 +13,7 @@
 // parcel profiles are kept between rebuilds that keep the surface temperature and pressure (a growing
 // mixed layer changes only the environment), so such a rebuild costs ~1 ms, not ~20.
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "weather/sounding.h"
@@ -45,11 +46,41 @@ class ParcelTable {
     int a = int(fa), d = int(fd);
     return {size_t(d) * size_t(nAnomaly_) + size_t(a), fa - float(a), fd - float(d)};
   }
+  // The same cell index in 32-bit arithmetic, as a value a vectorised loop keeps in registers (a member
+  // function would reload the table's sizes after every float store).
+  struct Indexer {
+    float maxA, maxD;
+    int32_t nAnomaly;
+    // The cell index; ta, td the fractions within it (as in Position).
+    int32_t operator()(float temperatureAnomaly_K, float dewPointDepression_K, float& ta, float& td) const {
+      float fa = (temperatureAnomaly_K - kMinAnomaly) * (1.0f / kAnomalyStep);
+      float fd = dewPointDepression_K * (1.0f / kDepressionStep);
+      fa = fa < 0.0f ? 0.0f : (fa > maxA ? maxA : fa);
+      fd = fd < 0.0f ? 0.0f : (fd > maxD ? maxD : fd);
+      const int32_t a = int32_t(fa), d = int32_t(fd);
+      ta = fa - float(a);
+      td = fd - float(d);
+      return d * nAnomaly + a;
+    }
+  };
+  Indexer indexer() const { return {maxA_, maxD_, nAnomaly_}; }
   // Bounds of the interpolated CIN (from below) and CAPE (from above) anywhere in a table cell.
   struct CellBounds {
     float minCin, maxCape;
   };
   const CellBounds& bounds(const Position& at) const { return bounds_[at.index]; }
+  // The same bounds as two flat arrays by cell index (what a vectorised loop can gather).
+  const float* minCinData() const { return minCin_.data(); }
+  const float* maxCapeData() const { return maxCape_.data(); }
+  // The tabulated values of one node side by side, so that a bilinear lookup is four 16-byte loads and
+  // one 4-wide interpolation; and per table cell whether all four corners have free convection (where
+  // that interpolation is what lookup() returns).
+  struct alignas(16) Node {
+    float cape, cinSpeed, neutralBuoyancyLevel, freeConvectionLevel;
+  };
+  const Node* nodes() const { return nodes_.data(); }
+  const uint8_t* allFreeData() const { return allFree_.data(); }
+  int32_t rowStride() const { return nAnomaly_; }
   ParcelProperties lookup(float temperatureAnomaly_K, float dewPointDepression_K) const {
     return lookup(locate(temperatureAnomaly_K, dewPointDepression_K));
   }
@@ -103,6 +134,9 @@ class ParcelTable {
   float maxA_ = 0.0f, maxD_ = 0.0f;
   std::vector<float> cin_, cape_, lfc_, lnb_;  // [depression][anomaly]; cin_ holds v_c = √(2 CIN)
   std::vector<CellBounds> bounds_;
+  std::vector<float> minCin_, maxCape_;
+  std::vector<Node> nodes_;
+  std::vector<uint8_t> allFree_;
   std::vector<double> profiles_;  // parcel temperature per node and level
   double profileTemperature_ = -1.0, profilePressure_ = -1.0;
 };

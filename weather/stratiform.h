@@ -11,6 +11,7 @@
 // Cloud water evaporates by mixing with unsaturated air, E = W_c (1 − e^{−Δt/τ_e}) (1 − RH), τ_e = 600 s:
 // convective cloud mixes with the free troposphere (RH_ft), stratiform cloud with the layer itself
 // (and only while the layer top is unsaturated); the evaporated water returns to the vapour path.
+#include "weather/active_cells.h"
 #include "weather/sounding.h"
 #include "weather/weather_state.h"
 
@@ -25,6 +26,8 @@ struct StratiformParameters {
   double freeTroposphereRH = 0.5;
 };
 
-void applyStratiform(WeatherState& state, const BoundaryLayer& layer, const StratiformParameters& p, double dt_s);
+// `work` is scratch (the ascent per cell, the cells with work).
+void applyStratiform(WeatherState& state, const BoundaryLayer& layer, const StratiformParameters& p, double dt_s,
+                     ColumnScratch& work);
 
 }  // namespace firmament::weather

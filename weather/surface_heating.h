@@ -11,6 +11,10 @@
 // depth of liquid water τ = 3 LWP/(2 ρ_w r_e), r_e = 10 µm (Stephens 1978, JAS 35:2123). The relaxations
 // stand for entrainment and large-scale advection (τ = 6 h); the vapour exchange is booked as water
 // entering or leaving the domain.
+#include <algorithm>
+
+#include "weather/fast_math.h"
+#include "weather/physical_constants.h"
 #include "weather/sounding.h"
 #include "weather/weather_state.h"
 
@@ -28,9 +32,15 @@ struct SurfaceHeatingParameters {
 };
 
 // Cloud cover from liquid water path: c = 1 − exp(−LWP / 0.05 kg m⁻²) (τ ≈ 7.5 at the e-folding path).
-float cloudCover(float cloudWater_kg_m2);
+inline constexpr float kCoverPerWater = 20.0f;  // 1 / (0.05 kg m⁻²)
+inline float cloudCover(float w) { return oneMinusExpFast(std::max(w, 0.0f) * kCoverPerWater); }
 // Two-stream transmission of a cloud of this liquid water path.
-float cloudTransmission(float cloudWater_kg_m2);
+inline float cloudTransmission(float w) {
+  constexpr float kAsymmetry = 0.85f, kEffectiveRadius = 10e-6f;
+  constexpr float kOpticalDepthPerWater = float(1.5 / (kWaterDensity * double(kEffectiveRadius)));  // 3/(2 ρ_w r_e)
+  float tau = kOpticalDepthPerWater * std::max(w, 0.0f);
+  return 1.0f / (1.0f + 0.75f * (1.0f - kAsymmetry) * tau);
+}
 
 // Returns the water that entered the domain in this step (kg; negative when it left); sets the state's
 // domain-mean sensible heat flux (the mixed layer's growth integrates it).

@@ -5,6 +5,10 @@
 #include <cstring>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace firmament::weather {
 
 // Saturation vapour pressure over liquid water, Tetens (1930) in the form of Murray (1967):
@@ -65,6 +69,26 @@ inline float saturationMixingRatioFast(float t, float p) {
   return 0.62199f * e / (p - e);  // ε = R_d/R_v
 }
 
+#if defined(__SSE2__)
+// saturationMixingRatioFast for four lanes (the table's loads are scalar: SSE2 has no gather).
+inline __m128 saturationMixingRatioFast4(__m128 t, __m128 p) {
+  const SaturationTables& s = gSaturationTables;
+  t = _mm_max_ps(_mm_set1_ps(SaturationTables::kMinT), _mm_min_ps(_mm_set1_ps(SaturationTables::kMaxT), t));
+  const __m128 x = _mm_mul_ps(_mm_sub_ps(t, _mm_set1_ps(SaturationTables::kMinT)), _mm_set1_ps(1.0f / SaturationTables::kStepT));
+  // i = min(⌊x⌋, size − 2), in float (exact integers).
+  const __m128 fi = _mm_min_ps(_mm_cvtepi32_ps(_mm_cvttps_epi32(x)), _mm_set1_ps(float(int(s.es.size()) - 2)));
+  const __m128 f = _mm_sub_ps(x, fi);
+  alignas(16) int32_t index[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(index), _mm_cvttps_epi32(fi));
+  const float* es = s.es.data();
+  const __m128 lo = _mm_setr_ps(es[index[0]], es[index[1]], es[index[2]], es[index[3]]);
+  const __m128 hi = _mm_setr_ps(es[index[0] + 1], es[index[1] + 1], es[index[2] + 1], es[index[3] + 1]);
+  __m128 e = _mm_add_ps(lo, _mm_mul_ps(f, _mm_sub_ps(hi, lo)));
+  e = _mm_min_ps(e, _mm_mul_ps(_mm_set1_ps(0.5f), p));  // e < 0.5 p ? e : 0.5 p
+  return _mm_div_ps(_mm_mul_ps(_mm_set1_ps(0.62199f), e), _mm_sub_ps(p, e));
+}
+#endif
+
 inline float dewPointFast(float e) {
   const SaturationTables& s = gSaturationTables;
   if (!(e >= SaturationTables::kMinTableE && e < SaturationTables::kMaxE)) return float(dewPoint(e));
@@ -75,16 +99,18 @@ inline float dewPointFast(float e) {
 }
 
 // Cube root by bit estimate and two Newton steps (relative error < 1e-6 for x > 0; 0 for x ≤ 0).
+// Branch-free (x ≤ 0 computes the root of 1 and discards it), so loops that call it vectorise.
 inline float cbrtFast(float x) {
-  if (!(x > 0.0f)) return 0.0f;
+  const bool positive = x > 0.0f;
+  const float a = positive ? x : 1.0f;
   uint32_t bits;
-  std::memcpy(&bits, &x, 4);
+  std::memcpy(&bits, &a, 4);
   bits = bits / 3u + 709921077u;
   float y;
   std::memcpy(&y, &bits, 4);
-  y = y - (y * y * y - x) / (3.0f * y * y);
-  y = y - (y * y * y - x) / (3.0f * y * y);
-  return y;
+  y = y - (y * y * y - a) / (3.0f * y * y);
+  y = y - (y * y * y - a) / (3.0f * y * y);
+  return positive ? y : 0.0f;
 }
 
 }  // namespace firmament::weather

@@ -9,6 +9,7 @@
 #include "weather/boundary_layer_growth.h"
 #include "weather/compensating_subsidence.h"
 #include "weather/convection.h"
+#include "weather/fast_math_sse.h"
 #include "weather/microphysics.h"
 #include "weather/physical_constants.h"
 #include "weather/sounding.h"
@@ -188,7 +189,7 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   double vapourBefore = sumField(s.vapour) + s.pendingVapour, cloudBefore = sumField(s.cloudWater),
          rainBefore = sumField(s.rain);
   s.pendingVapour = 0.0;
-  const bool convective = sumField(s.cloudTop) > 0.0 || sumField(s.updraft) > 0.0;
+  const bool convective = anyNonZero(s.cloudTop) || anyNonZero(s.updraft);  // both are ≥ 0
   advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
   if (convective)
     advection_.advectFields({&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
@@ -226,20 +227,20 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   stratiform.frontDirectionY = direction.y;
   stratiform.frontPosition_m = speed * s.time_s;
   stratiform.freeTroposphereRH = p.freeTroposphereRH;
-  applyStratiform(s, layer, stratiform, dt);
+  applyStratiform(s, layer, stratiform, dt, columnScratch_);
   clock.charge(4);
 
   ConvectionParameters convection;
   convection.tropopause_m = std::max(p.tropopause_m, p.stableLayerBase_m);
   convection.subsidenceWarming_K = &subsidenceWarming_;
-  const ConvectionResult convected = applyConvection(s, parcelTable_, layer, convection, dt);
+  const ConvectionResult convected = applyConvection(s, parcelTable_, layer, convection, dt, columnScratch_);
   s.meanMassFlux_m_s = convected.massFlux_m_s;
   s.pendingVapour -= convected.drawnVapour;  // taken from the catchment at the next mass fix
   subsidence_.apply(s, kConvectiveCoreFraction, p.lapseRate_K_per_km * 1e-3, dt, subsidenceWarming_);
   s.subsidenceWarming_K = subsidence_.domainMean_K();
   clock.charge(5);
 
-  s.precipitatedOut_kg += applyMicrophysics(s, layer, dt);
+  s.precipitatedOut_kg += applyMicrophysics(s, layer, dt, columnScratch_);
   clock.charge(6);
 
   // Housekeeping: remnants of cloud and rain below 1e-3 kg/m² (cloud optical depth ≈ 0.15, cover 0.02;
@@ -251,7 +252,43 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   constexpr float kRemnant = 1e-3f;
   double remnants = 0.0;
   const size_t n = s.cells();
-  for (size_t c = 0; c < n; ++c) {
+  size_t start = 0;
+#if defined(__SSE2__)
+  // Four cells at a time, the scalar loop's selects; the remnants summed in two pairs of double lanes (a
+  // different order than one running sum: round-off).
+  {
+    using namespace sse;
+    const F4 zero = _mm_setzero_ps(), remnant = set1(kRemnant), one = set1(1.0f);
+    __m128d sumLo = _mm_setzero_pd(), sumHi = _mm_setzero_pd();
+    for (; start + 4 <= n; start += 4) {
+      const size_t c = start;
+      _mm_storeu_ps(&s.temperature[c], clampStd(_mm_loadu_ps(&s.temperature[c]), set1(-30.0f), set1(30.0f)));
+      const F4 cloud = _mm_loadu_ps(&s.cloudWater[c]), rain = _mm_loadu_ps(&s.rain[c]);
+      const F4 top = _mm_loadu_ps(&s.cloudTop[c]), conv = _mm_loadu_ps(&s.convectiveFraction[c]);
+      const F4 bare = _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(cloud, zero), _mm_cmpeq_ps(rain, zero)),
+                                 _mm_and_ps(_mm_cmpeq_ps(top, zero), _mm_cmpeq_ps(conv, zero)));
+      if (_mm_movemask_ps(bare) == 0xF) continue;
+      const F4 cloudGone = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmplt_ps(cloud, remnant));
+      const F4 rainGone = _mm_and_ps(_mm_cmpgt_ps(rain, zero), _mm_cmplt_ps(rain, remnant));
+      const F4 cloudLeft = _mm_andnot_ps(cloudGone, cloud), rainLeft = _mm_andnot_ps(rainGone, rain);
+      // The remnants, summed as doubles (a float sum of the two could round).
+      const F4 cloudRem = _mm_and_ps(cloudGone, cloud), rainRem = _mm_and_ps(rainGone, rain);
+      sumLo = _mm_add_pd(sumLo, _mm_add_pd(_mm_cvtps_pd(cloudRem), _mm_cvtps_pd(rainRem)));
+      sumHi = _mm_add_pd(sumHi, _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(cloudRem, cloudRem)), _mm_cvtps_pd(_mm_movehl_ps(rainRem, rainRem))));
+      const F4 clear = _mm_andnot_ps(bare, _mm_and_ps(_mm_cmpeq_ps(cloudLeft, zero), _mm_cmpeq_ps(rainLeft, zero)));
+      _mm_storeu_ps(&s.cloudWater[c], cloudLeft);
+      _mm_storeu_ps(&s.rain[c], rainLeft);
+      _mm_storeu_ps(&s.cloudTop[c], _mm_andnot_ps(clear, top));
+      // Bare lanes keep conv (0): clamp of 0 is 0.
+      _mm_storeu_ps(&s.convectiveFraction[c], clampStd(_mm_andnot_ps(clear, conv), zero, one));
+    }
+    alignas(16) double parts[4];
+    _mm_store_pd(parts, sumLo);
+    _mm_store_pd(parts + 2, sumHi);
+    remnants = (parts[0] + parts[1]) + (parts[2] + parts[3]);
+  }
+#endif
+  for (size_t c = start; c < n; ++c) {
     s.temperature[c] = std::clamp(s.temperature[c], -30.0f, 30.0f);
     float cloud = s.cloudWater[c], rain = s.rain[c];
     if (cloud == 0.0f && rain == 0.0f && s.cloudTop[c] == 0.0f && s.convectiveFraction[c] == 0.0f) continue;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "weather/active_cells.h"
 #include "weather/advection.h"
 #include "weather/compensating_subsidence.h"
 #include "weather/mixing.h"
@@ -101,6 +102,7 @@ class WeatherModel {
   Field subsidenceWarming_;
   SemiLagrangianAdvection advection_;
   Mixing mixing_;
+  ColumnScratch columnScratch_;
   ParcelTable parcelTable_;
   std::array<double, PresetParameters::kCount> tableParameters_{};
   double tableBuiltAt_s_ = -1e30;

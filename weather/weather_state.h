@@ -38,6 +38,8 @@ inline void transferWater(float& from, float& to, float amount) {
 
 // Σ of a field in double precision.
 double sumField(const Field& f);
+// Whether any value is non-zero (NaN counts as non-zero).
+bool anyNonZero(const Field& f);
 
 struct WeatherState {
   int nx = 0, ny = 0;

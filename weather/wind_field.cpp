@@ -4,6 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "weather/value_noise.h"
 
 namespace firmament::weather {
@@ -28,6 +32,38 @@ void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
     for (int i = 0; i < nx; ++i) out[i] = 0.25f * (south[i] + north[i]) + 0.5f * row[i];
   }
 }
+
+#if defined(__SSE2__)
+// One coarse row to the fine row of a grid twice as fine (the 400 m grid on 200 m cells): fine cell 2k
+// lies ¾ of the way from coarse k − 1 to k, cell 2k + 1 ¼ of the way from k to k + 1 (the weights
+// coarseNeighbours gives), so four coarse values make eight cells, with the same arithmetic as the
+// general loop in update(): (offset + a) + w (b − a), or a + w (b − a) without an offset. The row is
+// padded with its periodic neighbours.
+void interpolatePairs(const std::vector<float>& coarse, float offset, bool withOffset, float* out,
+                      std::vector<float>& padded) {
+  const size_t cn = coarse.size();
+  padded.resize(cn + 8);
+  padded[0] = coarse[cn - 1];
+  std::copy(coarse.begin(), coarse.end(), padded.begin() + 1);
+  padded[cn + 1] = coarse[0];
+  const __m128 offsetV = _mm_set1_ps(offset), threeQuarters = _mm_set1_ps(0.75f), quarter = _mm_set1_ps(0.25f);
+  size_t k = 0;
+  for (; k + 4 <= cn; k += 4) {
+    const __m128 left = _mm_loadu_ps(&padded[k]), centre = _mm_loadu_ps(&padded[k + 1]), right = _mm_loadu_ps(&padded[k + 2]);
+    const __m128 evenBase = withOffset ? _mm_add_ps(offsetV, left) : left;
+    const __m128 oddBase = withOffset ? _mm_add_ps(offsetV, centre) : centre;
+    const __m128 even = _mm_add_ps(evenBase, _mm_mul_ps(threeQuarters, _mm_sub_ps(centre, left)));
+    const __m128 odd = _mm_add_ps(oddBase, _mm_mul_ps(quarter, _mm_sub_ps(right, centre)));
+    _mm_storeu_ps(out + 2 * k, _mm_unpacklo_ps(even, odd));
+    _mm_storeu_ps(out + 2 * k + 4, _mm_unpackhi_ps(even, odd));
+  }
+  for (; k < cn; ++k) {
+    const float a = padded[k], b = padded[k + 1], c = padded[k + 2];
+    out[2 * k] = (withOffset ? offset + a : a) + 0.75f * (b - a);
+    out[2 * k + 1] = (withOffset ? offset + b : b) + 0.25f * (c - b);
+  }
+}
+#endif
 
 // Largest block size ≤ target that divides both grid sizes.
 int blockFactor(int nx, int ny, int target) {
@@ -213,6 +249,13 @@ double WindField::update(WeatherState& s, const WindParameters& p, double t_s) {
     float* u = &s.windU[row];
     float* v = &s.windV[row];
     float* lift = &s.lift[row];
+#if defined(__SSE2__)
+    if (factor_ == 2 && cnx_ >= 4) {
+      interpolatePairs(rowU, u0, true, u, padded_);
+      interpolatePairs(rowV, v0, true, v, padded_);
+      interpolatePairs(rowLift, 0.0f, false, lift, padded_);
+    } else
+#endif
     for (int i = 0; i < nx; ++i) {
       const int c0 = x0_[i], c1 = x1_[i];
       const float wx = wx_[i];

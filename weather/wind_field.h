@@ -72,6 +72,7 @@ class WindField {
   Field coarseT_, scratch_, coarseU_, coarseV_, coarseLift_;
   std::vector<int32_t> x0_, x1_, y0_, y1_;  // per fine column / row: coarse neighbours
   std::vector<float> wx_, wy_;              // and the weight of the second
+  std::vector<float> padded_;               // a coarse row with its periodic neighbours (update)
 };
 
 }  // namespace firmament::weather
