@@ -31,7 +31,7 @@ struct AtmosphereLutSettings {
   // Scattering orders iterated explicitly before the geometric tail (shaders/atmosphere/
   // multiple_scattering_lut.glsl); 1 = Hillaire 2020 exactly (isotropic phase, f_ms series). From 2
   // on the first order also uses the real phase functions.
-  int multipleScatteringOrders = 4;
+  int multipleScatteringOrders = 3;
   bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
   // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
