@@ -227,7 +227,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   const size_t renderPasses = useTables ? 0 : useSkyView ? 1 : batches;
   if (!useTables && !useSkyView && !skyMarchPipeline_)
     skyMarchPipeline_ = std::make_unique<gpu::ComputePipeline>(context_, renderSkyPipeline("sky/render_sky_march"));
-  const gpu::ComputePipeline& skyPipeline = useSkyView ? skyPipeline_ : *skyMarchPipeline_;
+  const gpu::ComputePipeline* skyPipeline = useSkyView ? &skyPipeline_ : skyMarchPipeline_.get();  // null with the 4D tables
   for (size_t b = 0; b < renderPasses; ++b) {
     const AtmosphereLuts::Batch& batch = luts_.batch(b);
     struct {
@@ -237,7 +237,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
       int32_t last;
       int32_t pad;
     } push{tiles, b > 0 ? 1 : 0, b == 0 ? 1 : 0, b + 1 == renderPasses ? 1 : 0, 0};
-    commands.bind(skyPipeline, {batch.block,
+    commands.bind(*skyPipeline, {batch.block,
                                  {batch.transmittance, luts_.linearClamp()},
                                  {batch.multipleScattering, luts_.linearClamp()},
                                  output,
