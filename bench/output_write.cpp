@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.h"
 #include "core/error.h"
 #include "gpu/buffer.h"
 #include "gpu/command.h"
@@ -28,11 +29,7 @@ struct Push {
   uint32_t mode;
 };
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
+using bench::median;
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.h"
 #include "core/error.h"
 #include "gpu/context.h"
 #include "core/scene.h"
@@ -16,15 +17,7 @@
 
 using namespace firmament;
 
-namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-}  // namespace
+using bench::median;
 
 int main(int argc, char** argv) {
   try {

@@ -137,7 +137,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
 
   // Clouds (docs/clouds.md): the noise is baked once per seed, apart from the frame's passes.
   std::unique_ptr<CloudSettings> clouds;
-  if (scene.hasSection("clouds") && !scene.at("/clouds/layers").empty()) {
+  if (hasClouds) {
     if (useTables) throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
     clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     options.clouds.apply(clouds->march);

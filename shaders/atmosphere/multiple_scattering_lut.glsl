@@ -17,7 +17,7 @@
 //   f_ms = (1/4pi) ∫_sphere ∫_0^D T sigma_s dt dw,   Psi_ms = J_1 / (1 - f_ms)
 // (he also uses an isotropic phase for J_1). That neighbourhood assumption is what fails at a low sun:
 // the air towards the sun's horizon is lit more than the air below, and at sun zenith 88 deg it left
-// Psi_ms ~18 % short (docs/atmosphere.md). Here `orders` tables are iterated explicitly, each reading
+// Psi_ms 16-22 % short (docs/atmosphere.md). Here `orders` tables are iterated explicitly, each reading
 // the previous one at the points y of its rays, and the orders past the last are the geometric tail
 // J_N q / (1 - q) with q = J_N / J_{N-1} measured per texel (f_ms when there is one order).
 //
