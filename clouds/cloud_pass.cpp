@@ -107,12 +107,13 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0);
+  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
+               (m.lightMarchToExit ? 16 : 0) | (m.msZenithDepth ? 32 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
   const double thickest = cloudThickestLayer(settings);
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
-  put(b.octaves, std::min(l.a, l.b), l.b, l.c, cloudLightMarchLength(settings));
+  put(b.octaves, std::min(l.a, l.b), l.b, l.c, m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
   put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
   for (size_t i = 0; i < layers.size(); ++i) {

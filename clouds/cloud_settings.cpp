@@ -52,6 +52,9 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
   if (ambient) march.ambient = *ambient;
+  if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
+  if (lightCone) march.lightCone = *lightCone;
+  if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

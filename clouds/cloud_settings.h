@@ -29,7 +29,19 @@ struct CloudMarchSettings {
   int coarseFactor = 4;  // a coarse (empty-space) step is this many fine steps; 1 = no skipping
   double earlyExitTransmittance = 0.01;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
-  double lightCone = 0.15;         // tan of the light cone's half-angle
+  // tan of the light cone's half-angle (Schneider 2015's cone sampling). 0 by default: the cone's
+  // sideways offsets grow with the distance along the sun ray and biased single scattering against the
+  // path tracer (+6 % at noon; at a grazing sun the far samples land kilometres off the ray).
+  double lightCone = 0.0;
+  // The light march runs from the sample to where the sun ray leaves the sample's layer, at most
+  // lightMaxLength_m (common/cloud_lighting.glsl cloudSunExitDistance). Off: the first milestone's
+  // fixed length (the thickest layer's thickness, at most 4 km), too short for a low sun; kept for
+  // comparisons (bench clouds).
+  bool lightMarchToExit = true;
+  double lightMaxLength_m = 40000.0;
+  // Octaves i >= 1 of the multiple-scattering approximation see min(tau_sun, tau_up), tau_up by a
+  // second march (lightSteps / 2 samples, at least 2) straight up to the layer top (docs/clouds.md).
+  bool msZenithDepth = true;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -86,6 +98,9 @@ struct CloudOverrides {
   std::optional<bool> beerShadowMap;
   std::optional<bool> aerialPerspective;
   std::optional<bool> ambient;
+  std::optional<bool> lightMarchToExit;
+  std::optional<double> lightCone;
+  std::optional<bool> msZenithDepth;
   void apply(CloudMarchSettings& march) const;
 };
 
@@ -99,7 +114,8 @@ const char* cloudKindName(int kind);
 // The shared layer structs for a ground sphere of radius groundRadius_m.
 std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings, double groundRadius_m);
 
-// The light-march length (m): the thickest layer's thickness, at most 4 km.
+// The first milestone's light-march length (m): the thickest layer's thickness, at most 4 km
+// (CloudMarchSettings::lightMarchToExit off).
 double cloudLightMarchLength(const CloudSettings& settings);
 
 // The thickest layer's thickness H (m, at least 1 m): the base view step is H / N.

@@ -17,8 +17,8 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps)
-  vec4 octaves;          // a, b, c, light march length (m)
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 see min(tau_sun, tau_up))
+  vec4 octaves;          // a, b, c, light march length (m; the largest one with flag 16)
   vec4 phase;            // g forward, g back, back weight, single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
   vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, unused
@@ -90,7 +90,7 @@ float densityAt(CloudLayer layer, vec3 p) {
   return cloudDensity(column, ph, base, detail);
 }
 
-// Optical depth towards the sun from p through `layer`: `n` samples at the midpoints of steps growing
+// Optical depth towards the sun (or any unit direction `sun`) from p through `layer`: `n` samples at the midpoints of steps growing
 // quadratically (boundaries L (j/n)^2), each pushed sideways within a cone of half-angle atan(cone)
 // by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
 float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone) {

@@ -141,6 +141,8 @@ void main() {
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float cone = cloud.march.w;
   bool uniformSteps = (cloud.steps.w & 8) != 0;
+  bool lightToExit = (cloud.steps.w & 16) != 0;
+  bool msZenith = (cloud.steps.w & 32) != 0;
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -208,13 +210,26 @@ void main() {
           tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
           lightCount += 1u;
         } else {
-          tau = opticalDepthToSun(layer, p, sun, lightSteps, lightLength, cone);
+          // Bit 16: march to where the sun ray leaves the layer (at most lightLength); else the first
+          // milestone's fixed length (the thickest layer's thickness, at most 4 km), for comparisons.
+          float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
+          tau = opticalDepthToSun(layer, p, sun, lightSteps, marchLength, cone);
           lightCount += uint(lightSteps);
         }
       }
-      float octaveSum = 0.0;
-      for (int o = 0; o < octaves; ++o)
-        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * exp(-cloudOctaveExtinctionScale(a, o) * tau);
+      // Octaves i >= 1 (light scattered more than once) see min(tau_sun, tau_up), tau_up the optical
+      // depth straight up to the layer top (flag 32; docs/clouds.md "Multiple scattering"): diffused light
+      // reaches a sample along the shortest way in, not only along a grazing sun ray.
+      float tauMs = tau;
+      if (msZenith && octaves > 1 && sunVisible && tau > 0.0) {
+        vec3 up = p / rp;
+        int upSteps = max(lightSteps / 2, 2);
+        tauMs = min(tau, opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0));
+        lightCount += uint(upSteps);
+      }
+      float octaveSum = phaseOctave[0] * exp(-tau);
+      for (int o = 1; o < octaves; ++o)
+        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * exp(-cloudOctaveExtinctionScale(a, o) * tauMs);
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
       if (ambientOn) {

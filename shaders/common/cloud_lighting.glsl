@@ -4,6 +4,7 @@
 #define FIRMAMENT_CLOUD_LIGHTING_GLSL
 
 #include "common/atmosphere_medium.glsl"
+#include "common/cloud_density.glsl"
 
 SHARED_BEGIN
 
@@ -38,6 +39,24 @@ SHARED_INLINE Real cloudPhase(Real gForward, Real gBack, Real backWeight, Real n
 SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return pow(b, Real(octave)); }
 SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return pow(a, Real(octave)); }
 SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return pow(c, Real(octave)); }
+
+// The length of the light march from p (inside the layer's shell) towards the sun: the distance along
+// the sun ray to where it leaves the shell (through the top, or the base for a sun below the local
+// horizontal), at most maxLength. A sun at zenith angle theta crosses a layer of thickness H over
+// about H / cos(theta) (11.5 km for 1 km at 85 deg): a march over a fixed length of one thickness saw
+// a ninth of the optical depth at sunset (docs/clouds.md, "Lighting").
+SHARED_INLINE Real cloudSunExitDistance(CloudLayer layer, vec3 p, vec3 sun, Real maxLength) {
+  Real r = length(p);
+  Real mu = clamp(dot(p, sun) / r, -1.0, 1.0);
+  vec2 first;
+  vec2 second;
+  cloudShellSegments(r, mu, layer.bottom_radius, layer.top_radius, maxLength, first, second);
+  // p is inside: the stretch that starts at p is `first` when the sun ray is headed for the base
+  // (the inner sphere ahead), else `second` (the inner sphere's roots lie behind p, first is empty).
+  if (first.x <= 0.0 && first.y > 0.0) return first.y;
+  if (second.x <= 0.0) return max(second.y, 0.0);
+  return 0.0;
+}
 
 // Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground

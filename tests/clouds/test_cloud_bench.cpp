@@ -41,7 +41,8 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   std::ifstream csv(config.outDir / "clouds_results.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,device");
+  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
+                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,device");
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
 }
 
