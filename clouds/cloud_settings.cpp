@@ -55,6 +55,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
+  if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

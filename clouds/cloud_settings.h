@@ -39,9 +39,12 @@ struct CloudMarchSettings {
   // comparisons (bench clouds).
   bool lightMarchToExit = true;
   double lightMaxLength_m = 40000.0;
-  // Octaves i >= 1 of the multiple-scattering approximation see min(tau_sun, tau_up), tau_up by a
-  // second march (lightSteps / 2 samples, at least 2) straight up to the layer top (docs/clouds.md).
+  // Octaves i >= 1 of the multiple-scattering approximation (docs/clouds.md "Multiple scattering"):
+  // msZenithDepth: the better of the sun ray (E, tau_sun) and the way down from the layer top (E mu_s,
+  // tau_up by a second march of lightSteps / 2 samples, at least 2, straight up); msScatteredOnly: the
+  // octave's attenuation without its unscattered part, e^(-a^i tau) - e^(-tau).
   bool msZenithDepth = true;
+  bool msScatteredOnly = true;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -101,6 +104,7 @@ struct CloudOverrides {
   std::optional<bool> lightMarchToExit;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
+  std::optional<bool> msScatteredOnly;
   void apply(CloudMarchSettings& march) const;
 };
 

@@ -49,7 +49,12 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"default", "64v/6l/3o", {}, [](SkyRenderOptions&) {}});
   v.push_back({"baseline_fixed_steps", "64v/6l uniform", {}, [](SkyRenderOptions& o) { o.clouds.uniformSteps = true; }});
   v.push_back({"light_march", "milestone 1 (fixed length)", {}, [](SkyRenderOptions& o) { o.clouds.lightMarchToExit = false; }});
-  v.push_back({"ms_depth", "sun ray only", {}, [](SkyRenderOptions& o) { o.clouds.msZenithDepth = false; }});
+  v.push_back({"ms_model", "no way from the top", {}, [](SkyRenderOptions& o) { o.clouds.msZenithDepth = false; }});
+  v.push_back({"ms_model", "unscattered part kept", {}, [](SkyRenderOptions& o) { o.clouds.msScatteredOnly = false; }});
+  v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
+                 o.clouds.msZenithDepth = false;
+                 o.clouds.msScatteredOnly = false;
+               }});
   v.push_back({"single_scattering", "1 octave vs order 1", {"/clouds/lighting/ms_octaves=1"}, [](SkyRenderOptions&) {}, true});
   v.push_back({"single_scattering", "1 octave, no cone, 16 light", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightCone = 0.0; o.clouds.lightSteps = 16; }, true});

@@ -52,6 +52,7 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
 struct Prepared {
   CalibrationScene scene;
   CloudReferenceImage reference;
+  std::unique_ptr<SkyRenderer> renderer;  // one per scene: each keeps its seed's noise baked (~2 s a bake)
 };
 
 std::string number(double x) {
@@ -65,18 +66,18 @@ std::string number(double x) {
 CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config) {
   CloudCalibrationResult result;
   result.device = context.description();
-  SkyRenderer renderer(context);
   SkyRenderOptions options;
   options.clouds.ambient = false;
   options.clouds.aerialPerspective = false;
-  const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 16 : 64);
+  const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 256);
 
   // 1. The references (all orders), once.
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Prepared> prepared;
   for (const CalibrationScene& sc : calibrationScenes(config.quick)) {
     const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">");
-    const RenderResult first = renderer.render(scene, options);
+    auto renderer = std::make_unique<SkyRenderer>(context);
+    const RenderResult first = renderer->render(scene, options);
     const CloudSettings settings = CloudSettings::fromScene(scene);
     CloudNoise noise(context);
     gpu::CommandList commands(context);
@@ -89,7 +90,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;
     const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, CloudEnvironment{}, rs);
-    Prepared p{sc, renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads)};
+    Prepared p{sc, renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads),
+               std::move(renderer)};
     logInfo("calibrate clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel in " +
             std::to_string(p.reference.seconds) + " s");
     prepared.push_back(std::move(p));
@@ -107,7 +109,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
                                        {"/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
                                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
                                         "/clouds/lighting/ms_c=" + number(c)});
-      const RenderResult r = renderer.render(scene, options);
+      const RenderResult r = p.renderer->render(scene, options);
       const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
       sum += e.relRmse * e.relRmse;
@@ -190,7 +192,7 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3, " +
                    std::to_string(config.octaves) + " octaves; reference: the CPU cloud path tracer (all orders, " +
-                   std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 16 : 64)) +
+                   std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 256)) +
                    " paths/pixel). Fit: Nelder-Mead over (b, a/b, c), minimising the mean squared rel RMSE of the "
                    "clouds' luminance over the group's scenes. `corrected`: the reference's noise subtracted.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";

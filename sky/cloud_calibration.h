@@ -20,9 +20,9 @@ namespace firmament {
 
 struct CloudCalibrationConfig {
   std::filesystem::path outDir;
-  bool quick = false;  // smaller images, 16 paths per pixel
+  bool quick = false;  // smaller images (32x18 instead of 48x27), 64 paths per pixel
   int threads = 0;     // path tracer threads (0: all cores)
-  int samplesPerPixel = 0;  // 0: 64 (quick 16)
+  int samplesPerPixel = 0;  // 0: 256 (quick 64): the fit needs a quiet reference
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   std::string environmentNote;

@@ -84,6 +84,7 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.outDir = out;
   config.threads = args.integer("threads", 0, 0, 1024);
   config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
+  config.octaves = args.integer("octaves", 3, 1, 8);
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
@@ -159,7 +160,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--calibrate] [--device D]",
+    "[--calibrate [--octaves N]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -167,6 +168,7 @@ const CommandRegistration registration{Command{
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
+        {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),

@@ -17,7 +17,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 see min(tau_sun, tau_up))
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only)
   vec4 octaves;          // a, b, c, light march length (m; the largest one with flag 16)
   vec4 phase;            // g forward, g back, back weight, single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan

@@ -143,6 +143,7 @@ void main() {
   bool uniformSteps = (cloud.steps.w & 8) != 0;
   bool lightToExit = (cloud.steps.w & 16) != 0;
   bool msZenith = (cloud.steps.w & 32) != 0;
+  bool msScattered = (cloud.steps.w & 64) != 0;
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -217,19 +218,25 @@ void main() {
           lightCount += uint(lightSteps);
         }
       }
-      // Octaves i >= 1 (light scattered more than once) see min(tau_sun, tau_up), tau_up the optical
-      // depth straight up to the layer top (flag 32; docs/clouds.md "Multiple scattering"): diffused light
-      // reaches a sample along the shortest way in, not only along a grazing sun ray.
-      float tauMs = tau;
-      if (msZenith && octaves > 1 && sunVisible && tau > 0.0) {
+      // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
+      // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
+      // optical depth tau_sun) or diffusing down from the layer top (irradiance E mu_s on a horizontal
+      // top, optical depth tau_up straight up): at a low sun the sun ray crosses ~10 km of cloud while
+      // scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
+      float tauUp = -1.0;
+      if (msZenith && octaves > 1 && sunVisible && muS > 0.0) {
         vec3 up = p / rp;
         int upSteps = max(lightSteps / 2, 2);
-        tauMs = min(tau, opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0));
+        tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
         lightCount += uint(upSteps);
       }
       float octaveSum = phaseOctave[0] * exp(-tau);
-      for (int o = 1; o < octaves; ++o)
-        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * exp(-cloudOctaveExtinctionScale(a, o) * tauMs);
+      for (int o = 1; o < octaves; ++o) {
+        float scale = cloudOctaveExtinctionScale(a, o);
+        float attenuation = cloudOctaveTransmittance(scale, tau, msScattered);
+        if (tauUp >= 0.0) attenuation = max(attenuation, muS * cloudOctaveTransmittance(scale, tauUp, msScattered));
+        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * attenuation;
+      }
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
       if (ambientOn) {

@@ -40,6 +40,19 @@ SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return pow(b, Real(oc
 SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return pow(a, Real(octave)); }
 SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return pow(c, Real(octave)); }
 
+// The attenuation of octave i >= 1 at optical depth tau along a way in (docs/clouds.md, "Multiple
+// scattering"). Wrenninge et al.'s octave uses e^(-a^i tau). With `scatteredOnly` the unscattered part
+// e^(-tau) is taken out: light that has scattered at least once before reaching the sample is what
+// reached it through the medium at the reduced rate a^i (a similarity-like extinction, cf. the
+// (1 - g) sigma_t of the similarity relations) minus what came straight through. It is 0 at tau = 0 —
+// thin wisps and edges get no multiple scattering, as in the path tracer — and e^(-a^i tau) deep inside
+// (Schneider 2015's "powder" darkening of edges plays the same role as a multiplicative factor). Never
+// above e^(-a^i tau), so the octaves' energy bound (a <= b) still holds.
+SHARED_INLINE Real cloudOctaveTransmittance(Real extinctionScale, Real tau, bool scatteredOnly) {
+  Real t = exp(-extinctionScale * tau);
+  return scatteredOnly ? max(t - exp(-tau), 0.0) : t;
+}
+
 // The length of the light march from p (inside the layer's shell) towards the sun: the distance along
 // the sun ray to where it leaves the shell (through the top, or the base for a sun below the local
 // horizontal), at most maxLength. A sun at zenith angle theta crosses a layer of thickness H over
