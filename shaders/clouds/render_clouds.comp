@@ -220,9 +220,9 @@ void main() {
       }
       // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
       // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
-      // optical depth tau_sun) or diffusing down from the layer top (irradiance E mu_s on a horizontal
-      // top, optical depth tau_up straight up): at a low sun the sun ray crosses ~10 km of cloud while
-      // scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
+      // optical depth tau_sun) or diffusing down from the layer top (E mu_s on a horizontal top, times
+      // the Eddington angular factor, cloudTopEntryWeight; optical depth tau_up straight up): at a low
+      // sun the sun ray crosses ~10 km of cloud while scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
       float tauUp = -1.0;
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0) {
         vec3 up = p / rp;
@@ -230,11 +230,12 @@ void main() {
         tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
         lightCount += uint(upSteps);
       }
+      float topWeight = cloudTopEntryWeight(muS);
       float octaveSum = phaseOctave[0] * exp(-tau);
       for (int o = 1; o < octaves; ++o) {
         float scale = cloudOctaveExtinctionScale(a, o);
         float attenuation = cloudOctaveTransmittance(scale, tau, msScattered);
-        if (tauUp >= 0.0) attenuation = max(attenuation, muS * cloudOctaveTransmittance(scale, tauUp, msScattered));
+        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(scale, tauUp, msScattered));
         octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * attenuation;
       }
       vec3 sunSource = sunLight * octaveSum;

@@ -71,6 +71,18 @@ SHARED_INLINE Real cloudSunExitDistance(CloudLayer layer, vec3 p, vec3 sun, Real
   return 0.0;
 }
 
+// The weight of the way down from a layer's top for octaves i >= 1 (docs/clouds.md, "Multiple
+// scattering"): sunlight entering a horizontal top at mu_s = cos(sun zenith) brings the flux E mu_s,
+// and the part of it that diffuses down through a thick, conservatively scattering slab grows like
+// (1/2 + 3/4 mu_s) in the Eddington approximation (Shettle and Weinman 1970; Joseph, Wiscombe and
+// Weinman 1976: T = (1/2 + 3/4 mu_0 + ...) / (1 + 3/4 (1 - g) tau*) for conservative scattering): light
+// entering at a grazing angle is turned back out of the top before it gets deep. Normalised to 1 for
+// the sun at the zenith: mu_s (2 + 3 mu_s) / 5; 0 for the sun at or below the horizontal.
+SHARED_INLINE Real cloudTopEntryWeight(Real muS) {
+  Real m = max(muS, 0.0);
+  return m * (2.0 + 3.0 * m) / 5.0;
+}
+
 // Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
 // over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
