@@ -20,6 +20,9 @@ struct CloudLayerSettings {
   double extinctionScale = 1.0;
   double density = 1.0;
   double anvil = 1.0;
+  // Octave multiple-scattering parameters a <= b, c (common/cloud_lighting.glsl): the scene's
+  // /clouds/lighting/ms_a|b|c where given, else the type's calibrated values (cloudTypeMultipleScattering).
+  double msA = 0.5, msB = 0.5, msC = 0.5;
 };
 
 // Light and march knobs of the fast path (the quality preset fills the step counts).
@@ -66,8 +69,7 @@ struct CloudLightingSettings {
   double gBack = -0.3;
   double backWeight = 0.3;
   double albedo = 1.0;
-  int octaves = 3;
-  double a = 0.5, b = 0.5, c = 0.5;
+  int octaves = 3;  // a, b, c are per layer (CloudLayerSettings::msA, msB, msC)
   double ambientBottomVisibility = 0.5;
 };
 
@@ -112,6 +114,14 @@ struct CloudOverrides {
 // From liquid water content LWC and effective radius r_e, sigma = 3 LWC / (2 rho_w r_e) (Stephens 1978,
 // extinction efficiency 2): cumulus LWC 0.5-1 g/m^3, r_e 10 um -> 0.075-0.15; stratus 0.3 g/m^3 -> 0.045.
 double cloudTypeExtinction(int kind);
+// The octave parameters of a cloud type, fitted to the path tracer by `firmament bench clouds
+// --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"): cumulus and stratocumulus on
+// their own calibration scenes; cumulonimbus takes cumulus's, stratus stratocumulus's, cirrus the fit
+// over all scenes (no calibration scenes of their own yet).
+struct CloudMultipleScattering {
+  double a, b, c;
+};
+CloudMultipleScattering cloudTypeMultipleScattering(int kind);
 int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown
 const char* cloudKindName(int kind);
 

@@ -133,7 +133,6 @@ void main() {
   bool aerial = (cloud.steps.w & 1) != 0;
   bool jitter = (cloud.steps.w & 2) != 0;
   bool ambientOn = (cloud.steps.w & 4) != 0;
-  float a = cloud.octaves.x, b = cloud.octaves.y, c = cloud.octaves.z;
   float lightLength = cloud.octaves.w;
   float albedo = cloud.phase.w;
   float bottomVisibility = cloud.march.x;
@@ -152,8 +151,8 @@ void main() {
   ivec2 blueSize = textureSize(blueNoise, 0);
   float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
   float phaseOctave[8];
-  for (int o = 0; o < octaves; ++o)
-    phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+  int phaseLayer = -1;  // the layer whose octave phases phaseOctave holds
+  float a = 0.5, b = 0.5;
 
   float transmittance = 1.0;
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
@@ -165,6 +164,16 @@ void main() {
   int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
   for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
     CloudLayer layer = layerAt(segmentLayer[s]);
+    if (segmentLayer[s] != phaseLayer) {
+      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s) and
+      // its octaves' phase values for this pixel's scattering angle.
+      phaseLayer = segmentLayer[s];
+      a = cloud.layers[5 * phaseLayer + 2].w;
+      b = cloud.layers[5 * phaseLayer + 3].w;
+      float c = cloud.layers[5 * phaseLayer + 4].w;
+      for (int o = 0; o < octaves; ++o)
+        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+    }
     float t = segments[s].x;
     float end = segments[s].y;
     int emptyRun = coarse;  // start in coarse mode
