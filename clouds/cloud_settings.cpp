@@ -23,10 +23,11 @@ double cloudTypeExtinction(int kind) {
 }
 
 CloudMultipleScattering cloudTypeMultipleScattering(int kind) {
-  // `firmament bench clouds --calibrate --out out/calibration` (48x27, 256 paths/pixel, 3 octaves).
-  constexpr CloudMultipleScattering cumulus{0.262, 0.963, 0.491};
-  constexpr CloudMultipleScattering stratocumulus{0.295, 0.974, 0.115};
-  constexpr CloudMultipleScattering all{0.306, 1.0, 0.282};
+  // `firmament bench clouds --calibrate --out out/calibration` (8 scenes at 48x27, 128 paths/pixel,
+  // 3 octaves; docs/clouds.md "Calibration" has the per-scene errors).
+  constexpr CloudMultipleScattering cumulus{0.272, 0.958, 0.500};
+  constexpr CloudMultipleScattering stratocumulus{0.277, 0.805, 0.004};
+  constexpr CloudMultipleScattering all{0.289, 0.856, 0.113};
   switch (kind) {
     case shared::kCloudCumulus:
     case shared::kCloudCumulonimbus: return cumulus;

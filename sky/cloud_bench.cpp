@@ -48,6 +48,16 @@ std::vector<KnobValue> knobValues(bool quick) {
   std::vector<KnobValue> v;
   v.push_back({"default", "64v/6l/3o", {}, [](SkyRenderOptions&) {}});
   v.push_back({"baseline_fixed_steps", "64v/6l uniform", {}, [](SkyRenderOptions& o) { o.clouds.uniformSteps = true; }});
+  // The first milestone's lighting, all of it: fixed-length light march, cone 0.15, plain octaves with
+  // a = b = c = 0.5 (the "before" of docs/clouds.md).
+  v.push_back({"milestone_1_lighting", "fixed light march, cone, plain octaves 0.5",
+               {"/clouds/lighting/ms_a=0.5", "/clouds/lighting/ms_b=0.5", "/clouds/lighting/ms_c=0.5"},
+               [](SkyRenderOptions& o) {
+                 o.clouds.lightMarchToExit = false;
+                 o.clouds.lightCone = 0.15;
+                 o.clouds.msZenithDepth = false;
+                 o.clouds.msScatteredOnly = false;
+               }});
   v.push_back({"light_march", "milestone 1 (fixed length)", {}, [](SkyRenderOptions& o) { o.clouds.lightMarchToExit = false; }});
   v.push_back({"ms_model", "no way from the top", {}, [](SkyRenderOptions& o) { o.clouds.msZenithDepth = false; }});
   v.push_back({"ms_model", "unscattered part kept", {}, [](SkyRenderOptions& o) { o.clouds.msScatteredOnly = false; }});

@@ -3,7 +3,8 @@
 // (Wrenninge et al. 2013; common/cloud_lighting.glsl) of the cloud march to the CPU path tracer, on
 // calibration scenes kept separate from the benchmark's scenarios (other seeds, coverages, layer
 // heights and sun angles), so the benchmark reports the fitted defaults on scenes the fit never saw.
-// Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3, as the benchmark.
+// Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3 as the benchmark
+// (two scenes x 0.15).
 //
 // The fit: per group of scenes (one cloud type, and all scenes together), Nelder-Mead (Nelder and Mead
 // 1965) over x = (b, a / b, c) in [0, 1]^3 (so a <= b holds by construction), minimising the mean over
@@ -22,7 +23,7 @@ struct CloudCalibrationConfig {
   std::filesystem::path outDir;
   bool quick = false;  // smaller images (32x18 instead of 48x27), 64 paths per pixel
   int threads = 0;     // path tracer threads (0: all cores)
-  int samplesPerPixel = 0;  // 0: 256 (quick 64): the fit needs a quiet reference
+  int samplesPerPixel = 0;  // 0: 128 (quick 64): the fit needs a quiet reference
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   std::string environmentNote;
