@@ -1,7 +1,8 @@
 // The GPU march against the CPU path tracer on one small cumulus scene (same density from the same
 // textures, same phase function, same sun through the atmosphere). Ambient light and aerial
 // perspective are off in both, so the comparison isolates the cloud transport of sunlight: the
-// march's octave multiple-scattering approximation against all orders.
+// march's octave multiple-scattering approximation against all orders; and the single scattering
+// alone against the path tracer's first order.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -62,15 +63,20 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   ASSERT_GT(cloudPixels, 20);
   const double relRmse = std::sqrt(sum2 / ref2);
   const double meanSe = std::sqrt(se2) / cloudPixels;
-  std::printf("cloud pixels %d: rel RMSE of luminance %.3f; mean GPU %.1f, path tracer %.1f +- %.1f cd/m^2 "
-              "(%.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
-              cloudPixels, relRmse, gpuSum / cloudPixels, refSum / cloudPixels, meanSe, ref.seconds, ref.events, tDiff);
+  const CloudReferenceError e = compareWithCloudReference(gpu.clouds, ref);
+  std::printf("cloud pixels %d: rel RMSE of luminance %.3f (reference noise %.3f, noise-corrected %.3f); mean GPU "
+              "%.1f, path tracer %.1f +- %.1f cd/m^2 (bias %+.3f; %.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
+              cloudPixels, relRmse, e.noiseFloor, e.noiseCorrected, gpuSum / cloudPixels, refSum / cloudPixels, meanSe,
+              e.meanBias, ref.seconds, ref.events, tDiff);
   // Transmittance is the same integral in both (the march's quadrature vs unbiased ratio tracking).
   EXPECT_LT(tDiff, 0.08);  // 48 ratio-tracking estimates per pixel: noise ~0.02
-  // Albedo 1, no energy gain: the march's mean over the cloud is below the path tracer's plus 10 %
-  // (the octave approximation may not exceed all orders of scattering by more than that) and 3 SE.
-  EXPECT_LE(gpuSum / cloudPixels, 1.1 * refSum / cloudPixels + 3.0 * meanSe);
-  EXPECT_LT(relRmse, 0.6);
+  // Albedo 1, no large energy gain: with the calibrated per-type octaves (docs/clouds.md, "Calibration")
+  // this thin, smooth cumulus (32^3 noise, extinction x 0.2: outside the calibration set) comes out
+  // 15 % brighter than all orders (measured: 6515 vs 5681 +- 110); the first milestone's octaves were
+  // 12 % darker. Bound: 1.25 x the path tracer + 3 SE.
+  EXPECT_LE(gpuSum / cloudPixels, 1.25 * refSum / cloudPixels + 3.0 * meanSe);
+  EXPECT_GE(gpuSum / cloudPixels, 0.85 * refSum / cloudPixels - 3.0 * meanSe);
+  EXPECT_LT(relRmse, 0.45);  // measured 0.367 (0.378 with the first milestone's lighting)
 }
 
 // The GPU march's single scattering (one octave, no cone) against the path tracer limited to one
