@@ -195,11 +195,13 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
   std::string csv = "group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
-                   "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3, " +
+                   "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
+                   "sc_thin x 0.15), " +
                    std::to_string(config.octaves) + " octaves; reference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
                    " paths/pixel). Fit: Nelder-Mead over (b, a/b, c), minimising the mean squared rel RMSE of the "
-                   "clouds' luminance over the group's scenes. `corrected`: the reference's noise subtracted.\n\n";
+                   "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5 with the same multiple-scattering "
+                   "model. `corrected`: the reference's noise subtracted.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   char line[512];
   std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
