@@ -107,21 +107,27 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0);
+  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
+               (m.lightMarchToExit ? 16 : 0) | (m.msZenithDepth ? 32 : 0) |
+               (m.msScatteredOnly ? 64 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
   const double thickest = cloudThickestLayer(settings);
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
-  put(b.octaves, std::min(l.a, l.b), l.b, l.c, cloudLightMarchLength(settings));
+  // a, b, c are per layer (below); x, y, z unused.
+  put(b.octaves, 0.0, 0.0, 0.0, m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
   put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
   for (size_t i = 0; i < layers.size(); ++i) {
     const shared::CloudLayer& c = layers[i];
     put(b.layers[5 * i], c.bottom_radius, c.top_radius, c.coverage, c.extinction);
     put(b.layers[5 * i + 1], c.density_scale, c.anvil, c.shape_period, c.detail_period);
-    put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, 0.0);
-    put(b.layers[5 * i + 3], c.wind_offset);
-    put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), 0.0);
+    // The w components: the layer's octave parameters a (<= b, enforced when the scene is read; clamped
+    // again for settings built in code), b, c.
+    const CloudLayerSettings& ls = settings.layers[i];
+    put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, std::min(ls.msA, ls.msB));
+    put(b.layers[5 * i + 3], c.wind_offset, ls.msB);
+    put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), ls.msC);
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);

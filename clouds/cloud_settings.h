@@ -20,6 +20,9 @@ struct CloudLayerSettings {
   double extinctionScale = 1.0;
   double density = 1.0;
   double anvil = 1.0;
+  // Octave multiple-scattering parameters a <= b, c (common/cloud_lighting.glsl): the scene's
+  // /clouds/lighting/ms_a|b|c where given, else the type's calibrated values (cloudTypeMultipleScattering).
+  double msA = 0.5, msB = 0.5, msC = 0.5;
 };
 
 // Light and march knobs of the fast path (the quality preset fills the step counts).
@@ -29,7 +32,22 @@ struct CloudMarchSettings {
   int coarseFactor = 4;  // a coarse (empty-space) step is this many fine steps; 1 = no skipping
   double earlyExitTransmittance = 0.01;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
-  double lightCone = 0.15;         // tan of the light cone's half-angle
+  // tan of the light cone's half-angle (Schneider 2015's cone sampling). 0 by default: the cone's
+  // sideways offsets grow with the distance along the sun ray and biased single scattering against the
+  // path tracer (+6 % at noon; at a grazing sun the far samples land kilometres off the ray).
+  double lightCone = 0.0;
+  // The light march runs from the sample to where the sun ray leaves the sample's layer, at most
+  // lightMaxLength_m (common/cloud_lighting.glsl cloudSunExitDistance). Off: the first milestone's
+  // fixed length (the thickest layer's thickness, at most 4 km), too short for a low sun; kept for
+  // comparisons (bench clouds).
+  bool lightMarchToExit = true;
+  double lightMaxLength_m = 40000.0;
+  // Octaves i >= 1 of the multiple-scattering approximation (docs/clouds.md "Multiple scattering"):
+  // msZenithDepth: the better of the sun ray (E, tau_sun) and the way down from the layer top (E mu_s,
+  // tau_up by a second march of lightSteps / 2 samples, at least 2, straight up); msScatteredOnly: the
+  // octave's attenuation without its unscattered part, e^(-a^i tau) - e^(-tau).
+  bool msZenithDepth = true;
+  bool msScatteredOnly = true;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -51,8 +69,7 @@ struct CloudLightingSettings {
   double gBack = -0.3;
   double backWeight = 0.3;
   double albedo = 1.0;
-  int octaves = 3;
-  double a = 0.5, b = 0.5, c = 0.5;
+  int octaves = 3;  // a, b, c are per layer (CloudLayerSettings::msA, msB, msC)
   double ambientBottomVisibility = 0.5;
 };
 
@@ -86,6 +103,10 @@ struct CloudOverrides {
   std::optional<bool> beerShadowMap;
   std::optional<bool> aerialPerspective;
   std::optional<bool> ambient;
+  std::optional<bool> lightMarchToExit;
+  std::optional<double> lightCone;
+  std::optional<bool> msZenithDepth;
+  std::optional<bool> msScatteredOnly;
   void apply(CloudMarchSettings& march) const;
 };
 
@@ -93,13 +114,22 @@ struct CloudOverrides {
 // From liquid water content LWC and effective radius r_e, sigma = 3 LWC / (2 rho_w r_e) (Stephens 1978,
 // extinction efficiency 2): cumulus LWC 0.5-1 g/m^3, r_e 10 um -> 0.075-0.15; stratus 0.3 g/m^3 -> 0.045.
 double cloudTypeExtinction(int kind);
+// The octave parameters of a cloud type, fitted to the path tracer by `firmament bench clouds
+// --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"): cumulus and stratocumulus on
+// their own calibration scenes; cumulonimbus takes cumulus's, stratus stratocumulus's, cirrus the fit
+// over all scenes (no calibration scenes of their own yet).
+struct CloudMultipleScattering {
+  double a, b, c;
+};
+CloudMultipleScattering cloudTypeMultipleScattering(int kind);
 int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown
 const char* cloudKindName(int kind);
 
 // The shared layer structs for a ground sphere of radius groundRadius_m.
 std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings, double groundRadius_m);
 
-// The light-march length (m): the thickest layer's thickness, at most 4 km.
+// The first milestone's light-march length (m): the thickest layer's thickness, at most 4 km
+// (CloudMarchSettings::lightMarchToExit off).
 double cloudLightMarchLength(const CloudSettings& settings);
 
 // The thickest layer's thickness H (m, at least 1 m): the base view step is H / N.

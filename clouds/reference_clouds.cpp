@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "atmosphere/atmosphere_spectra.h"
@@ -128,6 +129,7 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
     glm::dvec3 x = origin, w = direction;
     double weight = 1.0;
     bool primary = true;
+    int order = 0;  // scattering events of this path so far
     for (int event = 0;; ++event) {
       if (event >= settings_.maxEvents) {
         result.capped++;
@@ -165,6 +167,8 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
         }
         break;
       }
+      if (settings_.maxScatteringOrder > 0 && order >= settings_.maxScatteringOrder) break;  // higher orders left out
+      ++order;
       result.events++;
       primary = false;
       weight *= albedo;
@@ -244,6 +248,34 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
   out.capped = capped.load();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+CloudReferenceError compareWithCloudReference(const Image& test, const CloudReferenceImage& reference,
+                                              double maxTransmittance) {
+  if (test.width != reference.image.width || test.height != reference.image.height || test.channels < 3)
+    throw std::invalid_argument("compareWithCloudReference: image sizes differ");
+  double d2 = 0.0, y2 = 0.0, se2 = 0.0, sumTest = 0.0, sumRef = 0.0;
+  CloudReferenceError e;
+  for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
+    if (!(reference.image.pixels[4 * i + 3] < maxTransmittance)) continue;
+    const float* p = test.pixels.data() + size_t(test.channels) * i;
+    const double a = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    const double y = reference.luminance[i], se = reference.luminanceStandardError[i];
+    d2 += (a - y) * (a - y);
+    y2 += y * y;
+    se2 += se * se;
+    sumTest += a;
+    sumRef += y;
+    ++e.pixels;
+  }
+  if (e.pixels == 0 || !(y2 > 0.0)) return e;
+  e.relRmse = std::sqrt(d2 / y2);
+  e.noiseFloor = std::sqrt(se2 / y2);
+  e.noiseCorrected = std::sqrt(std::max(d2 - se2, 0.0) / std::max(y2 - se2, 1e-300));
+  e.meanTest = sumTest / e.pixels;
+  e.meanReference = sumRef / e.pixels;
+  e.meanBias = sumRef > 0.0 ? sumTest / sumRef - 1.0 : 0.0;
+  return e;
 }
 
 CloudEnvironment cloudEnvironmentFromReference(const AtmosphereSettings& atmosphere, glm::dvec3 sun, double r,

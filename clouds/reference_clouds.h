@@ -61,6 +61,10 @@ struct CloudReferenceSettings {
   int sunOpticalDepthSteps = 200;  // trapezoid intervals of the atmosphere's optical depth to the sun
   int threads = 0;              // 0: all cores
   double maxDistance_m = 80000.0;  // as the fast path: clouds farther along the view ray are not seen
+  // Largest number of scattering events per path (0: all orders). 1 gives single scattering only
+  // (sunlight by next-event estimation at the first event; light leaving the clouds after it): the part
+  // the fast path's first octave approximates with no multiple-scattering model, a diagnostic.
+  int maxScatteringOrder = 0;
 };
 
 struct CloudReferenceImage {
@@ -110,6 +114,23 @@ class CloudPathTracer {
 CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dvec3 cameraPosition,
                                          const shared::CameraParameters& camera, int threads,
                                          const std::function<void(size_t, size_t)>& progress = {});
+
+// The luminance error of a fast-path cloud image (rgb: the clouds' light) against the path tracer's,
+// over the pixels whose reference transmittance is below maxTransmittance (the cloud pixels). The
+// reference carries its own Monte Carlo noise: with Y^ = Y + e, E[e] = 0, E[e^2] = SE^2 and e independent
+// of the fast path's error, E[sum (a - Y^)^2] = sum (a - Y)^2 + sum SE^2 and E[sum Y^2] = sum Y^2 +
+// sum SE^2, so
+//   relRmse          = sqrt(sum (a - Y^)^2 / sum Y^^2)                (what a comparison sees),
+//   noiseFloor       = sqrt(sum SE^2 / sum Y^^2)                       (relRmse of a perfect fast path),
+//   noiseCorrected   = sqrt(max(sum (a - Y^)^2 - sum SE^2, 0) / (sum Y^^2 - sum SE^2))
+// (the same subtraction as docs/bench.md's atmosphere reports), meanBias = mean(a) / mean(Y^) - 1.
+struct CloudReferenceError {
+  double relRmse = 0.0, noiseFloor = 0.0, noiseCorrected = 0.0, meanBias = 0.0;
+  double meanTest = 0.0, meanReference = 0.0;
+  int pixels = 0;
+};
+CloudReferenceError compareWithCloudReference(const Image& test, const CloudReferenceImage& reference,
+                                              double maxTransmittance = 0.95);
 
 // The environment from the clear-sky CPU reference (atmosphere/reference_renderer.h) at three
 // wavelengths: the irradiance E_sky on a horizontal surface at radius r (m), by a midpoint rule over

@@ -276,7 +276,8 @@ void objectSection(const json& schema, const std::string& pointer, std::string& 
       nested.emplace_back(pointer + "/" + q.key() + "/N", &leaf["items"]);
     } else {
       out += "| `" + q.key() + "` | " + allowed(leaf) + " | " +
-             (leaf.contains("default") ? "`" + leaf["default"].dump() + "`" : "required") + " | " +
+             (leaf.contains("default") ? "`" + leaf["default"].dump() + "`"
+                                       : leaf.value("x-optional-section", false) ? "optional" : "required") + " | " +
              leaf.value("description", "") + " |\n";
     }
   }

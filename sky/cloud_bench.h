@@ -3,7 +3,9 @@
 // Per scenario the CPU cloud path tracer (clouds/reference_clouds.h) renders the clouds' light over
 // the same medium (same noise texels, same weather map); the fast path sweeps one knob at a time
 // (view steps, light steps, octaves) around the defaults, plus the first milestone's fixed-step
-// baseline (64 uniform view steps, 6 light steps). Sunlight only on both sides (no ambient, no aerial
+// baseline (64 uniform view steps, 6 light steps). Two diagnostic rows per scenario: the first
+// milestone's light march (a fixed length of one layer thickness), and single scattering (one octave)
+// against the path tracer limited to one scattering event. Sunlight only on both sides (no ambient, no aerial
 // perspective), so the comparison isolates the march and its lighting approximation.
 #include <filesystem>
 #include <string>
@@ -27,12 +29,16 @@ struct CloudBenchRow {
   double frameMs = 0.0;           // median GPU time of clouds/render_clouds
   double relRmse = 0.0, psnrDb = 0.0, maxRelErr = 0.0;  // luminance of the clouds' light vs the path tracer
   double samplesPerPixel = 0.0;   // density evaluations per pixel (view + light march)
+  // Over the cloud pixels (reference transmittance < 0.95; clouds/reference_clouds.h
+  // compareWithCloudReference): the error with the reference's Monte Carlo noise subtracted, the noise
+  // alone (the rel RMSE of a perfect fast path), and mean(fast) / mean(reference) - 1.
+  double relRmseNoiseCorrected = 0.0, referenceNoise = 0.0, meanBias = 0.0;
   std::string device;
 };
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config);
 // clouds_results.csv (knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,
-// samples_per_pixel,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
+// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
 // atmosphere's results.csv into the same folder).
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
 

@@ -13,6 +13,7 @@
 #include "samples/firmament/command.h"
 #include "sky/atmosphere_bench.h"
 #include "sky/cloud_bench.h"
+#include "sky/cloud_calibration.h"
 
 namespace firmament::cli {
 namespace {
@@ -76,7 +77,29 @@ int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
   return kExitOk;
 }
 
+// `bench clouds --calibrate`: fit the octave parameters to the path tracer (sky/cloud_calibration.h).
+int calibrateClouds(const Args& args, const std::filesystem::path& out) {
+  CloudCalibrationConfig config;
+  config.quick = args.has("quick");
+  config.outDir = out;
+  config.threads = args.integer("threads", 0, 0, 1024);
+  config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
+  config.octaves = args.integer("octaves", 3, 1, 8);
+  gpu::ContextOptions contextOptions;
+  contextOptions.device = args.getOr("device", "");
+  gpu::Context context(contextOptions);
+  logInfo("calibrate clouds: device " + context.description() + ", output " + out.string());
+  const std::string loadBefore = loadAverage();
+  const CloudCalibrationResult result = runCloudCalibration(context, config);
+  if (!loadBefore.empty())
+    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() + ".";
+  writeCloudCalibrationOutputs(config, result);
+  logInfo("wrote " + (out / "clouds_calibration.csv").string() + " and " + (out / "clouds_calibration.md").string());
+  return kExitOk;
+}
+
 int benchClouds(const Args& args, const std::filesystem::path& out) {
+  if (args.has("calibrate")) return calibrateClouds(args, out);
   CloudBenchConfig config;
   config.quick = args.has("quick");
   config.outDir = out;
@@ -137,7 +160,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--device D]",
+    "[--calibrate [--octaves N]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -145,6 +168,9 @@ const CommandRegistration registration{Command{
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
+        {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
+        {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
+                          "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),
     },
     1,

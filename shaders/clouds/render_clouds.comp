@@ -135,7 +135,6 @@ void main() {
   bool aerial = (cloud.steps.w & 1) != 0;
   bool jitter = (cloud.steps.w & 2) != 0;
   bool ambientOn = (cloud.steps.w & 4) != 0;
-  float a = cloud.octaves.x, b = cloud.octaves.y, c = cloud.octaves.z;
   float lightLength = cloud.octaves.w;
   float albedo = cloud.phase.w;
   float bottomVisibility = cloud.march.x;
@@ -143,6 +142,9 @@ void main() {
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float cone = cloud.march.w;
   bool uniformSteps = (cloud.steps.w & 8) != 0;
+  bool lightToExit = (cloud.steps.w & 16) != 0;
+  bool msZenith = (cloud.steps.w & 32) != 0;
+  bool msScattered = (cloud.steps.w & 64) != 0;
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -151,8 +153,8 @@ void main() {
   ivec2 blueSize = textureSize(blueNoise, 0);
   float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
   float phaseOctave[8];
-  for (int o = 0; o < octaves; ++o)
-    phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+  int phaseLayer = -1;  // the layer whose octave phases phaseOctave holds
+  float a = 0.5, b = 0.5;
 
   float transmittance = 1.0;
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
@@ -164,6 +166,16 @@ void main() {
   int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
   for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
     CloudLayer layer = layerAt(segmentLayer[s]);
+    if (segmentLayer[s] != phaseLayer) {
+      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s) and
+      // its octaves' phase values for this pixel's scattering angle.
+      phaseLayer = segmentLayer[s];
+      a = cloud.layers[5 * phaseLayer + 2].w;
+      b = cloud.layers[5 * phaseLayer + 3].w;
+      float c = cloud.layers[5 * phaseLayer + 4].w;
+      for (int o = 0; o < octaves; ++o)
+        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+    }
     float t = segments[s].x;
     float end = segments[s].y;
     int emptyRun = coarse;  // start in coarse mode
@@ -210,13 +222,33 @@ void main() {
           tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
           lightCount += 1u;
         } else {
-          tau = opticalDepthToSun(layer, p, sun, lightSteps, lightLength, cone);
+          // Bit 16: march to where the sun ray leaves the layer (at most lightLength); else the first
+          // milestone's fixed length (the thickest layer's thickness, at most 4 km), for comparisons.
+          float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
+          tau = opticalDepthToSun(layer, p, sun, lightSteps, marchLength, cone);
           lightCount += uint(lightSteps);
         }
       }
-      float octaveSum = 0.0;
-      for (int o = 0; o < octaves; ++o)
-        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * exp(-cloudOctaveExtinctionScale(a, o) * tau);
+      // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
+      // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
+      // optical depth tau_sun) or diffusing down from the layer top (E mu_s on a horizontal top, times
+      // the Eddington angular factor, cloudTopEntryWeight; optical depth tau_up straight up): at a low
+      // sun the sun ray crosses ~10 km of cloud while scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
+      float tauUp = -1.0;
+      if (msZenith && octaves > 1 && sunVisible && muS > 0.0) {
+        vec3 up = p / rp;
+        int upSteps = max(lightSteps / 2, 2);
+        tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+        lightCount += uint(upSteps);
+      }
+      float topWeight = cloudTopEntryWeight(muS);
+      float octaveSum = phaseOctave[0] * exp(-tau);
+      for (int o = 1; o < octaves; ++o) {
+        float scale = cloudOctaveExtinctionScale(a, o);
+        float attenuation = cloudOctaveTransmittance(scale, tau, msScattered);
+        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(scale, tauUp, msScattered));
+        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * attenuation;
+      }
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
       if (ambientOn) {

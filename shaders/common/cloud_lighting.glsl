@@ -4,6 +4,7 @@
 #define FIRMAMENT_CLOUD_LIGHTING_GLSL
 
 #include "common/atmosphere_medium.glsl"
+#include "common/cloud_density.glsl"
 
 SHARED_BEGIN
 
@@ -38,6 +39,49 @@ SHARED_INLINE Real cloudPhase(Real gForward, Real gBack, Real backWeight, Real n
 SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return pow(b, Real(octave)); }
 SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return pow(a, Real(octave)); }
 SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return pow(c, Real(octave)); }
+
+// The attenuation of octave i >= 1 at optical depth tau along a way in (docs/clouds.md, "Multiple
+// scattering"). Wrenninge et al.'s octave uses e^(-a^i tau). With `scatteredOnly` the unscattered part
+// e^(-tau) is taken out: light that has scattered at least once before reaching the sample is what
+// reached it through the medium at the reduced rate a^i (a similarity-like extinction, cf. the
+// (1 - g) sigma_t of the similarity relations) minus what came straight through. It is 0 at tau = 0 —
+// thin wisps and edges get no multiple scattering, as in the path tracer — and e^(-a^i tau) deep inside
+// (Schneider 2015's "powder" darkening of edges plays the same role as a multiplicative factor). Never
+// above e^(-a^i tau), so the octaves' energy bound (a <= b) still holds.
+SHARED_INLINE Real cloudOctaveTransmittance(Real extinctionScale, Real tau, bool scatteredOnly) {
+  Real t = exp(-extinctionScale * tau);
+  return scatteredOnly ? max(t - exp(-tau), 0.0) : t;
+}
+
+// The length of the light march from p (inside the layer's shell) towards the sun: the distance along
+// the sun ray to where it leaves the shell (through the top, or the base for a sun below the local
+// horizontal), at most maxLength. A sun at zenith angle theta crosses a layer of thickness H over
+// about H / cos(theta) (11.5 km for 1 km at 85 deg): a march over a fixed length of one thickness saw
+// a ninth of the optical depth at sunset (docs/clouds.md, "Lighting").
+SHARED_INLINE Real cloudSunExitDistance(CloudLayer layer, vec3 p, vec3 sun, Real maxLength) {
+  Real r = length(p);
+  Real mu = clamp(dot(p, sun) / r, -1.0, 1.0);
+  vec2 first;
+  vec2 second;
+  cloudShellSegments(r, mu, layer.bottom_radius, layer.top_radius, maxLength, first, second);
+  // p is inside: the stretch that starts at p is `first` when the sun ray is headed for the base
+  // (the inner sphere ahead), else `second` (the inner sphere's roots lie behind p, first is empty).
+  if (first.x <= 0.0 && first.y > 0.0) return first.y;
+  if (second.x <= 0.0) return max(second.y, 0.0);
+  return 0.0;
+}
+
+// The weight of the way down from a layer's top for octaves i >= 1 (docs/clouds.md, "Multiple
+// scattering"): sunlight entering a horizontal top at mu_s = cos(sun zenith) brings the flux E mu_s,
+// and the part of it that diffuses down through a thick, conservatively scattering slab grows like
+// (1/2 + 3/4 mu_s) in the Eddington approximation (Shettle and Weinman 1970; Joseph, Wiscombe and
+// Weinman 1976: T = (1/2 + 3/4 mu_0 + ...) / (1 + 3/4 (1 - g) tau*) for conservative scattering): light
+// entering at a grazing angle is turned back out of the top before it gets deep. Normalised to 1 for
+// the sun at the zenith: mu_s (2 + 3 mu_s) / 5; 0 for the sun at or below the horizontal.
+SHARED_INLINE Real cloudTopEntryWeight(Real muS) {
+  Real m = max(muS, 0.0);
+  return m * (2.0 + 3.0 * m) / 5.0;
+}
 
 // Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground

@@ -23,7 +23,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   const std::vector<CloudBenchRow> rows = runCloudBench(context(), config);
   writeCloudBenchOutputs(config, rows);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
-    int baseline = 0, defaults = 0;
+    int baseline = 0, defaults = 0, milestone = 0, single = 0;
     double spp16 = 0.0, spp256 = 0.0;
     for (const auto& r : rows) {
       if (r.scenario != scenario) continue;
@@ -31,17 +31,24 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
       ASSERT_GT(r.frameMs, 0.0);
       baseline += r.knob == "baseline_fixed_steps";
       defaults += r.knob == "default";
+      milestone += r.knob == "milestone_1_lighting";
+      single += r.knob == "single_scattering";
+      ASSERT_TRUE(std::isfinite(r.relRmseNoiseCorrected) && std::isfinite(r.meanBias)) << r.knob << " " << r.value;
+      ASSERT_GT(r.referenceNoise, 0.0) << r.knob << " " << r.value;
       if (r.knob == "view_steps" && r.value == "16") spp16 = r.samplesPerPixel;
       if (r.knob == "view_steps" && r.value == "256") spp256 = r.samplesPerPixel;
     }
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
+    EXPECT_EQ(milestone, 1) << scenario;
+    EXPECT_EQ(single, 2) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
   }
   std::ifstream csv(config.outDir / "clouds_results.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,device");
+  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
+                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,device");
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
 }
 

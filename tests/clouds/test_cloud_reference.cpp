@@ -1,11 +1,13 @@
 // The GPU march against the CPU path tracer on one small cumulus scene (same density from the same
 // textures, same phase function, same sun through the atmosphere). Ambient light and aerial
 // perspective are off in both, so the comparison isolates the cloud transport of sunlight: the
-// march's octave multiple-scattering approximation against all orders.
+// march's octave multiple-scattering approximation against all orders; and the single scattering
+// alone against the path tracer's first order.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "clouds/cloud_noise.h"
 #include "clouds/reference_clouds.h"
 #include "core/color.h"
 #include "sky/scene_weather.h"
@@ -61,15 +63,89 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   ASSERT_GT(cloudPixels, 20);
   const double relRmse = std::sqrt(sum2 / ref2);
   const double meanSe = std::sqrt(se2) / cloudPixels;
-  std::printf("cloud pixels %d: rel RMSE of luminance %.3f; mean GPU %.1f, path tracer %.1f +- %.1f cd/m^2 "
-              "(%.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
-              cloudPixels, relRmse, gpuSum / cloudPixels, refSum / cloudPixels, meanSe, ref.seconds, ref.events, tDiff);
+  const CloudReferenceError e = compareWithCloudReference(gpu.clouds, ref);
+  std::printf("cloud pixels %d: rel RMSE of luminance %.3f (reference noise %.3f, noise-corrected %.3f); mean GPU "
+              "%.1f, path tracer %.1f +- %.1f cd/m^2 (bias %+.3f; %.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
+              cloudPixels, relRmse, e.noiseFloor, e.noiseCorrected, gpuSum / cloudPixels, refSum / cloudPixels, meanSe,
+              e.meanBias, ref.seconds, ref.events, tDiff);
   // Transmittance is the same integral in both (the march's quadrature vs unbiased ratio tracking).
   EXPECT_LT(tDiff, 0.08);  // 48 ratio-tracking estimates per pixel: noise ~0.02
-  // Albedo 1, no energy gain: the march's mean over the cloud is below the path tracer's plus 10 %
-  // (the octave approximation may not exceed all orders of scattering by more than that) and 3 SE.
-  EXPECT_LE(gpuSum / cloudPixels, 1.1 * refSum / cloudPixels + 3.0 * meanSe);
-  EXPECT_LT(relRmse, 0.6);
+  // Albedo 1, no large energy gain: with the calibrated per-type octaves (docs/clouds.md, "Calibration")
+  // this thin, smooth cumulus (32^3 noise, extinction x 0.2: outside the calibration set) comes out
+  // 15 % brighter than all orders (measured: 6515 vs 5681 +- 110); the first milestone's octaves were
+  // 12 % darker. Bound: 1.25 x the path tracer + 3 SE.
+  EXPECT_LE(gpuSum / cloudPixels, 1.25 * refSum / cloudPixels + 3.0 * meanSe);
+  EXPECT_GE(gpuSum / cloudPixels, 0.85 * refSum / cloudPixels - 3.0 * meanSe);
+  EXPECT_LT(relRmse, 0.45);  // measured 0.367 (0.378 with the first milestone's lighting)
+}
+
+// The GPU march's single scattering (one octave, no cone) against the path tracer limited to one
+// scattering event: the same integral, so they must agree to within the reference's noise and the
+// march's quadrature. Two scenes: the cumulus above (sun 40 deg), and a stratocumulus slab under a sun
+// 85 deg from the zenith, looked at towards the sun, where the sun ray crosses ~10 km of cloud: the
+// first milestone's light march over one layer thickness saw a fraction of that optical depth.
+struct SingleScatteringResult {
+  CloudReferenceError march, fixedLength;
+  double meanStandardError = 0.0;  // of the reference's mean over the cloud pixels, relative
+};
+
+SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scene, int samplesPerPixel) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.viewSteps = 256;
+  o.clouds.lightSteps = 16;
+  o.clouds.lightCone = 0.0;
+  o.clouds.jitter = false;
+  o.clouds.ambient = false;
+  o.clouds.aerialPerspective = false;
+  const RenderResult gpu = test::cloudRenderer().render(scene, o);
+  o.clouds.lightMarchToExit = false;
+  const RenderResult fixedLength = test::cloudRenderer().render(scene, o);
+  const CloudSettings settings = CloudSettings::fromScene(scene);
+  CloudNoise noise(context);
+  gpu::CommandList commands(context);
+  noise.update(settings.seed, o.cloudNoise, commands);
+  commands.submitAndWait();
+  const SceneView& view = gpu.view;
+  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+  CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
+                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+  CloudReferenceSettings rs;
+  rs.samplesPerPixel = samplesPerPixel;
+  rs.maxScatteringOrder = 1;
+  CloudPathTracer tracer(medium, settings.lighting, view.atmosphere, view.sunDirection, CloudEnvironment{}, rs);
+  CloudReferenceImage ref = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, view.cameraRadius), view.camera, 0);
+  SingleScatteringResult r;
+  r.march = compareWithCloudReference(gpu.clouds, ref);
+  r.fixedLength = compareWithCloudReference(fixedLength.clouds, ref);
+  double se2 = 0.0;
+  for (size_t i = 0; i < ref.image.pixelCount(); ++i)
+    if (ref.image.pixels[4 * i + 3] < 0.95) se2 += ref.luminanceStandardError[i] * ref.luminanceStandardError[i];
+  r.meanStandardError = r.march.pixels > 0 ? std::sqrt(se2) / r.march.pixels / r.march.meanReference : 0.0;
+  std::printf("single scattering, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), mean %.1f vs %.1f "
+              "(bias %+.3f, reference SE of the mean %.3f); milestone 1's fixed-length light march: bias %+.3f\n",
+              r.march.pixels, r.march.relRmse, r.march.noiseFloor, r.march.noiseCorrected, r.march.meanTest,
+              r.march.meanReference, r.march.meanBias, r.meanStandardError, r.fixedLength.meanBias);
+  return r;
+}
+
+TEST_F(CloudReference, SingleScatteringAgreesWithFirstOrder) {
+  const Scene cumulus = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
+                                          "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500", "/clouds/lighting/ms_octaves=1"});
+  const SingleScatteringResult noon = singleScattering(context(), cumulus, 64);
+  ASSERT_GT(noon.march.pixels, 20);
+  EXPECT_LT(std::abs(noon.march.meanBias), 0.03 + 3.0 * noon.meanStandardError);
+  EXPECT_LT(noon.march.noiseCorrected, 0.08);
+
+  const Scene sunset = test::cloudScene(
+      {"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14", "/camera/pitch_deg=25",
+       "/camera/yaw_deg=270", "/sun/zenith_deg=85", "/sun/azimuth_deg=270", "/clouds/lighting/ms_octaves=1"},
+      test::cloudSceneText(R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2000, "coverage": 0.5})"));
+  const SingleScatteringResult low = singleScattering(context(), sunset, 256);
+  ASSERT_GT(low.march.pixels, 20);
+  EXPECT_LT(std::abs(low.march.meanBias), 0.05 + 3.0 * low.meanStandardError);
+  EXPECT_LT(low.march.noiseCorrected, 0.15);
+  // The check can fail: the first milestone's light march (one layer thickness) is far too bright here.
+  EXPECT_GT(low.fixedLength.meanBias, 0.5);
 }
 
 }  // namespace

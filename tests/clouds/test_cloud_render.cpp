@@ -177,6 +177,33 @@ TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
                    {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
                InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
+  // ms_a alone is checked against the layer type's calibrated b (cumulus b = 0.958).
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=1.0"})), InputError);
+  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=0.9"})));
+}
+
+// Octave parameters: the type's calibrated values per layer unless the scene gives them (then for all).
+TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
+  const std::string twoLayers =
+      test::cloudSceneText(R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1400}, {"kind": "cumulus", "bottom_m": 1500, "top_m": 3000})");
+  const CloudSettings typed = CloudSettings::fromScene(test::cloudScene({}, twoLayers));
+  ASSERT_EQ(typed.layers.size(), 2u);
+  const CloudMultipleScattering sc = cloudTypeMultipleScattering(shared::kCloudStratocumulus);
+  const CloudMultipleScattering cu = cloudTypeMultipleScattering(shared::kCloudCumulus);
+  EXPECT_EQ(typed.layers[0].msA, sc.a);
+  EXPECT_EQ(typed.layers[0].msC, sc.c);
+  EXPECT_EQ(typed.layers[1].msB, cu.b);
+  EXPECT_EQ(typed.layers[1].msC, cu.c);
+  EXPECT_NE(sc.c, cu.c);
+  for (int kind = 0; kind <= shared::kCloudCirrus; ++kind) {
+    const CloudMultipleScattering m = cloudTypeMultipleScattering(kind);
+    EXPECT_LE(m.a, m.b) << kind;  // the energy bound of the octaves
+    EXPECT_LE(m.b, 1.0) << kind;
+  }
+  const CloudSettings given = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_c=0.7"}, twoLayers));
+  EXPECT_EQ(given.layers[0].msC, 0.7);
+  EXPECT_EQ(given.layers[1].msC, 0.7);
+  EXPECT_EQ(given.layers[0].msB, sc.b);
 }
 
 }  // namespace

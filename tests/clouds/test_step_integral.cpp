@@ -46,3 +46,35 @@ TEST(CloudPhase, DualLobeIsNormalised) {
 
 }  // namespace
 }  // namespace firmament
+
+namespace firmament {
+namespace {
+
+// The light march's length (common/cloud_lighting.glsl cloudSunExitDistance): from a point inside a
+// shell to where a ray leaves it, through the top or the base, capped. A grazing sun crosses a layer
+// over about H / cos(theta_s): the first milestone marched one thickness whatever the sun.
+TEST(CloudSunExitDistance, TopBaseGrazingAndCap) {
+  const double ground = 6360e3;
+  shared::CloudLayer layer{};
+  layer.bottom_radius = ground + 1000.0;
+  layer.top_radius = ground + 2000.0;
+  const glm::dvec3 p(0.0, 0.0, ground + 1500.0);
+  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, glm::dvec3(0.0, 0.0, 1.0), 1e5), 500.0, 1e-6);   // up
+  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, glm::dvec3(0.0, 0.0, -1.0), 1e5), 500.0, 1e-6);  // down
+  const double theta = 85.0 * 3.14159265358979323846 / 180.0;
+  const glm::dvec3 low(std::sin(theta), 0.0, std::cos(theta));
+  const double exit = shared::cloudSunExitDistance(layer, p, low, 1e5);
+  // Exact: the root of |p + t s| = r_top; the flat-layer estimate 500 / cos(85 deg) = 5737 m is a
+  // little longer (the shell curves down towards the ray).
+  const double r = glm::length(p), mu = glm::dot(p, low) / r, top = layer.top_radius;
+  const double exact = -r * mu + std::sqrt(top * top - r * r * (1.0 - mu * mu));
+  EXPECT_NEAR(exit, exact, 1e-6 * exact);
+  EXPECT_GT(exit, 5000.0);
+  EXPECT_LT(exit, 500.0 / std::cos(theta));
+  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, low, 3000.0), 3000.0, 1e-9);  // capped
+  // Horizontal ray from the middle of the shell: it leaves through the top, sqrt(r_top^2 - r^2) = 79.8 km away.
+  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, glm::dvec3(1.0, 0.0, 0.0), 1e6), std::sqrt(top * top - r * r), 1e-3);
+}
+
+}  // namespace
+}  // namespace firmament

@@ -1,0 +1,237 @@
+#include "sky/cloud_calibration.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "clouds/cloud_noise.h"
+#include "clouds/reference_clouds.h"
+#include "core/atomic_file.h"
+#include "core/log.h"
+#include "core/scene.h"
+#include "sky/scene_weather.h"
+#include "sky/sky_renderer.h"
+
+namespace firmament {
+namespace {
+
+struct CalibrationScene {
+  std::string name, group, description, text;
+};
+
+// Separate from sky/cloud_bench.cpp's scenarios (cumulus_noon: seed 1, 1500-3000 m, coverage 0.6, sun
+// 30 deg; stratocumulus_sunset: seed 1, 1000-2000 m, coverage 0.7, sun 85 deg looking towards it): other
+// seeds, layer heights, coverages, sun angles and view directions; two thinner layers (extinction x 0.15)
+// keep the fit from buying thick clouds' light with thin clouds' energy.
+std::vector<CalibrationScene> calibrationScenes(bool quick) {
+  const std::string size = quick ? R"("width": 32, "height": 18)" : R"("width": 48, "height": 27)";
+  auto scene = [&](int seed, double sunZenith, double sunAzimuth, double yaw, double pitch, const std::string& layer) {
+    return R"({"location": {"height_m": 300}, "sun": {"zenith_deg": )" + std::to_string(sunZenith) +
+           R"(, "azimuth_deg": )" + std::to_string(sunAzimuth) + R"(}, "camera": {"height_above_ground_m": 2, "yaw_deg": )" +
+           std::to_string(yaw) + R"(, "pitch_deg": )" + std::to_string(pitch) + R"(, "fov_deg": 70, )" + size +
+           R"(}, "clouds": {"seed": )" + std::to_string(seed) + R"(, "layers": [)" + layer + "]}}";
+  };
+  return {
+      {"cu_high_sun", "cumulus", "cumulus 1800-3500 m, coverage 0.7, seed 9; sun 15 deg; looking up 45 deg, sun to the side",
+       scene(9, 15, 0, 90, 45, R"({"kind": "cumulus", "bottom_m": 1800, "top_m": 3500, "coverage": 0.7, "extinction_scale": 0.3})")},
+      {"cu_side_sun", "cumulus", "cumulus 1200-2600 m, coverage 0.5, seed 5; sun 55 deg; looking away from it, up 30 deg",
+       scene(5, 55, 120, 300, 30, R"({"kind": "cumulus", "bottom_m": 1200, "top_m": 2600, "coverage": 0.5, "extinction_scale": 0.3})")},
+      {"cu_backlit", "cumulus", "cumulus 1500-3200 m, coverage 0.55, seed 13; sun 70 deg; looking towards it, up 20 deg",
+       scene(13, 70, 90, 90, 20, R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3200, "coverage": 0.55, "extinction_scale": 0.3})")},
+      {"cu_thin", "cumulus", "cumulus 1600-2600 m, coverage 0.6, extinction x 0.15, seed 23; sun 40 deg; looking up 55 deg",
+       scene(23, 40, 180, 0, 55, R"({"kind": "cumulus", "bottom_m": 1600, "top_m": 2600, "coverage": 0.6, "extinction_scale": 0.15})")},
+      {"sc_afternoon", "stratocumulus", "stratocumulus 800-1800 m, coverage 0.8, seed 3; sun 60 deg; looking away, up 30 deg",
+       scene(3, 60, 200, 20, 30, R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1800, "coverage": 0.8, "extinction_scale": 0.3})")},
+      {"sc_dusk", "stratocumulus", "stratocumulus 1200-2000 m, coverage 0.6, seed 17; sun 80 deg; 50 deg left of it, up 20 deg",
+       scene(17, 80, 250, 300, 20, R"({"kind": "stratocumulus", "bottom_m": 1200, "top_m": 2000, "coverage": 0.6, "extinction_scale": 0.3})")},
+      {"sc_overhead", "stratocumulus", "stratocumulus 1000-2300 m, coverage 0.75, seed 21; sun 35 deg; looking up 60 deg",
+       scene(21, 35, 0, 180, 60, R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2300, "coverage": 0.75, "extinction_scale": 0.3})")},
+      {"sc_thin", "stratocumulus", "stratocumulus 1500-2200 m, coverage 0.55, extinction x 0.15, seed 29; sun 50 deg; looking up 40 deg",
+       scene(29, 50, 90, 200, 40, R"({"kind": "stratocumulus", "bottom_m": 1500, "top_m": 2200, "coverage": 0.55, "extinction_scale": 0.15})")},
+  };
+}
+
+struct Prepared {
+  CalibrationScene scene;
+  CloudReferenceImage reference;
+  std::unique_ptr<SkyRenderer> renderer;  // one per scene: each keeps its seed's noise baked (~2 s a bake)
+};
+
+std::string number(double x) {
+  char s[32];
+  std::snprintf(s, sizeof(s), "%.4f", x);
+  return s;
+}
+
+}  // namespace
+
+CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config) {
+  CloudCalibrationResult result;
+  result.device = context.description();
+  SkyRenderOptions options;
+  options.clouds.ambient = false;
+  options.clouds.aerialPerspective = false;
+  const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128);
+
+  // 1. The references (all orders), once.
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<Prepared> prepared;
+  for (const CalibrationScene& sc : calibrationScenes(config.quick)) {
+    const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">");
+    auto renderer = std::make_unique<SkyRenderer>(context);
+    const RenderResult first = renderer->render(scene, options);
+    const CloudSettings settings = CloudSettings::fromScene(scene);
+    CloudNoise noise(context);
+    gpu::CommandList commands(context);
+    noise.update(settings.seed, options.cloudNoise, commands);
+    commands.submitAndWait();
+    const double ground = first.view.cameraRadius - scene.number("/camera/height_above_ground_m");
+    const CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
+                             noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+    CloudReferenceSettings rs;
+    rs.samplesPerPixel = spp;
+    rs.threads = config.threads;
+    const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, CloudEnvironment{}, rs);
+    Prepared p{sc, renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads),
+               std::move(renderer)};
+    logInfo("calibrate clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel in " +
+            std::to_string(p.reference.seconds) + " s");
+    prepared.push_back(std::move(p));
+  }
+  result.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t0 = std::chrono::steady_clock::now();
+
+  // The errors of one parameter set on the scenes of a group.
+  auto evaluate = [&](const std::string& group, double a, double b, double c, std::vector<CloudCalibrationSceneError>& out) {
+    out.clear();
+    double sum = 0.0;
+    for (const Prepared& p : prepared) {
+      if (group != "all" && p.scene.group != group) continue;
+      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
+                                       {"/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+                                        "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
+                                        "/clouds/lighting/ms_c=" + number(c)});
+      const RenderResult r = p.renderer->render(scene, options);
+      const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
+      out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
+      sum += e.relRmse * e.relRmse;
+    }
+    return out.empty() ? 0.0 : sum / double(out.size());
+  };
+
+  // 2. Nelder-Mead over x = (b, a/b, c), each clamped to [0, 1] (a <= b by construction).
+  for (const std::string group : {"cumulus", "stratocumulus", "all"}) {
+    CloudCalibrationFit fit;
+    fit.group = group;
+    auto clamp01 = [](std::array<double, 3> x) {
+      for (double& v : x) v = std::clamp(v, 0.0, 1.0);
+      return x;
+    };
+    std::vector<CloudCalibrationSceneError> scratch;
+    auto f = [&](const std::array<double, 3>& x) {
+      ++fit.evaluations;
+      return evaluate(group, x[0] * x[1], x[0], x[2], scratch);
+    };
+    std::array<std::array<double, 3>, 4> simplex = {{{0.5, 1.0, 0.5}, {0.75, 1.0, 0.5}, {0.5, 0.6, 0.5}, {0.5, 1.0, 0.8}}};
+    std::array<double, 4> value{};
+    for (int i = 0; i < 4; ++i) value[i] = f(simplex[i]);
+    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, fit.start);
+    while (fit.evaluations < config.maxEvaluations) {
+      std::array<int, 4> order = {0, 1, 2, 3};
+      std::sort(order.begin(), order.end(), [&](int i, int j) { return value[i] < value[j]; });
+      const auto best = simplex[order[0]];
+      const int worst = order[3];
+      if (value[order[3]] - value[order[0]] < 1e-6 * std::max(value[order[0]], 1e-12)) break;
+      std::array<double, 3> centroid{};
+      for (int k = 0; k < 3; ++k)
+        for (int d = 0; d < 3; ++d) centroid[d] += simplex[order[k]][d] / 3.0;
+      auto along = [&](double t) {
+        std::array<double, 3> x{};
+        for (int d = 0; d < 3; ++d) x[d] = centroid[d] + t * (simplex[worst][d] - centroid[d]);
+        return clamp01(x);
+      };
+      const auto reflected = along(-1.0);
+      const double fr = f(reflected);
+      if (fr < value[order[0]]) {
+        const auto expanded = along(-2.0);
+        const double fe = f(expanded);
+        if (fe < fr) simplex[worst] = expanded, value[worst] = fe;
+        else simplex[worst] = reflected, value[worst] = fr;
+      } else if (fr < value[order[2]]) {
+        simplex[worst] = reflected, value[worst] = fr;
+      } else {
+        const auto contracted = along(fr < value[worst] ? -0.5 : 0.5);
+        const double fc = f(contracted);
+        if (fc < std::min(fr, value[worst])) {
+          simplex[worst] = contracted, value[worst] = fc;
+        } else {  // shrink towards the best
+          for (int k = 1; k < 4; ++k) {
+            const int i = order[k];
+            for (int d = 0; d < 3; ++d) simplex[i][d] = best[d] + 0.5 * (simplex[i][d] - best[d]);
+            value[i] = f(simplex[i]);
+          }
+        }
+      }
+    }
+    int bestIndex = int(std::min_element(value.begin(), value.end()) - value.begin());
+    const auto x = simplex[bestIndex];
+    fit.b = x[0];
+    fit.a = x[0] * x[1];
+    fit.c = x[2];
+    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.fit);
+    char line[256];
+    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
+                  group.c_str(), fit.a, fit.b, fit.c, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit), fit.evaluations);
+    logInfo(line);
+    result.fits.push_back(std::move(fit));
+  }
+  result.fitSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
+  std::string csv = "group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
+  std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
+                   "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
+                   "sc_thin x 0.15), " +
+                   std::to_string(config.octaves) + " octaves; reference: the CPU cloud path tracer (all orders, " +
+                   std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
+                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c), minimising the mean squared rel RMSE of the "
+                   "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5 with the same multiple-scattering "
+                   "model. `corrected`: the reference's noise subtracted.\n\n";
+  if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
+  char line[512];
+  std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
+                result.fitSeconds, result.device.c_str());
+  md += line;
+  md += "| group | a | b | c | evaluations | rms rel RMSE at a = b = c = 0.5 | at the fit |\n| --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& f : result.fits) {
+    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b, f.c,
+                  f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
+    md += line;
+  }
+  md += "\n| group | scene | rel RMSE start | corrected | bias | rel RMSE fit | corrected | noise | bias |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& f : result.fits)
+    for (size_t i = 0; i < f.fit.size() && i < f.start.size(); ++i) {
+      const auto& s = f.start[i];
+      const auto& e = f.fit[i];
+      std::snprintf(line, sizeof(line), "| %s | %s | %.4f | %.4f | %+.3f | %.4f | %.4f | %.4f | %+.3f |\n", f.group.c_str(),
+                    e.scene.c_str(), s.relRmse, s.noiseCorrected, s.meanBias, e.relRmse, e.noiseCorrected, e.noiseFloor,
+                    e.meanBias);
+      md += line;
+      for (const auto* x : {&s, &e}) {
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
+                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x->scene.c_str(), x->relRmse,
+                      x->noiseCorrected, x->noiseFloor, x->meanBias, x == &s ? "start" : "fit");
+        csv += line;
+      }
+    }
+  writeTextFileAtomically(config.outDir / "clouds_calibration.csv", csv);
+  writeTextFileAtomically(config.outDir / "clouds_calibration.md", md);
+}
+
+}  // namespace firmament

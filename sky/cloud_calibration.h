@@ -1,0 +1,56 @@
+#pragma once
+// `firmament bench clouds --calibrate --out DIR`: fits the octave multiple-scattering parameters a, b, c
+// (Wrenninge et al. 2013; common/cloud_lighting.glsl) of the cloud march to the CPU path tracer, on
+// calibration scenes kept separate from the benchmark's scenarios (other seeds, coverages, layer
+// heights and sun angles), so the benchmark reports the fitted defaults on scenes the fit never saw.
+// Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3 as the benchmark
+// (two scenes x 0.15).
+//
+// The fit: per group of scenes (one cloud type, and all scenes together), Nelder-Mead (Nelder and Mead
+// 1965) over x = (b, a / b, c) in [0, 1]^3 (so a <= b holds by construction), minimising the mean over
+// the group's scenes of the squared relative RMSE of the clouds' luminance (cloud pixels; the
+// reference's own noise adds the same constant to every candidate, so it does not move the minimum).
+// docs/clouds.md, "Calibration", lists the scenes and the result.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+
+namespace firmament {
+
+struct CloudCalibrationConfig {
+  std::filesystem::path outDir;
+  bool quick = false;  // smaller images (32x18 instead of 48x27), 64 paths per pixel
+  int threads = 0;     // path tracer threads (0: all cores)
+  int samplesPerPixel = 0;  // 0: 128 (quick 64): the fit needs a quiet reference
+  int octaves = 3;          // the octave count the parameters are fitted for (the default)
+  int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
+  std::string environmentNote;
+};
+
+struct CloudCalibrationSceneError {
+  std::string scene;
+  double relRmse = 0.0, noiseCorrected = 0.0, noiseFloor = 0.0, meanBias = 0.0;
+};
+
+struct CloudCalibrationFit {
+  std::string group;  // "cumulus", "stratocumulus", "all"
+  double a = 0.5, b = 0.5, c = 0.5;
+  int evaluations = 0;
+  double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at the start (a = b = c = 0.5) and at the fit
+  std::vector<CloudCalibrationSceneError> start, fit;  // per scene
+};
+
+struct CloudCalibrationResult {
+  std::vector<CloudCalibrationFit> fits;
+  std::string device;
+  double referenceSeconds = 0.0, fitSeconds = 0.0;
+};
+
+CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config);
+// clouds_calibration.csv (group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,
+// at) and clouds_calibration.md in config.outDir.
+void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result);
+
+}  // namespace firmament
