@@ -22,11 +22,20 @@ vec3 transmittanceToSun(sampler2D lut, AtmosphereParameters atmosphere, float r,
   return visible * transmittanceToTop(lut, atmosphere, r, mu_s);
 }
 
+// Tables of the multiple-scattering field store ln(value) (atmosphere/multiple_scattering_lut.glsl):
+// across the Earth's shadow Psi_ms falls by orders of magnitude within a texel or two, and linear
+// interpolation of such a fall overestimates it (by 2x at sun zenith 96 deg with 32 x 32 texels,
+// docs/atmosphere.md); bilinear interpolation of the logarithm is exact for an exponential fall and
+// changes smooth regions at round-off. kLogFloor stands for zero (e^-69 = 1e-30).
+const float kLogFloor = -69.0;
+vec3 encodeLog(vec3 value) { return log(max(value, vec3(1e-30))); }
+vec3 decodeLog(vec3 encoded) { return exp(max(encoded, vec3(kLogFloor))); }
+
 // Hillaire 2020's Psi_ms: radiance per unit scattering coefficient from all orders >= 2, for an
 // isotropic phase, at (r, mu_s).
 vec3 multipleScattering(sampler2D lut, AtmosphereParameters atmosphere, float r, float mu_s) {
   ivec2 size = textureSize(lut, 0);
-  return textureLod(lut, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb;
+  return decodeLog(textureLod(lut, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb);
 }
 
 #endif  // FIRMAMENT_ATMOSPHERE_SAMPLING_GLSL

@@ -88,7 +88,7 @@ void cellMeans(AtmosphereParameters atmosphere, vec3 sun, float c0, float c1, fl
 
 vec3 previousOrderAt(AtmosphereParameters atmosphere, float r, float mu_s) {
   ivec2 size = textureSize(previousOrder, 0);
-  return textureLod(previousOrder, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb;
+  return decodeLog(textureLod(previousOrder, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb);
 }
 
 vec3 previousGroundIrradianceAt(AtmosphereParameters atmosphere, float mu_s) {
@@ -191,19 +191,22 @@ void main() {
   if (push.last != 0) {
     vec3 q = transfer;
 #if !FIRST_ORDER
-    vec3 previous = texelFetch(previousOrder, texel, 0).rgb;
+    vec3 previous = decodeLog(texelFetch(previousOrder, texel, 0).rgb);
     q = mix(transfer, j_k / max(previous, vec3(1e-30)), greaterThan(previous, vec3(1e-30)));
 #endif
     q = clamp(q, vec3(0.0), vec3(0.98));
     tail_factor = q / (vec3(1.0) - q);
     tail = j_k * tail_factor;
   }
+  // The table sums the orders linearly; the last order stores ln Psi_ms for the readers and the
+  // anisotropy as c_lm / Psi_ms, so both interpolate well across the Earth's shadow (see
+  // atmosphere/atmosphere_sampling.glsl). The scratch order J_k is stored as a logarithm too.
 #if FIRST_ORDER
   vec3 psi = j_k + tail;
 #else
   vec3 psi = imageLoad(multipleScatteringLut, texel).rgb + j_k + tail;
 #endif
-  imageStore(multipleScatteringLut, texel, vec4(psi, 1.0));
+  imageStore(multipleScatteringLut, texel, vec4(push.last != 0 ? encodeLog(psi) : psi, 1.0));
   for (int h = 0; h < kAnisotropyTerms; ++h) {
     ivec3 at = ivec3(texel, h);
 #if FIRST_ORDER
@@ -213,8 +216,9 @@ void main() {
 #endif
     // Hillaire's form (one order, isotropic phase) has no anisotropy.
     if (push.real_phase != 0) sum += moments[h] * (vec3(1.0) + tail_factor);
+    if (push.last != 0) sum = mix(vec3(0.0), sum / max(psi, vec3(1e-30)), greaterThan(psi, vec3(1e-30)));
     imageStore(anisotropyLut, at, vec4(sum, 0.0));
   }
-  imageStore(currentOrder, texel, vec4(j_k, 1.0));
+  imageStore(currentOrder, texel, vec4(encodeLog(j_k), 1.0));
   if (texel.y == 0) imageStore(currentGroundIrradiance, ivec2(texel.x, 0), vec4(ground_irradiance, 1.0));
 }

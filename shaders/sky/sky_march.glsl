@@ -43,11 +43,11 @@ MultipleScatteringSource multipleScatteringInto(AtmosphereParameters atmosphere,
   vec3 w = vec3(dot(dir, cross(y, up)), dot(dir, y), dot(dir, up));
   ivec2 size = textureSize(multiple_scattering_lut, 0);
   vec2 uv = multipleScatteringUv(atmosphere, r_p, mu_s_p, size);
-  vec3 psi = textureLod(multiple_scattering_lut, uv, 0.0).rgb;
+  vec3 psi = decodeLog(textureLod(multiple_scattering_lut, uv, 0.0).rgb);
   vec3 l1 = vec3(0.0), l2 = vec3(0.0);
   for (int h = 0; h < kAnisotropyTerms; ++h) {
     vec3 c = textureLod(anisotropy_lut, vec3(uv, (float(h) + 0.5) / float(kAnisotropyTerms)), 0.0).rgb;
-    vec3 term = c * anisotropyHarmonic(h, w);
+    vec3 term = c * psi * anisotropyHarmonic(h, w);  // the table holds c_lm / Psi_ms
     if (h < 2) l1 += term; else l2 += term;
   }
   vec2 mie_moments = miePhaseMoments();
