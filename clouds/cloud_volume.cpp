@@ -69,26 +69,34 @@ glm::dvec3 cloudVoxelCentre(glm::ivec3 ijk, double h) {
   return (glm::dvec3(ijk) + 0.5) * h;
 }
 
-CloudVolumeRegion defaultCloudVolumeRegion(const std::vector<shared::CloudLayer>& layers, double groundRadius_m,
-                                           double halfWidth_m, double voxelSize_m) {
-  CloudVolumeRegion r;
-  r.west_m = r.south_m = -halfWidth_m;
-  r.east_m = r.north_m = halfWidth_m;
-  r.voxelSize_m = voxelSize_m;
+void fitCloudVolumeHeights(CloudVolumeRegion& r, const std::vector<shared::CloudLayer>& layers, double groundRadius_m) {
   if (layers.empty()) {
     r.bottom_m = 0.0;
-    r.top_m = voxelSize_m;
-    return r;
+    r.top_m = r.voxelSize_m;
+    return;
   }
   double bottomRadius = layers.front().bottom_radius, topRadius = layers.front().top_radius;
   for (const shared::CloudLayer& l : layers) {
     bottomRadius = std::min(bottomRadius, double(l.bottom_radius));
     topRadius = std::max(topRadius, double(l.top_radius));
   }
-  // The sphere of radius bottomRadius at the square's corners (horizontal distance d = sqrt(2) halfWidth).
-  const double d2 = 2.0 * halfWidth_m * halfWidth_m;
-  r.bottom_m = std::sqrt(std::max(bottomRadius * bottomRadius - d2, 0.0)) - groundRadius_m;
-  r.top_m = topRadius - groundRadius_m;
+  // Squared horizontal distances from the z axis of the box's farthest and nearest points.
+  const auto farthest = [](double a, double b) { return std::max(std::abs(a), std::abs(b)); };
+  const auto nearest = [](double a, double b) { return a <= 0.0 && b >= 0.0 ? 0.0 : std::min(std::abs(a), std::abs(b)); };
+  const double far2 = std::pow(farthest(r.west_m, r.east_m), 2) + std::pow(farthest(r.south_m, r.north_m), 2);
+  const double near2 = std::pow(nearest(r.west_m, r.east_m), 2) + std::pow(nearest(r.south_m, r.north_m), 2);
+  // The sphere of radius rho at horizontal distance d lies at z = sqrt(rho^2 - d^2) - R.
+  r.bottom_m = std::sqrt(std::max(bottomRadius * bottomRadius - far2, 0.0)) - groundRadius_m;
+  r.top_m = std::sqrt(std::max(topRadius * topRadius - near2, 0.0)) - groundRadius_m;
+}
+
+CloudVolumeRegion defaultCloudVolumeRegion(const std::vector<shared::CloudLayer>& layers, double groundRadius_m,
+                                           double halfWidth_m, double voxelSize_m) {
+  CloudVolumeRegion r;
+  r.west_m = r.south_m = -halfWidth_m;
+  r.east_m = r.north_m = halfWidth_m;
+  r.voxelSize_m = voxelSize_m;
+  fitCloudVolumeHeights(r, layers, groundRadius_m);
   return r;
 }
 

@@ -59,10 +59,15 @@ inline glm::dvec3 cloudFrameFromLocalEnu(glm::dvec3 enu, double groundRadius_m) 
   return glm::dvec3(enu.x, enu.y, groundRadius_m + enu.z);
 }
 
-// The default region: the square of half-width halfWidth_m centred on the origin, from the lowest
-// point of the lowest layer's base over that square (its corners; the base curves down with the
-// planet) to the highest layer top (above the origin), with voxel size voxelSize_m. No layers: one
-// voxel of height above the ground (bottom 0, top voxelSize_m), where the field is 0.
+// Sets region.bottom_m and top_m to the layers' extent over the region's horizontal box: from the
+// lowest point of the lowest base (at the box's point farthest from the z axis: the shells curve down
+// with the planet) to the highest point of the highest top (at the point nearest the axis). No layers:
+// one voxel of height above the ground (bottom 0, top voxelSize_m), where the field is 0.
+void fitCloudVolumeHeights(CloudVolumeRegion& region, const std::vector<shared::CloudLayer>& layers,
+                           double groundRadius_m);
+
+// The default region: the square of half-width halfWidth_m centred on the origin, voxel size
+// voxelSize_m, heights fitted to the layers (fitCloudVolumeHeights).
 CloudVolumeRegion defaultCloudVolumeRegion(const std::vector<shared::CloudLayer>& layers, double groundRadius_m,
                                            double halfWidth_m = 10000.0, double voxelSize_m = 50.0);
 

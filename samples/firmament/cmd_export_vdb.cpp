@@ -95,20 +95,18 @@ int runExportVdb(const Args& args) {
     logInfo("export-vdb: " + scenePath + " has no cloud layers: the grid will be empty");
   }
 
-  // The region: the defaults fill what the options leave out (defaultCloudVolumeRegion).
+  // The region: the heights the options leave out fitted to the layers over the horizontal box.
   CloudVolumeRegion region = defaultCloudVolumeRegion(medium.layers(), ground, kDefaultHalfWidth_m, voxel);
   if (args.has("region")) {
     region.west_m = asked.west_m, region.south_m = asked.south_m, region.east_m = asked.east_m, region.north_m = asked.north_m;
-    const CloudVolumeRegion fitted = defaultCloudVolumeRegion(
-        medium.layers(), ground, std::max({-region.west_m, region.east_m, -region.south_m, region.north_m}), voxel);
-    region.bottom_m = fitted.bottom_m;
+    fitCloudVolumeHeights(region, medium.layers(), ground);
   }
   if (bottom) region.bottom_m = *bottom;
   if (top) region.top_m = *top;
   if (!(region.bottom_m < region.top_m))
     throw InputError("options --bottom/--top: the height range " + format("%g", region.bottom_m) + " to " +
                      format("%g", region.top_m) + " m is empty; allowed: bottom < top (defaults: the layers' lowest "
-                     "base over the region to their highest top)");
+                     "base to their highest top over the region)");
   const uint64_t voxels = cloudVoxelBox(region).count();
   if (voxels > kCloudVolumeMaxVoxels)
     throw InputError("options --voxel-size/--region/--bottom/--top: " + std::to_string(voxels) +

@@ -237,6 +237,14 @@ TEST(CloudVolume, LatticeAndDefaultRegion) {
   EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(10000.0, 10000.0, d.bottom_m), ground)),
               layer.bottom_radius, 1e-6);
   EXPECT_NO_THROW(validateCloudVolumeRegion(d));
+  // A box off the axis, 20-30 km east, 5 km either side of north: the base is lowest at its far
+  // corner (30 km, +-5 km), the top highest at its nearest point (20 km, 0).
+  CloudVolumeRegion off;
+  off.west_m = 20000.0, off.east_m = 30000.0, off.south_m = -5000.0, off.north_m = 5000.0;
+  fitCloudVolumeHeights(off, {layer}, ground);
+  EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(30000.0, -5000.0, off.bottom_m), ground)), layer.bottom_radius, 1e-6);
+  EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(20000.0, 0.0, off.top_m), ground)), layer.top_radius, 1e-6);
+  EXPECT_LT(off.top_m, 4000.0 - 31.0);  // 20 km out the top is 31 m below its height over the origin
   EXPECT_EQ(cloudVoxelBox(d).count(), 400u * 400u * uint64_t(std::ceil(4000.0 / 50.0) - std::floor(d.bottom_m / 50.0)));
 }
 
