@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "clouds/cloud_settings.h"
 #include "clouds/cloud_volume.h"
 #include "clouds/vdb_export.h"
 #include "core/error.h"
@@ -83,23 +84,15 @@ int runExportVdb(const Args& args) {
   const Scene scene = Scene::load(scenePath, args.all("set"));  // InputError (exit 2) on a bad scene or override
   const SceneView view = makeSceneView(scene);
   const double ground = sceneGroundRadius(scene, view);
-  std::unique_ptr<gpu::Context> context;
-  CloudMedium medium = emptyCloudMedium(ground);
-  if (sceneHasCloudLayers(scene)) {
-    gpu::ContextOptions contextOptions;
-    contextOptions.device = args.getOr("device", "");
-    context = std::make_unique<gpu::Context>(contextOptions);
-    logInfo("export-vdb: noise baked on " + context->description());
-    medium = sceneCloudMedium(scene, view, *context);
-  } else {
-    logInfo("export-vdb: " + scenePath + " has no cloud layers: the grid will be empty");
-  }
+  // The layers (no GPU yet): the region and its checks come before the noise bake.
+  const std::vector<shared::CloudLayer> layers =
+      sceneHasCloudLayers(scene) ? sharedCloudLayers(CloudSettings::fromScene(scene), ground) : std::vector<shared::CloudLayer>{};
 
   // The region: the heights the options leave out fitted to the layers over the horizontal box.
-  CloudVolumeRegion region = defaultCloudVolumeRegion(medium.layers(), ground, kDefaultHalfWidth_m, voxel);
+  CloudVolumeRegion region = defaultCloudVolumeRegion(layers, ground, kDefaultHalfWidth_m, voxel);
   if (args.has("region")) {
     region.west_m = asked.west_m, region.south_m = asked.south_m, region.east_m = asked.east_m, region.north_m = asked.north_m;
-    fitCloudVolumeHeights(region, medium.layers(), ground);
+    fitCloudVolumeHeights(region, layers, ground);
   }
   if (bottom) region.bottom_m = *bottom;
   if (top) region.top_m = *top;
@@ -112,6 +105,18 @@ int runExportVdb(const Args& args) {
     throw InputError("options --voxel-size/--region/--bottom/--top: " + std::to_string(voxels) +
                      " voxels; allowed: at most " + std::to_string(kCloudVolumeMaxVoxels) +
                      " (raise --voxel-size or shrink the region)");
+
+  std::unique_ptr<gpu::Context> context;
+  CloudMedium medium = emptyCloudMedium(ground);
+  if (sceneHasCloudLayers(scene)) {
+    gpu::ContextOptions contextOptions;
+    contextOptions.device = args.getOr("device", "");
+    context = std::make_unique<gpu::Context>(contextOptions);
+    logInfo("export-vdb: baking the noise on " + context->description());
+    medium = sceneCloudMedium(scene, view, *context);
+  } else {
+    logInfo("export-vdb: " + scenePath + " has no cloud layers: the grid will be empty");
+  }
 
   const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::error_code ec;
