@@ -33,7 +33,7 @@ struct CloudVdbOptions {
 };
 
 struct CloudVdbSummary {
-  uint64_t sampledVoxels = 0;  // voxels of the region (each evaluated once)
+  uint64_t sampledVoxels = 0;  // voxels of the region (each evaluated once; none without layers)
   uint64_t activeVoxels = 0;   // non-zero voxels, all stored
   double maxExtinction = 0.0;  // m^-1
   // Bounds of the active voxels' cubes (local ENU, m); both 0 when there are none.
