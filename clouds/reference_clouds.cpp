@@ -58,6 +58,12 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   return column.extinction * shared::cloudDensity(column, ph, base, detail);
 }
 
+double CloudMedium::extinction(glm::dvec3 p) const {
+  double sum = 0.0;
+  for (size_t i = 0; i < layers_.size(); ++i) sum += extinction(i, p);
+  return sum;
+}
+
 CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting,
                                  const AtmosphereSettings& atmosphere, glm::dvec3 sun,
                                  const CloudEnvironment& environment, const CloudReferenceSettings& settings)

@@ -37,8 +37,11 @@ class CloudMedium {
   CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl,
               CloudWeatherMap weather, double groundRadius_m);
   const std::vector<shared::CloudLayer>& layers() const { return layers_; }
+  double groundRadius() const { return groundRadius_m_; }
   // Extinction (m^-1) of layer i at p (planet-centred, m); 0 outside its shell.
   double extinction(size_t layer, glm::dvec3 p) const;
+  // Extinction (m^-1) of all layers at p: their sum (layers do not overlap, so at most one is non-zero).
+  double extinction(glm::dvec3 p) const;
 
  private:
   std::vector<shared::CloudLayer> layers_;

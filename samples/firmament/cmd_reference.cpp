@@ -10,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "atmosphere/reference_renderer.h"
-#include "clouds/cloud_noise.h"
 #include "clouds/reference_clouds.h"
 #include "gpu/context.h"
 #include "core/atomic_file.h"
@@ -20,8 +19,8 @@
 #include "core/scene.h"
 #include "core/tonemap.h"
 #include "samples/firmament/command.h"
+#include "sky/scene_cloud_medium.h"
 #include "sky/scene_view.h"
-#include "sky/scene_weather.h"
 
 namespace firmament::cli {
 namespace {
@@ -81,17 +80,12 @@ int runReference(const Args& args) {
   // Clouds (docs/clouds.md, "Reference"): the CPU cloud path tracer over the noise textures baked on
   // the GPU (lavapipe without one) and read back, composited as sky * T + cloud light.
   nlohmann::ordered_json cloudStats;
-  if (scene.hasSection("clouds") && !scene.at("/clouds/layers").empty()) {
+  if (sceneHasCloudLayers(scene)) {
     const CloudSettings clouds = CloudSettings::fromScene(scene);
     gpu::Context context;
-    CloudNoise noise(context);
-    gpu::CommandList commands(context);
-    noise.update(clouds.seed, CloudNoiseSettings{}, commands);
-    commands.submitAndWait();
-    const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+    const double ground = sceneGroundRadius(scene, view);
     // The same weather map as the fast path (sky/scene_weather.h), read with the same sampling.
-    CloudMedium medium(sharedCloudLayers(clouds, ground), noise.downloadShape(), noise.downloadDetail(),
-                       noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+    const CloudMedium medium = sceneCloudMedium(scene, view, context);
     double middle = 0.0;
     for (const auto& l : clouds.layers) middle += 0.5 * (l.bottom_m + l.top_m) / double(clouds.layers.size());
     const CloudEnvironment environment = cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
