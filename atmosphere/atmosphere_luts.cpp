@@ -81,10 +81,11 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
       batch.multipleScattering = makeTable(context_, settings.multipleScatteringSize, settings.multipleScatteringSize,
                                            "multiple-scattering LUT");
     if (!batch.multipleScatteringAnisotropy ||
-        int(batch.multipleScatteringAnisotropy.width()) != settings.multipleScatteringSize)
+        int(batch.multipleScatteringAnisotropy.height()) != settings.multipleScatteringSize)
       batch.multipleScatteringAnisotropy =
-          gpu::Image(context_, {uint32_t(settings.multipleScatteringSize), uint32_t(settings.multipleScatteringSize),
-                                5, gpu::Format::RGBA32F, true, true, "multiple-scattering anisotropy"});
+          gpu::Image(context_, {uint32_t(kAnisotropyTableTiles * settings.multipleScatteringSize),
+                                uint32_t(settings.multipleScatteringSize), 1, gpu::Format::RGBA32F, true, true,
+                                "multiple-scattering anisotropy"});
   }
   if (!sunRadiance_ || int(sunRadiance_.width()) != settings.transmittanceWidth ||
       int(sunRadiance_.height()) != settings.transmittanceHeight)

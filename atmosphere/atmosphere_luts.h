@@ -19,6 +19,9 @@
 
 namespace firmament {
 
+// RGBA tiles of the anisotropy table: kAnisotropyTiles of common/atmosphere_lut.glsl.
+constexpr int kAnisotropyTableTiles = 4;
+
 // Quality knobs of the tables (each is swept by `firmament bench atmosphere`).
 struct AtmosphereLutSettings {
   int transmittanceWidth = 256;   // mu samples (Hillaire 2020: 256 x 64)
@@ -59,7 +62,9 @@ class AtmosphereLuts {
     gpu::Buffer block;  // the AtmosphereBlock of this batch's wavelengths
     gpu::Image transmittance;
     gpu::Image multipleScattering;
-    // size x size x 5: the multiple-scattering field's anisotropy (zero for Hillaire's one-order form).
+    // (4 size) x size: the multiple-scattering field's anisotropy over Psi_ms, five RGB coefficients
+    // packed into kAnisotropyTableTiles RGBA tiles (zero for Hillaire's one-order form;
+    // atmosphere/atmosphere_sampling.glsl).
     gpu::Image multipleScatteringAnisotropy;
     shared::AtmosphereParameters parameters{};
   };

@@ -38,4 +38,25 @@ vec3 multipleScattering(sampler2D lut, AtmosphereParameters atmosphere, float r,
   return decodeLog(textureLod(lut, multipleScatteringUv(atmosphere, r, mu_s, size), 0.0).rgb);
 }
 
+// The anisotropy table (atmosphere/multiple_scattering_lut.glsl) packs its five RGB coefficients
+// c_0..c_4 into kAnisotropyTiles RGBA tiles of the multiple-scattering table's size, side by side
+// (width 4 size): the channels in order are c_0.rgb c_1.rgb ... c_4.rgb and one unused. Four bilinear
+// fetches of a 2D texture instead of five trilinear ones of a 3D texture (on lavapipe, 16 texel reads
+// instead of 40). A table coordinate u stays within its tile's texel centres, so filtering never
+// reads a neighbouring tile.
+vec2 anisotropyTileUv(vec2 uv, int tile) { return vec2((float(tile) + uv.x) / float(kAnisotropyTiles), uv.y); }
+void unpackAnisotropy(vec4 t0, vec4 t1, vec4 t2, vec4 t3, out vec3 c[kAnisotropyTerms]) {
+  c[0] = t0.xyz;
+  c[1] = vec3(t0.w, t1.xy);
+  c[2] = vec3(t1.zw, t2.x);
+  c[3] = t2.yzw;
+  c[4] = t3.xyz;
+}
+void packAnisotropy(vec3 c[kAnisotropyTerms], out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {
+  t0 = vec4(c[0], c[1].x);
+  t1 = vec4(c[1].yz, c[2].xy);
+  t2 = vec4(c[2].z, c[3]);
+  t3 = vec4(c[4], 0.0);
+}
+
 #endif  // FIRMAMENT_ATMOSPHERE_SAMPLING_GLSL

@@ -29,6 +29,7 @@
 // the sun's azimuth) five coefficients besides c_00 remain: Y_1y, Y_1z, Y_2yz, Y_2zz, Y_2(xx-yy)
 // (common/atmosphere_lut.glsl). Their sums over the orders are the anisotropy table (size x size x 5);
 // c_00 is Psi_ms itself (J = c_00 Y_00). Without it (one order) the render is Hillaire's isotropic one.
+// The table is stored as c_lm / Psi_ms, packed into four RGBA tiles (atmosphere/atmosphere_sampling.glsl).
 //
 // Two compiled variants (FIRST_ORDER 1: multiple_scattering_lut.comp, the sun's light; 0:
 // multiple_scattering_order.comp, reading the previous order): a uniform branch would run both sides
@@ -50,7 +51,7 @@ layout(set = 0, binding = 3) uniform sampler2D previousOrder;                  /
 layout(set = 0, binding = 4) uniform sampler2D previousGroundIrradiance;       // E_{k-1}(mu_s), width x 1 (k >= 2)
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D currentOrder;             // J_k
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D currentGroundIrradiance;  // E_k (row 0 writes it)
-layout(set = 0, binding = 7, rgba32f) uniform image3D anisotropyLut;  // sum of c_lm, l >= 1 (see above)
+layout(set = 0, binding = 7, rgba32f) uniform image2D anisotropyLut;  // sum of c_lm, l >= 1, in kAnisotropyTiles tiles (see above)
 layout(push_constant) uniform Push {
   int theta_samples;
   int phi_samples;
@@ -207,18 +208,21 @@ void main() {
   vec3 psi = imageLoad(multipleScatteringLut, texel).rgb + j_k + tail;
 #endif
   imageStore(multipleScatteringLut, texel, vec4(push.last != 0 ? encodeLog(psi) : psi, 1.0));
-  for (int h = 0; h < kAnisotropyTerms; ++h) {
-    ivec3 at = ivec3(texel, h);
+  vec3 sums[kAnisotropyTerms];
 #if FIRST_ORDER
-    vec3 sum = vec3(0.0);
+  for (int h = 0; h < kAnisotropyTerms; ++h) sums[h] = vec3(0.0);
 #else
-    vec3 sum = imageLoad(anisotropyLut, at).rgb;
+  unpackAnisotropy(imageLoad(anisotropyLut, texel), imageLoad(anisotropyLut, texel + ivec2(size.x, 0)),
+                   imageLoad(anisotropyLut, texel + ivec2(2 * size.x, 0)), imageLoad(anisotropyLut, texel + ivec2(3 * size.x, 0)), sums);
 #endif
+  for (int h = 0; h < kAnisotropyTerms; ++h) {
     // Hillaire's form (one order, isotropic phase) has no anisotropy.
-    if (push.real_phase != 0) sum += moments[h] * (vec3(1.0) + tail_factor);
-    if (push.last != 0) sum = mix(vec3(0.0), sum / max(psi, vec3(1e-30)), greaterThan(psi, vec3(1e-30)));
-    imageStore(anisotropyLut, at, vec4(sum, 0.0));
+    if (push.real_phase != 0) sums[h] += moments[h] * (vec3(1.0) + tail_factor);
+    if (push.last != 0) sums[h] = mix(vec3(0.0), sums[h] / max(psi, vec3(1e-30)), greaterThan(psi, vec3(1e-30)));
   }
+  vec4 tiles[kAnisotropyTiles];
+  packAnisotropy(sums, tiles[0], tiles[1], tiles[2], tiles[3]);
+  for (int t = 0; t < kAnisotropyTiles; ++t) imageStore(anisotropyLut, texel + ivec2(t * size.x, 0), tiles[t]);
   imageStore(currentOrder, texel, vec4(encodeLog(j_k), 1.0));
   if (texel.y == 0) imageStore(currentGroundIrradiance, ivec2(texel.x, 0), vec4(ground_irradiance, 1.0));
 }

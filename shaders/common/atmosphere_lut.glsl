@@ -120,6 +120,7 @@ SHARED_INLINE void rMuSFromMultipleScatteringUv(AtmosphereParameters atmosphere,
 // zenith and the sun, in the local frame (z up, y towards the sun's azimuth, x across), w a unit
 // direction in it. Normalised: ∫ Y_h^2 dw = 1.
 #define kAnisotropyTerms 5
+#define kAnisotropyTiles 4  // RGBA tiles that hold the five RGB coefficients (atmosphere/atmosphere_sampling.glsl)
 SHARED_INLINE Real anisotropyHarmonic(int h, vec3 w) {
   if (h == 0) return 0.4886025119 * w.y;                        // Y_1,-1
   if (h == 1) return 0.4886025119 * w.z;                        // Y_1,0

@@ -30,7 +30,7 @@ layout(std140, set = 0, binding = 4) uniform FrameBlock {
 layout(set = 0, binding = 5) uniform sampler2D skyViewLut;
 layout(set = 0, binding = 6) uniform sampler2D sunRadianceLut;  // see atmosphere/transmittance_lut.comp
 layout(set = 0, binding = 7) uniform sampler2D skyIrradianceLut;  // see atmosphere/fms_sky_irradiance.comp
-layout(set = 0, binding = 8) uniform sampler3D multipleScatteringAnisotropy;  // see atmosphere/multiple_scattering_lut.glsl
+layout(set = 0, binding = 8) uniform sampler2D multipleScatteringAnisotropy;  // see atmosphere/multiple_scattering_lut.glsl
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   int accumulate;  // add to the pixel: per-pixel marching runs once per spectral batch
@@ -107,7 +107,12 @@ void main() {
       rgb += textureLod(sunRadianceLut, uv, 0.0).rgb * limb;
     }
   }
+#if !SKY_FROM_LUT
+  // Per-pixel marching runs once per spectral batch; the sky-view table already holds their sum.
   if (push.accumulate != 0) rgb += outputFrame.pixels[index].rgb;
   if (push.last != 0) rgb = max(rgb, vec3(0.0));
+#else
+  rgb = max(rgb, vec3(0.0));
+#endif
   outputFrame.pixels[index] = vec4(rgb, 1.0);
 }

@@ -33,7 +33,7 @@ struct MultipleScatteringSource {
   vec3 mie;
 };
 MultipleScatteringSource multipleScatteringInto(AtmosphereParameters atmosphere, sampler2D multiple_scattering_lut,
-                                                sampler3D anisotropy_lut, vec3 p, float r_p, float mu_s_p, vec3 sun,
+                                                sampler2D anisotropy_lut, vec3 p, float r_p, float mu_s_p, vec3 sun,
                                                 vec3 dir) {
   vec3 up = p / r_p;
   vec3 sun_h = sun - mu_s_p * up;
@@ -44,12 +44,11 @@ MultipleScatteringSource multipleScatteringInto(AtmosphereParameters atmosphere,
   ivec2 size = textureSize(multiple_scattering_lut, 0);
   vec2 uv = multipleScatteringUv(atmosphere, r_p, mu_s_p, size);
   vec3 psi = decodeLog(textureLod(multiple_scattering_lut, uv, 0.0).rgb);
-  vec3 l1 = vec3(0.0), l2 = vec3(0.0);
-  for (int h = 0; h < kAnisotropyTerms; ++h) {
-    vec3 c = textureLod(anisotropy_lut, vec3(uv, (float(h) + 0.5) / float(kAnisotropyTerms)), 0.0).rgb;
-    vec3 term = c * psi * anisotropyHarmonic(h, w);  // the table holds c_lm / Psi_ms
-    if (h < 2) l1 += term; else l2 += term;
-  }
+  vec3 c[kAnisotropyTerms];  // c_lm / Psi_ms
+  unpackAnisotropy(textureLod(anisotropy_lut, anisotropyTileUv(uv, 0), 0.0), textureLod(anisotropy_lut, anisotropyTileUv(uv, 1), 0.0),
+                   textureLod(anisotropy_lut, anisotropyTileUv(uv, 2), 0.0), textureLod(anisotropy_lut, anisotropyTileUv(uv, 3), 0.0), c);
+  vec3 l1 = psi * (c[0] * anisotropyHarmonic(0, w) + c[1] * anisotropyHarmonic(1, w));
+  vec3 l2 = psi * (c[2] * anisotropyHarmonic(2, w) + c[3] * anisotropyHarmonic(3, w) + c[4] * anisotropyHarmonic(4, w));
   vec2 mie_moments = miePhaseMoments();
   MultipleScatteringSource s;
   s.rayleigh = max(psi + kRayleighPhaseMoment2 * l2, vec3(0.0));
@@ -60,7 +59,7 @@ MultipleScatteringSource multipleScatteringInto(AtmosphereParameters atmosphere,
 // origin: planet-centred (m); dir, sun: unit vectors in the same frame.
 // sky_irradiance_lut: E_sky(r, mu_s) on a horizontal surface (atmosphere/fms_sky_irradiance.comp).
 SkyMarch marchSky(AtmosphereParameters atmosphere, sampler2D transmittance_lut, sampler2D multiple_scattering_lut,
-                  sampler3D anisotropy_lut, sampler2D sky_irradiance_lut, vec3 origin, vec3 dir, vec3 sun, int steps) {
+                  sampler2D anisotropy_lut, sampler2D sky_irradiance_lut, vec3 origin, vec3 dir, vec3 sun, int steps) {
   SkyMarch result;
   result.rgb = vec3(0.0);
   result.throughput = vec3(1.0);

@@ -11,7 +11,7 @@ layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3, rgba32f) uniform image2D skyViewLut;
 layout(set = 0, binding = 4) uniform sampler2D skyIrradianceLut;
-layout(set = 0, binding = 5) uniform sampler3D multipleScatteringAnisotropy;
+layout(set = 0, binding = 5) uniform sampler2D multipleScatteringAnisotropy;
 layout(push_constant) uniform Push {
   float camera_radius;  // m from the planet centre (inside the atmosphere)
   float mu_s;           // cosine of the sun zenith angle at the camera
