@@ -135,34 +135,49 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
       const F4 hi = _mm_add_ps(c[2], _mm_mul_ps(ta, _mm_sub_ps(c[3], c[2])));
       return _mm_add_ps(lo, _mm_mul_ps(td, _mm_sub_ps(hi, lo)));
     };
-    for (; start + 4 <= n; start += 4) {
-      const size_t c = start;
-      // The cloud base.
+    // In chunks: first the cloud base, table position and thermal of a chunk's cells (a loop without
+    // branches, whose iterations the processor overlaps: each is one long chain of dependent
+    // operations), then the trigger and update block by block.
+    constexpr size_t kChunk = 256;
+    alignas(16) float chunkTa[kChunk], chunkTd[kChunk], chunkKinetic[kChunk];
+    alignas(16) int32_t chunkAt[kChunk];
+    for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
+      const size_t end = std::min(n - n % 4, chunk + kChunk);
+      for (size_t c = chunk; c < end; c += 4) {
+        const size_t k = c - chunk;
+        // The cloud base.
+        const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
+        const F4 mixing = _mm_mul_ps(vapour, invRhoHV);
+        const F4 e = maxStd(_mm_div_ps(_mm_mul_ps(p0V, mixing), _mm_add_ps(epsV, mixing)), set1(1e-3f));
+        const F4 x = minStd(logFast(_mm_mul_ps(e, set1(invE0))), set1(17.0f));
+        const F4 dew = _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
+        const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
+        const F4 lcl = _mm_mul_ps(set1(float(kLclMetresPerKelvin)), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
+        _mm_storeu_ps(baseZ + c, lcl);
+        // ParcelTable::Indexer: clamped fractional position, cell index (in float: exact below 2²⁴).
+        F4 fa = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(anomaly, _mm_loadu_ps(warmingK + c)), set1(ParcelTable::kMinAnomaly)),
+                           set1(1.0f / ParcelTable::kAnomalyStep));
+        F4 fd = _mm_mul_ps(_mm_mul_ps(lcl, perDegree), set1(1.0f / ParcelTable::kDepressionStep));
+        fa = _mm_max_ps(zero, _mm_min_ps(maxA, fa));
+        fd = _mm_max_ps(zero, _mm_min_ps(maxD, fd));
+        const F4 a = _mm_cvtepi32_ps(_mm_cvttps_epi32(fa)), d = _mm_cvtepi32_ps(_mm_cvttps_epi32(fd));
+        _mm_store_ps(chunkTa + k, _mm_sub_ps(fa, a));
+        _mm_store_ps(chunkTd + k, _mm_sub_ps(fd, d));
+        _mm_store_si128(reinterpret_cast<__m128i*>(chunkAt + k), _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(d, rowLength), a)));
+        // The thermal's kinetic energy.
+        const F4 heat = _mm_loadu_ps(heatFlux + c);
+        const F4 wStar = _mm_and_ps(_mm_cmpgt_ps(heat, zero), cbrtFast(_mm_div_ps(_mm_mul_ps(set1(deardorff), heat), surfaceT)));
+        const F4 inflow = clampStd(_mm_add_ps(one, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), set1(inflowPerKelvin))), zero, one);
+        const F4 thermal = _mm_add_ps(_mm_add_ps(wStar, maxStd(zero, _mm_loadu_ps(liftW + c))), _mm_mul_ps(_mm_loadu_ps(updraftW + c), inflow));
+        _mm_store_ps(chunkKinetic + k, _mm_mul_ps(_mm_mul_ps(half, thermal), thermal));
+      }
+      for (start = chunk; start < end; start += 4) {
+      const size_t c = start, k = c - chunk;
       const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
-      const F4 mixing = _mm_mul_ps(vapour, invRhoHV);
-      const F4 e = maxStd(_mm_div_ps(_mm_mul_ps(p0V, mixing), _mm_add_ps(epsV, mixing)), set1(1e-3f));
-      const F4 x = minStd(logFast(_mm_mul_ps(e, set1(invE0))), set1(17.0f));
-      const F4 dew = _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
-      const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
-      const F4 lcl = _mm_mul_ps(set1(float(kLclMetresPerKelvin)), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
-      _mm_storeu_ps(baseZ + c, lcl);
-      // ParcelTable::Indexer: clamped fractional position, cell index (in float: exact below 2²⁴).
-      F4 fa = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(anomaly, _mm_loadu_ps(warmingK + c)), set1(ParcelTable::kMinAnomaly)),
-                         set1(1.0f / ParcelTable::kAnomalyStep));
-      F4 fd = _mm_mul_ps(_mm_mul_ps(lcl, perDegree), set1(1.0f / ParcelTable::kDepressionStep));
-      fa = _mm_max_ps(zero, _mm_min_ps(maxA, fa));
-      fd = _mm_max_ps(zero, _mm_min_ps(maxD, fd));
-      const F4 a = _mm_cvtepi32_ps(_mm_cvttps_epi32(fa)), d = _mm_cvtepi32_ps(_mm_cvttps_epi32(fd));
-      const F4 ta = _mm_sub_ps(fa, a), td = _mm_sub_ps(fd, d);
-      alignas(16) int32_t at[4];
-      _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(d, rowLength), a)));
-      // The thermal's kinetic energy.
-      const F4 heat = _mm_loadu_ps(heatFlux + c);
-      const F4 wStar = _mm_and_ps(_mm_cmpgt_ps(heat, zero), cbrtFast(_mm_div_ps(_mm_mul_ps(set1(deardorff), heat), surfaceT)));
-      const F4 inflow = clampStd(_mm_add_ps(one, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), set1(inflowPerKelvin))), zero, one);
+      const F4 lcl = _mm_loadu_ps(baseZ + c);
+      const F4 ta = _mm_load_ps(chunkTa + k), td = _mm_load_ps(chunkTd + k), kineticV = _mm_load_ps(chunkKinetic + k);
+      const int32_t* at = chunkAt + k;
       const F4 w0 = _mm_loadu_ps(updraftW + c);
-      const F4 thermal = _mm_add_ps(_mm_add_ps(wStar, maxStd(zero, _mm_loadu_ps(liftW + c))), _mm_mul_ps(w0, inflow));
-      const F4 kineticV = _mm_mul_ps(_mm_mul_ps(half, thermal), thermal);
       // The table cell's bounds, then the interpolated CAPE and CIN.
       F4 bounds[4], corners[4];
       for (int l = 0; l < 4; ++l) bounds[l] = _mm_load_ps(&summaries[at[l]].maxCape);
@@ -254,6 +269,7 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
       // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
       const F4 vented = _mm_add_ps(environmentV, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), _mm_sub_ps(one, exchange)));
       _mm_storeu_ps(anomalyT + c, select(_mm_and_ps(runs, _mm_cmpgt_ps(anomaly, environmentV)), vented, anomaly));
+      }
     }
     alignas(16) double parts[8];
     _mm_store_pd(parts, updraftLo);
