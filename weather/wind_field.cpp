@@ -19,10 +19,19 @@ void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
   for (int j = 0; j < ny; ++j) {
     const float* row = &f[size_t(j) * nx];
     float* out = &scratch[size_t(j) * nx];
-    for (int i = 0; i < nx; ++i) {
+    auto at = [&](int i) {
       int w = i == 0 ? nx - 1 : i - 1, e = i + 1 == nx ? 0 : i + 1;
       out[i] = 0.25f * (row[w] + row[e]) + 0.5f * row[i];
-    }
+    };
+    at(0);
+    int i = 1;
+#if defined(__SSE2__)
+    // The interior four cells at a time, the same operations per lane.
+    for (; i + 4 <= nx - 1; i += 4)
+      _mm_storeu_ps(out + i, _mm_add_ps(_mm_mul_ps(_mm_set1_ps(0.25f), _mm_add_ps(_mm_loadu_ps(row + i - 1), _mm_loadu_ps(row + i + 1))),
+                                        _mm_mul_ps(_mm_set1_ps(0.5f), _mm_loadu_ps(row + i))));
+#endif
+    for (; i < nx; ++i) at(i);
   }
   for (int j = 0; j < ny; ++j) {
     const float* south = &scratch[size_t(j == 0 ? ny - 1 : j - 1) * nx];
