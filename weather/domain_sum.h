@@ -17,9 +17,14 @@ class DomainSum {
   // Adds cells c … c + 3 (c a multiple of 4; blocks in increasing order of c; a block left out adds 0).
   void add(size_t c, __m128 v) {
     if (c < blocksEnd_) {
-      __m128d* pair = part_ + (c & 4 ? 2 : 0);
-      pair[0] = _mm_add_pd(pair[0], _mm_cvtps_pd(v));
-      pair[1] = _mm_add_pd(pair[1], _mm_cvtps_pd(_mm_movehl_ps(v, v)));
+      const __m128d lo = _mm_cvtps_pd(v), hi = _mm_cvtps_pd(_mm_movehl_ps(v, v));
+      if (c & 4) {
+        part_[2] = _mm_add_pd(part_[2], lo);
+        part_[3] = _mm_add_pd(part_[3], hi);
+      } else {
+        part_[0] = _mm_add_pd(part_[0], lo);
+        part_[1] = _mm_add_pd(part_[1], hi);
+      }
     } else {
       alignas(16) float x[4];
       _mm_store_ps(x, v);
@@ -28,6 +33,30 @@ class DomainSum {
   }
   // Adds one cell past the last block of four (cells in increasing order).
   void addTail(float value) { tail_ += double(value); }
+  // Adds cells begin … end − 1 of a field (begin a multiple of 4; ranges in increasing order; an end
+  // that is not a multiple of 4 only at the field's end).
+  void addRange(const float* field, size_t begin, size_t end) {
+    size_t c = begin;
+    if (c % 8 == 4 && c + 4 <= end) {
+      add(c, _mm_loadu_ps(field + c));
+      c += 4;
+    }
+    // Whole blocks of eight with the accumulators in registers.
+    __m128d p0 = part_[0], p1 = part_[1], p2 = part_[2], p3 = part_[3];
+    for (; c + 8 <= end && c + 8 <= blocksEnd_; c += 8) {
+      const __m128 a = _mm_loadu_ps(field + c), b = _mm_loadu_ps(field + c + 4);
+      p0 = _mm_add_pd(p0, _mm_cvtps_pd(a));
+      p1 = _mm_add_pd(p1, _mm_cvtps_pd(_mm_movehl_ps(a, a)));
+      p2 = _mm_add_pd(p2, _mm_cvtps_pd(b));
+      p3 = _mm_add_pd(p3, _mm_cvtps_pd(_mm_movehl_ps(b, b)));
+    }
+    part_[0] = p0;
+    part_[1] = p1;
+    part_[2] = p2;
+    part_[3] = p3;
+    for (; c + 4 <= end; c += 4) add(c, _mm_loadu_ps(field + c));
+    for (; c < end; ++c) addTail(field[c]);
+  }
   // Σ, as sumField returns it once every cell was added.
   double total() const {
     alignas(16) double sum[2];
