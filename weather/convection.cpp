@@ -111,7 +111,6 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     using namespace sse;
     const ParcelTable::Indexer locate = table.indexer();
     const ParcelTable::Corners* capeCorners = table.capeCorners();
-    const ParcelTable::Corners* speedCorners = table.cinSpeedCorners();
     const ParcelTable::Summary* summaries = table.summaries();
     const float eps = float(kEpsilon), invE0 = 1.0f / 610.78f;
     const F4 zero = _mm_setzero_ps(), one = set1(1.0f), half = set1(0.5f);
@@ -178,25 +177,28 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
       const F4 ta = _mm_load_ps(chunkTa + k), td = _mm_load_ps(chunkTd + k), kineticV = _mm_load_ps(chunkKinetic + k);
       const int32_t* at = chunkAt + k;
       const F4 w0 = _mm_loadu_ps(updraftW + c);
-      // The table cell's bounds, then the interpolated CAPE and CIN.
+      // The table cell's bounds and v_c's corners (32 bytes per cell), then the interpolated CIN; the
+      // interpolated CAPE only where a cell may trigger (bounds passed, and the CIN paid or a corner
+      // without free convection).
       F4 bounds[4], corners[4];
       for (int l = 0; l < 4; ++l) bounds[l] = _mm_load_ps(&summaries[at[l]].maxCape);
       _MM_TRANSPOSE4_PS(bounds[0], bounds[1], bounds[2], bounds[3]);  // max CAPE, min CIN, all free, −
       const F4 bound = _mm_and_ps(_mm_cmpgt_ps(bounds[0], zero), _mm_cmpge_ps(kineticV, bounds[1]));
       const F4 moving = _mm_cmpneq_ps(w0, zero);
       if (_mm_movemask_ps(_mm_or_ps(bound, moving)) == 0) continue;
+      for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&summaries[at[l]].cinSpeed.c00);
+      _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
+      const F4 speed = bilinear(corners, ta, td);
+      F4 cin = _mm_mul_ps(_mm_mul_ps(half, speed), speed);
+      const F4 allFreeCorners = _mm_cmpgt_ps(bounds[2], zero);
+      const F4 possible = _mm_and_ps(bound, _mm_or_ps(_mm_cmpge_ps(kineticV, cin), _mm_andnot_ps(allFreeCorners, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
+      if (_mm_movemask_ps(_mm_or_ps(possible, moving)) == 0) continue;
       for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&capeCorners[at[l]].c00);
       _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
       const F4 cape = bilinear(corners, ta, td);
       const F4 capeBound = _mm_and_ps(bound, _mm_cmpgt_ps(cape, zero));
-      const F4 edge = _mm_andnot_ps(_mm_cmpgt_ps(bounds[2], zero), capeBound);  // not all corners free
-      for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&speedCorners[at[l]].c00);
-      _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
-      const F4 speed = bilinear(corners, ta, td);
-      F4 cin = _mm_mul_ps(_mm_mul_ps(half, speed), speed);
+      const F4 edge = _mm_andnot_ps(allFreeCorners, capeBound);  // not all corners free
       const int edgeLanes = _mm_movemask_ps(edge);
-      if (_mm_movemask_ps(_mm_or_ps(_mm_or_ps(_mm_and_ps(capeBound, _mm_cmpge_ps(kineticV, cin)), edge), moving)) == 0)
-        continue;
       // Next to the edge of free convection the table's lookup gives CIN and LNB (its CAPE is the same
       // interpolation as above).
       alignas(16) float edgeCin[4], edgeNeutral[4], fractionA[4], fractionD[4];

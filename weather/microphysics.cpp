@@ -107,17 +107,18 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
   // without rain whose cloud is below the autoconversion threshold converts nothing (accretion needs
   // rain) and drops nothing, so the full update would leave it as it is.
   const float thresholdPerMetre = rho * kThresholdMixingRatio;
-  work.active.assign(n, 0);
+  work.active.assign(n - start, 0);
   for (size_t c = start; c < n; ++c) {
     const float cloud = s.cloudWater[c], rain = s.rain[c], base = s.cloudBase[c];
     const float top = std::max(s.cloudTop[c], base + 100.0f);
     const float threshold = thresholdPerMetre * std::min(top - base, 2000.0f);
     const bool empty = cloud <= 0.0f && rain <= 0.0f;
     const bool idle = rain == 0.0f && cloud <= threshold;
-    work.active[c] = uint8_t(!(empty || idle));
+    work.active[c - start] = uint8_t(!(empty || idle));
     s.precipitationRate[c] = 0.0f;
   }
-  forEachActiveCell(work.active, [&](size_t c) {
+  forEachActiveCell(work.active, [&](size_t k) {
+    const size_t c = start + k;
     float cloud = s.cloudWater[c], rain = s.rain[c];
     float base = s.cloudBase[c], top = std::max(s.cloudTop[c], base + 100.0f);
     float depth = top - base;

@@ -40,9 +40,11 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
   const size_t n = s.cells();
   // Large-scale ascent and its adiabatic cooling, with the frontal band at periodic distance d along the
   // front's motion.
+  // (Without lifting the ascent is the same everywhere and is not stored.)
   Field& lift = work.value[0];
-  lift.assign(n, float(p.largeScaleLift_m_s));
+  const float uniformLift = float(p.largeScaleLift_m_s);
   if (lifting) {
+    lift.assign(n, uniformLift);
     for (int j = 0; j < s.ny; ++j) {
       for (int i = 0; i < s.nx; ++i) {
         size_t c = s.index(i, j);
@@ -80,7 +82,8 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
     float* cloudW = s.cloudWater.data();
     float* convective = s.convectiveFraction.data();
     float* cloudTop = s.cloudTop.data();
-    const float* ascent = lift.data();
+    const float* ascent = lifting ? lift.data() : nullptr;
+    const F4 uniformAscent = set1(uniformLift);
     for (; start + 4 <= n; start += 4) {
       const size_t c = start;
       const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
@@ -106,19 +109,20 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
       const F4 total = _mm_add_ps(cloud, dq);
       const F4 mixedShare = _mm_and_ps(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_mul_ps(conv, cloud), total));
       _mm_storeu_ps(convective + c, select(condensing, mixedShare, conv));
-      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(_mm_loadu_ps(ascent + c), zero), set1(1e5f))));
+      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(ascent ? _mm_loadu_ps(ascent + c) : uniformAscent, zero), set1(1e5f))));
       const F4 lower = _mm_or_ps(_mm_cmplt_ps(conv, set1(0.5f)), _mm_cmplt_ps(top, stratiformTop));
       _mm_storeu_ps(cloudTop + c, select(_mm_and_ps(condensing, lower), maxStd(_mm_mul_ps(top, conv), stratiformTop), top));
     }
   }
 #endif
   // The remaining cells (all of them without SSE2): those with work, then the update.
-  work.active.assign(n, 0);
+  work.active.assign(n - start, 0);
   markColumns(n - start, s0, s1, s.temperature.data() + start, s.vapour.data() + start, s.cloudWater.data() + start,
-              work.active.data() + start);
+              work.active.data());
 
-  forEachActiveCell(work.active, [&](size_t c) {
-    const float w = lift[c];
+  forEachActiveCell(work.active, [&](size_t k) {
+    const size_t c = start + k;
+    const float w = lifting ? lift[c] : uniformLift;
     float topTemperature = float(layer.referenceTemperature_K) + s.temperature[c] - topCooling;
     float saturated = rhoH * saturationMixingRatioFast(topTemperature, topPressure);
     float vapour = s.vapour[c], cloud = s.cloudWater[c], conv = s.convectiveFraction[c];
