@@ -39,8 +39,34 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     float* rateOut = s.precipitationRate.data();
     const float* baseZ = s.cloudBase.data();
     const float* topZ = s.cloudTop.data();
-    for (; start + 4 <= n; start += 4) {
-      const size_t c = start;
+    // In chunks of 256 cells: first which blocks of four have work (the others get a zero rate) and the
+    // saturation path of those (in a loop without branches, whose table loads and division the
+    // processor overlaps), then the update of those.
+    constexpr size_t kChunk = 256;
+    const F4 allOnes = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    alignas(16) F4 saturatedOf[kChunk / 4];
+    uint32_t blockOf[kChunk / 4];
+    for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
+      const size_t end = std::min(n - n % 4, chunk + kChunk);
+      start = end;
+      size_t count = 0;
+      for (size_t c = chunk; c < end; c += 4) {
+        const F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
+        const F4 base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 depth = _mm_sub_ps(top, base);
+        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(depth, set1(2000.0f)));
+        const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
+        const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
+        const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), allOnes);
+        _mm_storeu_ps(rateOut + c, zero);
+        blockOf[count] = uint32_t(c);
+        count += _mm_movemask_ps(active) != 0;
+      }
+      for (size_t k = 0; k < count; ++k)
+        saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + blockOf[k])), set1(p0)));
+      for (size_t k = 0; k < count; ++k) {
+      const size_t c = blockOf[k];
       F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
       const F4 base = _mm_loadu_ps(baseZ + c);
       const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
@@ -49,10 +75,6 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
       const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
       const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), _mm_castsi128_ps(_mm_set1_epi32(-1)));
-      if (_mm_movemask_ps(active) == 0) {
-        _mm_storeu_ps(rateOut + c, zero);
-        continue;
-      }
       // Cloud → rain.
       const F4 rainMixing = _mm_div_ps(rain, _mm_mul_ps(rhoV, depth));
       const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
@@ -65,7 +87,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
       const F4 fallen = _mm_mul_ps(rainNow, oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight)));
       const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
-      const F4 saturated = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), anomaly), set1(p0)));
+      const F4 saturated = saturatedOf[k];
       const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(vapour, saturated), zero, set1(1.0f)), set1(1.0f));
       const F4 share = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
       F4 evaporated = _mm_mul_ps(fallen, share);
@@ -96,6 +118,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       _mm_storeu_ps(vapourW + c, select(active, newVapour, vapour));
       _mm_storeu_ps(anomalyT + c, select(active, _mm_sub_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), evaporated)), anomaly));
       _mm_storeu_ps(rateOut + c, _mm_and_ps(active, precipitation));
+      }
     }
     alignas(16) double parts[4];
     _mm_store_pd(parts, leftLo);
