@@ -44,7 +44,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     // processor overlaps), then the update of those.
     constexpr size_t kChunk = 256;
     const F4 allOnes = _mm_castsi128_ps(_mm_set1_epi32(-1));
-    alignas(16) F4 saturatedOf[kChunk / 4];
+    alignas(16) F4 saturatedOf[kChunk / 4], accretionOf[kChunk / 4], fallShareOf[kChunk / 4];
     uint32_t blockOf[kChunk / 4];
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
@@ -63,8 +63,17 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
         blockOf[count] = uint32_t(c);
         count += _mm_movemask_ps(active) != 0;
       }
-      for (size_t k = 0; k < count; ++k)
-        saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + blockOf[k])), set1(p0)));
+      for (size_t k = 0; k < count; ++k) {
+        const size_t c = blockOf[k];
+        saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + c)), set1(p0)));
+        // Accretion's (r_r)^0.875 and the share of the rain that falls out in the step.
+        const F4 base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 depth = _mm_sub_ps(top, base);
+        accretionOf[k] = powFast(_mm_div_ps(_mm_loadu_ps(rainW + c), _mm_mul_ps(rhoV, depth)), 0.875f);
+        const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
+        fallShareOf[k] = oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight));
+      }
       for (size_t k = 0; k < count; ++k) {
       const size_t c = blockOf[k];
       F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
@@ -76,16 +85,14 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
       const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), _mm_castsi128_ps(_mm_set1_epi32(-1)));
       // Cloud → rain.
-      const F4 rainMixing = _mm_div_ps(rain, _mm_mul_ps(rhoV, depth));
       const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
-                                 _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), powFast(rainMixing, 0.875f)));
+                                 _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
       const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
       const F4 converted = _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud)));
       F4 newCloud = cloud, rainNow = rain;
       transferWater(newCloud, rainNow, _mm_and_ps(converts, converted));  // amount 0: no move
       // Rain-out, part evaporating below the base.
-      const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
-      const F4 fallen = _mm_mul_ps(rainNow, oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight)));
+      const F4 fallen = _mm_mul_ps(rainNow, fallShareOf[k]);
       const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
       const F4 saturated = saturatedOf[k];
       const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(vapour, saturated), zero, set1(1.0f)), set1(1.0f));
