@@ -143,7 +143,6 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
       for (size_t c = chunk; c < end; c += 4) {
-        const size_t k = c - chunk;
         // The cloud base.
         const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
         const F4 mixing = _mm_mul_ps(vapour, invRhoHV);
@@ -153,6 +152,12 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
         const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
         const F4 lcl = _mm_mul_ps(set1(float(kLclMetresPerKelvin)), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
         _mm_storeu_ps(baseZ + c, lcl);
+      }
+      // The table position and the thermal (a loop of its own: two shorter chains per cell than one).
+      for (size_t c = chunk; c < end; c += 4) {
+        const size_t k = c - chunk;
+        const F4 anomaly = _mm_loadu_ps(anomalyT + c), lcl = _mm_loadu_ps(baseZ + c);
+        const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
         // ParcelTable::Indexer: clamped fractional position, cell index (in float: exact below 2²⁴).
         F4 fa = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(anomaly, _mm_loadu_ps(warmingK + c)), set1(ParcelTable::kMinAnomaly)),
                            set1(1.0f / ParcelTable::kAnomalyStep));
