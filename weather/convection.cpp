@@ -101,12 +101,12 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
   };
   size_t start = 0;
 #if defined(__SSE2__)
-  // Four cells at a time in one pass: the cloud base, the table position and the thermal (the scalar
+  // Four cells at a time: the cloud base, the table position and the thermal (the scalar
   // cloudBaseAndThermal's operations per lane, fast_math_sse.h); the parcel's CAPE and v_c interpolated
-  // from the table cell's corners (four 16-byte loads and a transpose per quantity; the same arithmetic
-  // as the node interpolation), so that a block whose cells neither trigger nor have an updraft is done
-  // there; else the scalar update below with its branches as selects. The updraft and drawn-vapour sums
-  // run in pairs of double lanes (round-off against the scalar order).
+  // from the table cell's corners (16-byte loads and a transpose per quantity; the same arithmetic as the
+  // node interpolation), so that a block whose cells neither trigger nor have an updraft is done there;
+  // else the scalar update below with its branches as selects. The updraft and drawn-vapour sums run in
+  // pairs of double lanes (round-off against the scalar order).
   {
     using namespace sse;
     const ParcelTable::Indexer locate = table.indexer();
@@ -134,20 +134,26 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
       const F4 hi = _mm_add_ps(c[2], _mm_mul_ps(ta, _mm_sub_ps(c[3], c[2])));
       return _mm_add_ps(lo, _mm_mul_ps(td, _mm_sub_ps(hi, lo)));
     };
-    // In chunks: first the cloud base, table position and thermal of a chunk's cells (a loop without
-    // branches, whose iterations the processor overlaps: each is one long chain of dependent
-    // operations), then the trigger and update block by block.
+    // In chunks of 256 cells: first the cloud base, table position and thermal of the chunk's cells, in
+    // three loops without branches (each cell's quantities are long chains of dependent operations,
+    // divisions among them; in short loops of their own the processor overlaps the chains of many
+    // cells, which the per-block branches of the trigger keep it from doing), then the trigger and
+    // update block by block.
     constexpr size_t kChunk = 256;
     alignas(16) float chunkTa[kChunk], chunkTd[kChunk], chunkKinetic[kChunk];
     alignas(16) int32_t chunkAt[kChunk];
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
       for (size_t c = chunk; c < end; c += 4) {
-        // The cloud base.
-        const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
+        // The cloud base: ln(e/e₀), kept in chunkTa until the table position is computed.
+        const F4 vapour = _mm_loadu_ps(vapourW + c);
         const F4 mixing = _mm_mul_ps(vapour, invRhoHV);
         const F4 e = maxStd(_mm_div_ps(_mm_mul_ps(p0V, mixing), _mm_add_ps(epsV, mixing)), set1(1e-3f));
-        const F4 x = minStd(logFast(_mm_mul_ps(e, set1(invE0))), set1(17.0f));
+        _mm_store_ps(chunkTa + (c - chunk), minStd(logFast(_mm_mul_ps(e, set1(invE0))), set1(17.0f)));
+      }
+      for (size_t c = chunk; c < end; c += 4) {
+        const F4 anomaly = _mm_loadu_ps(anomalyT + c);
+        const F4 x = _mm_load_ps(chunkTa + (c - chunk));
         const F4 dew = _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
         const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
         const F4 lcl = _mm_mul_ps(set1(float(kLclMetresPerKelvin)), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
