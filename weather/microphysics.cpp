@@ -39,12 +39,15 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     float* rateOut = s.precipitationRate.data();
     const float* baseZ = s.cloudBase.data();
     const float* topZ = s.cloudTop.data();
-    // In chunks of 256 cells: first which blocks of four have work (the others get a zero rate) and the
-    // saturation path of those (in a loop without branches, whose table loads and division the
-    // processor overlaps), then the update of those.
+    // In chunks of 256 cells: first which blocks of four have work (the others get a zero rate), then
+    // for those, in loops of their own without branches (each quantity is a long chain of dependent
+    // operations, with divisions, a power and exponentials; in short loops the processor overlaps the
+    // chains of many blocks), the saturation path, accretion's power, the fall-out share, what converts
+    // and the share that evaporates, and then the update.
     constexpr size_t kChunk = 256;
     const F4 allOnes = _mm_castsi128_ps(_mm_set1_epi32(-1));
-    alignas(16) F4 saturatedOf[kChunk / 4], accretionOf[kChunk / 4], fallShareOf[kChunk / 4];
+    alignas(16) F4 saturatedOf[kChunk / 4], accretionOf[kChunk / 4], fallShareOf[kChunk / 4], convertedOf[kChunk / 4],
+        evaporatingShareOf[kChunk / 4];
     uint32_t blockOf[kChunk / 4];
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
@@ -74,6 +77,20 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
         const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
         fallShareOf[k] = oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight));
       }
+      // What converts, and the share of the falling rain that evaporates below the base.
+      for (size_t k = 0; k < count; ++k) {
+        const size_t c = blockOf[k];
+        const F4 cloud = _mm_loadu_ps(cloudW + c), base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(_mm_sub_ps(top, base), set1(2000.0f)));
+        const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
+                                   _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
+        const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
+        convertedOf[k] = _mm_and_ps(converts, _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud))));
+        const F4 saturated = saturatedOf[k];
+        const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(_mm_loadu_ps(vapourW + c), saturated), zero, set1(1.0f)), set1(1.0f));
+        evaporatingShareOf[k] = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
+      }
       for (size_t k = 0; k < count; ++k) {
       const size_t c = blockOf[k];
       F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
@@ -84,19 +101,13 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
       const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
       const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), _mm_castsi128_ps(_mm_set1_epi32(-1)));
-      // Cloud → rain.
-      const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
-                                 _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
-      const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
-      const F4 converted = _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud)));
+      // Cloud → rain (the amount from above; 0: no move).
       F4 newCloud = cloud, rainNow = rain;
-      transferWater(newCloud, rainNow, _mm_and_ps(converts, converted));  // amount 0: no move
+      transferWater(newCloud, rainNow, convertedOf[k]);
       // Rain-out, part evaporating below the base.
       const F4 fallen = _mm_mul_ps(rainNow, fallShareOf[k]);
       const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
-      const F4 saturated = saturatedOf[k];
-      const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(vapour, saturated), zero, set1(1.0f)), set1(1.0f));
-      const F4 share = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
+      const F4 share = evaporatingShareOf[k];
       F4 evaporated = _mm_mul_ps(fallen, share);
       const F4 newRain = _mm_sub_ps(rainNow, fallen);
       F4 newVapour = _mm_add_ps(vapour, evaporated);
