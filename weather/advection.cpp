@@ -11,6 +11,88 @@
 
 namespace firmament::weather {
 
+namespace {
+
+// A departure farther than this many cells (a long step) is computed in double: in float its fraction
+// would lose bits (an ulp of 64 is 8e-6 of a cell). With 0 every departure takes the double path, which
+// is main's arithmetic before the float departures (weather2): the model is then bit-identical to main
+// (checked over 14 h of every preset; docs/weather.md), at 0.14 ms more per 256² step.
+constexpr float kNearDeparture = 64.0f;
+
+// Departure x − d in double from the cell index (the far case): floor by truncation stepped down where
+// it rounded up (std::floor is a library call without SSE4.1), any distance wrapped by the modulo.
+void farDeparture(int i, float wind, double scale, int n, int32_t& cell, float& fraction) {
+  double x = i - wind * scale;
+  x = std::clamp(x, -1e9, 1e9);
+  long long k = (long long)x;
+  k -= double(k) > x;
+  fraction = float(x - double(k));
+  if (k < 0 || k >= n) k = ((k % n) + n) % n;
+  cell = int32_t(k);
+}
+
+// Near case: the displacement d = u Δt/Δx in float; −d = k + fraction with k = ⌊−d⌋ (exact: the
+// difference of −d and an integer within one of it); the cell i + k wrapped once (|k| < n).
+inline void nearDeparture(int i, float x, int n, int32_t& cell, float& fraction) {
+  float k = float(int32_t(x));
+  k -= k > x ? 1.0f : 0.0f;
+  fraction = x - k;
+  int32_t c = i + int32_t(k);
+  c += c < 0 ? n : 0;
+  c -= c >= n ? n : 0;
+  cell = c;
+}
+
+}  // namespace
+
+void SemiLagrangianAdvection::departureRow(int j, const float* windU, const float* windV, int nx, int ny,
+                                           double scale, int32_t* cellI, int32_t* cellJ, float* fx, float* fy) {
+  const float s = float(scale);
+  const float nearX = std::min(kNearDeparture, float(nx - 1)), nearY = std::min(kNearDeparture, float(ny - 1));
+  int i = 0;
+#if defined(__SSE2__)
+  // Four cells at a time, the scalar near case's operations per lane; lanes with a far departure are
+  // redone by the scalar code.
+  {
+    const __m128 sV = _mm_set1_ps(s), sign = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f);
+    const __m128 nearXV = _mm_set1_ps(nearX), nearYV = _mm_set1_ps(nearY);
+    const __m128i nxV = _mm_set1_epi32(nx), nyV = _mm_set1_epi32(ny), zero = _mm_setzero_si128();
+    const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3), jV = _mm_set1_epi32(j);
+    auto split = [&](__m128 x, __m128i base, __m128i size, float* fraction, int32_t* cell) {
+      __m128 k = _mm_cvtepi32_ps(_mm_cvttps_epi32(x));
+      k = _mm_sub_ps(k, _mm_and_ps(_mm_cmpgt_ps(k, x), one));
+      _mm_storeu_ps(fraction, _mm_sub_ps(x, k));
+      __m128i c = _mm_add_epi32(base, _mm_cvttps_epi32(k));
+      c = _mm_add_epi32(c, _mm_and_si128(_mm_cmplt_epi32(c, zero), size));
+      c = _mm_sub_epi32(c, _mm_andnot_si128(_mm_cmplt_epi32(c, size), size));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(cell), c);
+    };
+    for (; i + 4 <= nx; i += 4) {
+      const __m128 x = _mm_xor_ps(_mm_mul_ps(_mm_loadu_ps(windU + i), sV), sign);  // −(u s)
+      const __m128 y = _mm_xor_ps(_mm_mul_ps(_mm_loadu_ps(windV + i), sV), sign);
+      split(x, _mm_add_epi32(_mm_set1_epi32(i), lanes), nxV, fx + i, cellI + i);
+      split(y, jV, nyV, fy + i, cellJ + i);
+      const __m128 near = _mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(sign, x), nearXV), _mm_cmplt_ps(_mm_andnot_ps(sign, y), nearYV));
+      if (_mm_movemask_ps(near) != 0xF)
+        for (int l = i; l < i + 4; ++l) {
+          farDeparture(l, windU[l], scale, nx, cellI[l], fx[l]);
+          farDeparture(j, windV[l], scale, ny, cellJ[l], fy[l]);
+        }
+    }
+  }
+#endif
+  for (; i < nx; ++i) {
+    const float x = -(windU[i] * s), y = -(windV[i] * s);
+    if (std::fabs(x) < nearX && std::fabs(y) < nearY) {
+      nearDeparture(i, x, nx, cellI[i], fx[i]);
+      nearDeparture(j, y, ny, cellJ[i], fy[i]);
+    } else {
+      farDeparture(i, windU[i], scale, nx, cellI[i], fx[i]);
+      farDeparture(j, windV[i], scale, ny, cellJ[i], fy[i]);
+    }
+  }
+}
+
 void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, int nx, int ny, double cellSize_m,
                                       double dt_s) {
   nx_ = nx;
@@ -21,71 +103,11 @@ void SemiLagrangianAdvection::prepare(const Field& windU, const Field& windV, in
   fx_.resize(n);
   fy_.resize(n);
   const double scale = dt_s / cellSize_m;
-#if defined(__SSE2__)
-  // Two cells at a time in double lanes, the same operations as the scalar loop below; the wrap covers
-  // departures within one domain width, and the few farther ones get the full modulo afterwards.
-  if (nx % 2 == 0) {
-    const __m128d scaleV = _mm_set1_pd(scale), limit = _mm_set1_pd(1e9), one = _mm_set1_pd(1.0);
-    const __m128i nxV = _mm_set1_epi32(nx), nyV = _mm_set1_epi32(ny), zero = _mm_setzero_si128();
-    // Departure in cell units and its floor (truncation stepped down where it rounded up).
-    auto departure = [&](__m128d position, const float* wind, __m128i& cell, __m128& fraction) {
-      __m128d x = _mm_sub_pd(position, _mm_mul_pd(_mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(
-                                                    reinterpret_cast<const __m128i*>(wind)))), scaleV));
-      x = _mm_max_pd(_mm_sub_pd(_mm_setzero_pd(), limit), _mm_min_pd(limit, x));  // std::clamp(x, −1e9, 1e9)
-      __m128d floorX = _mm_cvtepi32_pd(_mm_cvttpd_epi32(x));
-      floorX = _mm_sub_pd(floorX, _mm_and_pd(_mm_cmpgt_pd(floorX, x), one));
-      fraction = _mm_cvtpd_ps(_mm_sub_pd(x, floorX));
-      cell = _mm_cvttpd_epi32(floorX);
-    };
-    __m128i outside = zero;  // any lane still outside [0, size) after one wrap
-    auto wrap = [&](__m128i cell, __m128i size) {
-      cell = _mm_add_epi32(cell, _mm_and_si128(_mm_cmplt_epi32(cell, zero), size));
-      cell = _mm_sub_epi32(cell, _mm_andnot_si128(_mm_cmplt_epi32(cell, size), size));
-      outside = _mm_or_si128(outside, _mm_or_si128(_mm_cmplt_epi32(cell, zero), _mm_cmpgt_epi32(cell, _mm_sub_epi32(size, _mm_set1_epi32(1)))));
-      return cell;
-    };
-    for (int j = 0; j < ny; ++j) {
-      const __m128d y0 = _mm_set1_pd(double(j));
-      for (int i = 0; i < nx; i += 2) {
-        const size_t c = size_t(j) * nx + i;
-        __m128i ix, iy;
-        __m128 fx, fy;
-        departure(_mm_set_pd(double(i + 1), double(i)), &windU[c], ix, fx);
-        departure(y0, &windV[c], iy, fy);
-        _mm_storel_pi(reinterpret_cast<__m64*>(&fx_[c]), fx);
-        _mm_storel_pi(reinterpret_cast<__m64*>(&fy_[c]), fy);
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(&i0_[c]), wrap(ix, nxV));
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(&j0_[c]), wrap(iy, nyV));
-      }
-    }
-    if (_mm_movemask_epi8(outside) != 0)
-      for (size_t c = 0; c < n; ++c) {
-        if (uint32_t(i0_[c]) >= uint32_t(nx)) i0_[c] = ((i0_[c] % nx) + nx) % nx;
-        if (uint32_t(j0_[c]) >= uint32_t(ny)) j0_[c] = ((j0_[c] % ny) + ny) % ny;
-      }
-    return;
+  for (int j = 0; j < ny; ++j) {
+    const size_t row = size_t(j) * size_t(nx);
+    departureRow(j, windU.data() + row, windV.data() + row, nx, ny, scale, i0_.data() + row, j0_.data() + row,
+                 fx_.data() + row, fy_.data() + row);
   }
-#endif
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      size_t c = size_t(j) * nx + i;
-      // Departure point in cell units, in double so that long steps keep their sub-cell fraction. The
-      // floor is a truncation corrected for negative values (std::floor is a library call without
-      // SSE4.1); only departures beyond the domain need the modulo.
-      double x = i - windU[c] * scale, y = j - windV[c] * scale;
-      double limit = 1e9;
-      x = std::clamp(x, -limit, limit);
-      y = std::clamp(y, -limit, limit);
-      long long ix = (long long)x, iy = (long long)y;
-      ix -= double(ix) > x;
-      iy -= double(iy) > y;
-      fx_[c] = float(x - double(ix));
-      fy_[c] = float(y - double(iy));
-      if (ix < 0 || ix >= nx) ix = ((ix % nx) + nx) % nx;  // far departures only
-      if (iy < 0 || iy >= ny) iy = ((iy % ny) + ny) % ny;
-      i0_[c] = int32_t(ix);
-      j0_[c] = int32_t(iy);
-    }
 }
 
 void SemiLagrangianAdvection::advect(Field& f) { advectFields({&f}); }
@@ -233,8 +255,9 @@ void SemiLagrangianAdvection::advectConservingFields(std::initializer_list<Field
   }
 }
 
-double SemiLagrangianAdvection::restoreTotal(Field& f, double before) {
-  double after = sumField(f);
+double SemiLagrangianAdvection::restoreTotal(Field& f, double before) { return restoreTotal(f, before, sumField(f)); }
+
+double SemiLagrangianAdvection::restoreTotal(Field& f, double before, double after) {
   if (after <= 0.0 || before <= 0.0) return 0.0;
   // Scale in double and carry each cell's rounding into the next: a correction far below a float's
   // resolution (1e-9 relative) would otherwise round away in every cell and never be applied, and the

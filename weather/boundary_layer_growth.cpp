@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "weather/domain_sum.h"
 #include "weather/physical_constants.h"
 
 namespace firmament::weather {
@@ -38,18 +39,35 @@ double applyLayerGrowth(WeatherState& s, const LayerGrowthParameters& p, double 
   // a running sum of per-cell changes would be one long chain of dependent double additions).
   double exchanged = 0.0;
   float* vapour = s.vapour.data();
-  if (after > before || vented > 0.0) {
-    const float added = float(p.density_kg_m3 * (grown + vented) * p.entrainedMixingRatio);
-    const float kept = float((before - vented) / before);
-    exchanged = -sumField(s.vapour);
-    for (size_t c = 0; c < n; ++c) vapour[c] = vapour[c] * kept + added;
-    exchanged += sumField(s.vapour);
-  } else if (after < before) {
-    const float kept = float(after / before);
-    exchanged = -sumField(s.vapour);
-    for (size_t c = 0; c < n; ++c) vapour[c] = vapour[c] * kept;
-    exchanged += sumField(s.vapour);
+  const bool grows = after > before || vented > 0.0;
+  if (!grows && !(after < before)) return 0.0;
+  const float added = grows ? float(p.density_kg_m3 * (grown + vented) * p.entrainedMixingRatio) : 0.0f;
+  const float kept = grows ? float((before - vented) / before) : float(after / before);
+  auto update = [&](size_t begin, size_t end) {
+    if (grows)
+      for (size_t c = begin; c < end; ++c) vapour[c] = vapour[c] * kept + added;
+    else
+      for (size_t c = begin; c < end; ++c) vapour[c] = vapour[c] * kept;
+  };
+#if defined(__SSE2__)
+  // In runs of 256 cells, each summed before and after while in cache (sumField's order).
+  if (n % 4 == 0) {
+    sse::DomainSum total(n), totalAfter(n);
+    constexpr size_t kRun = 256;
+    for (size_t begin = 0; begin < n; begin += kRun) {
+      const size_t end = std::min(n, begin + kRun);
+      total.addRange(vapour, begin, end);
+      update(begin, end);
+      totalAfter.addRange(vapour, begin, end);
+    }
+    exchanged = -total.total();
+    exchanged += totalAfter.total();
+    return exchanged * s.cellArea();
   }
+#endif
+  exchanged = -sumField(s.vapour);
+  update(0, n);
+  exchanged += sumField(s.vapour);
   return exchanged * s.cellArea();
 }
 

@@ -33,6 +33,7 @@ class CompensatingSubsidence {
   std::vector<float> flux_, scratch_, delta_;
   std::vector<int32_t> x0_, x1_, y0_, y1_;
   std::vector<float> wx_, wy_;
+  std::vector<uint8_t> uniform_;  // per four columns: the same coarse neighbours
 };
 
 }  // namespace firmament::weather

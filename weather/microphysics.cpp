@@ -39,8 +39,60 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     float* rateOut = s.precipitationRate.data();
     const float* baseZ = s.cloudBase.data();
     const float* topZ = s.cloudTop.data();
-    for (; start + 4 <= n; start += 4) {
-      const size_t c = start;
+    // In chunks of 256 cells: first which blocks of four have work (the others get a zero rate), then
+    // for those, in loops of their own without branches (each quantity is a long chain of dependent
+    // operations, with divisions, a power and exponentials; in short loops the processor overlaps the
+    // chains of many blocks), the saturation path, accretion's power, the fall-out share, what converts
+    // and the share that evaporates, and then the update.
+    constexpr size_t kChunk = 256;
+    const F4 allOnes = _mm_castsi128_ps(_mm_set1_epi32(-1));
+    alignas(16) F4 saturatedOf[kChunk / 4], accretionOf[kChunk / 4], fallShareOf[kChunk / 4], convertedOf[kChunk / 4],
+        evaporatingShareOf[kChunk / 4];
+    uint32_t blockOf[kChunk / 4];
+    for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
+      const size_t end = std::min(n - n % 4, chunk + kChunk);
+      start = end;
+      size_t count = 0;
+      for (size_t c = chunk; c < end; c += 4) {
+        const F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
+        const F4 base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 depth = _mm_sub_ps(top, base);
+        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(depth, set1(2000.0f)));
+        const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
+        const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
+        const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), allOnes);
+        _mm_storeu_ps(rateOut + c, zero);
+        blockOf[count] = uint32_t(c);
+        count += _mm_movemask_ps(active) != 0;
+      }
+      for (size_t k = 0; k < count; ++k) {
+        const size_t c = blockOf[k];
+        saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + c)), set1(p0)));
+        // Accretion's (r_r)^0.875 and the share of the rain that falls out in the step.
+        const F4 base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 depth = _mm_sub_ps(top, base);
+        accretionOf[k] = powFast(_mm_div_ps(_mm_loadu_ps(rainW + c), _mm_mul_ps(rhoV, depth)), 0.875f);
+        const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
+        fallShareOf[k] = oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight));
+      }
+      // What converts, and the share of the falling rain that evaporates below the base.
+      for (size_t k = 0; k < count; ++k) {
+        const size_t c = blockOf[k];
+        const F4 cloud = _mm_loadu_ps(cloudW + c), base = _mm_loadu_ps(baseZ + c);
+        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
+        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(_mm_sub_ps(top, base), set1(2000.0f)));
+        const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
+                                   _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
+        const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
+        convertedOf[k] = _mm_and_ps(converts, _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud))));
+        const F4 saturated = saturatedOf[k];
+        const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(_mm_loadu_ps(vapourW + c), saturated), zero, set1(1.0f)), set1(1.0f));
+        evaporatingShareOf[k] = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
+      }
+      for (size_t k = 0; k < count; ++k) {
+      const size_t c = blockOf[k];
       F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
       const F4 base = _mm_loadu_ps(baseZ + c);
       const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
@@ -49,25 +101,13 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
       const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
       const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), _mm_castsi128_ps(_mm_set1_epi32(-1)));
-      if (_mm_movemask_ps(active) == 0) {
-        _mm_storeu_ps(rateOut + c, zero);
-        continue;
-      }
-      // Cloud → rain.
-      const F4 rainMixing = _mm_div_ps(rain, _mm_mul_ps(rhoV, depth));
-      const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
-                                 _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), powFast(rainMixing, 0.875f)));
-      const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
-      const F4 converted = _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud)));
+      // Cloud → rain (the amount from above; 0: no move).
       F4 newCloud = cloud, rainNow = rain;
-      transferWater(newCloud, rainNow, _mm_and_ps(converts, converted));  // amount 0: no move
+      transferWater(newCloud, rainNow, convertedOf[k]);
       // Rain-out, part evaporating below the base.
-      const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
-      const F4 fallen = _mm_mul_ps(rainNow, oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight)));
+      const F4 fallen = _mm_mul_ps(rainNow, fallShareOf[k]);
       const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
-      const F4 saturated = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), anomaly), set1(p0)));
-      const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(vapour, saturated), zero, set1(1.0f)), set1(1.0f));
-      const F4 share = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
+      const F4 share = evaporatingShareOf[k];
       F4 evaporated = _mm_mul_ps(fallen, share);
       const F4 newRain = _mm_sub_ps(rainNow, fallen);
       F4 newVapour = _mm_add_ps(vapour, evaporated);
@@ -96,6 +136,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       _mm_storeu_ps(vapourW + c, select(active, newVapour, vapour));
       _mm_storeu_ps(anomalyT + c, select(active, _mm_sub_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), evaporated)), anomaly));
       _mm_storeu_ps(rateOut + c, _mm_and_ps(active, precipitation));
+      }
     }
     alignas(16) double parts[4];
     _mm_store_pd(parts, leftLo);
@@ -107,17 +148,18 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
   // without rain whose cloud is below the autoconversion threshold converts nothing (accretion needs
   // rain) and drops nothing, so the full update would leave it as it is.
   const float thresholdPerMetre = rho * kThresholdMixingRatio;
-  work.active.assign(n, 0);
+  work.active.assign(n - start, 0);
   for (size_t c = start; c < n; ++c) {
     const float cloud = s.cloudWater[c], rain = s.rain[c], base = s.cloudBase[c];
     const float top = std::max(s.cloudTop[c], base + 100.0f);
     const float threshold = thresholdPerMetre * std::min(top - base, 2000.0f);
     const bool empty = cloud <= 0.0f && rain <= 0.0f;
     const bool idle = rain == 0.0f && cloud <= threshold;
-    work.active[c] = uint8_t(!(empty || idle));
+    work.active[c - start] = uint8_t(!(empty || idle));
     s.precipitationRate[c] = 0.0f;
   }
-  forEachActiveCell(work.active, [&](size_t c) {
+  forEachActiveCell(work.active, [&](size_t k) {
+    const size_t c = start + k;
     float cloud = s.cloudWater[c], rain = s.rain[c];
     float base = s.cloudBase[c], top = std::max(s.cloudTop[c], base + 100.0f);
     float depth = top - base;

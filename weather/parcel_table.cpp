@@ -92,6 +92,8 @@ void ParcelTable::build(const Sounding& s) {
   maxCape_.resize(n);
   nodes_.resize(n);
   allFree_.resize(n);
+  capeCorners_.resize(n);
+  summaries_.resize(n);
   // The parcel profiles depend on the surface temperature and pressure only: a new layer depth or
   // inversion (the daytime growth of the mixed layer) reuses them and only re-integrates the buoyancy.
   if (profiles_.size() != n * kLevels || profileTemperature_ != s.surfaceTemperature_K ||
@@ -130,6 +132,8 @@ void ParcelTable::build(const Sounding& s) {
       maxCape_[i] = bounds_[i].maxCape;
       nodes_[i] = {cape_[i], cin_[i], lnb_[i], lfc_[i]};
       allFree_[i] = cape_[i] > 0 && cape_[right] > 0 && cape_[i + up] > 0 && cape_[right + up] > 0;
+      capeCorners_[i] = {cape_[i], cape_[right], cape_[i + up], cape_[right + up]};
+      summaries_[i] = {{cin_[i], cin_[right], cin_[i + up], cin_[right + up]}, maxCape_[i], minCin_[i], allFree_[i] ? 1.0f : 0.0f, 0.0f};
     }
 }
 

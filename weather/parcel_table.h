@@ -79,6 +79,19 @@ class ParcelTable {
     float cape, cinSpeed, neutralBuoyancyLevel, freeConvectionLevel;
   };
   const Node* nodes() const { return nodes_.data(); }
+  // Per table cell (by its lower corner's index): the four corners' CAPE and v_c in the order of the
+  // bilinear interpolation (lower, next anomaly, next depression, both), so that four cells' corners are
+  // four 16-byte loads and a transpose; and, in the same 32 bytes as v_c's corners, the cell's bounds
+  // (CellBounds) and whether all four corners have free convection (1 or 0).
+  struct alignas(16) Corners {
+    float c00, c10, c01, c11;
+  };
+  struct alignas(32) Summary {
+    Corners cinSpeed;
+    float maxCape, minCin, allFree, unused;
+  };
+  const Corners* capeCorners() const { return capeCorners_.data(); }
+  const Summary* summaries() const { return summaries_.data(); }
   const uint8_t* allFreeData() const { return allFree_.data(); }
   int32_t rowStride() const { return nAnomaly_; }
   ParcelProperties lookup(float temperatureAnomaly_K, float dewPointDepression_K) const {
@@ -136,6 +149,8 @@ class ParcelTable {
   std::vector<CellBounds> bounds_;
   std::vector<float> minCin_, maxCape_;
   std::vector<Node> nodes_;
+  std::vector<Corners> capeCorners_;
+  std::vector<Summary> summaries_;
   std::vector<uint8_t> allFree_;
   std::vector<double> profiles_;  // parcel temperature per node and level
   double profileTemperature_ = -1.0, profilePressure_ = -1.0;

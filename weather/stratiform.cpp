@@ -40,9 +40,11 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
   const size_t n = s.cells();
   // Large-scale ascent and its adiabatic cooling, with the frontal band at periodic distance d along the
   // front's motion.
+  // (Without lifting the ascent is the same everywhere and is not stored.)
   Field& lift = work.value[0];
-  lift.assign(n, float(p.largeScaleLift_m_s));
+  const float uniformLift = float(p.largeScaleLift_m_s);
   if (lifting) {
+    lift.assign(n, uniformLift);
     for (int j = 0; j < s.ny; ++j) {
       for (int i = 0; i < s.nx; ++i) {
         size_t c = s.index(i, j);
@@ -80,15 +82,25 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
     float* cloudW = s.cloudWater.data();
     float* convective = s.convectiveFraction.data();
     float* cloudTop = s.cloudTop.data();
-    const float* ascent = lift.data();
-    for (; start + 4 <= n; start += 4) {
+    const float* ascent = lifting ? lift.data() : nullptr;
+    const F4 uniformAscent = set1(uniformLift);
+    // In chunks of 256 cells: first the saturation path of every cell (a loop without branches whose
+    // table loads and division the processor overlaps over many cells), then the update where there is
+    // work.
+    constexpr size_t kChunk = 256;
+    alignas(16) F4 saturatedOf[kChunk / 4];
+    for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
+      const size_t end = std::min(n - n % 4, chunk + kChunk);
+      for (size_t c = chunk; c < end; c += 4)
+        saturatedOf[(c - chunk) / 4] = _mm_mul_ps(rhoHV, saturationMixingRatioFast4(_mm_sub_ps(_mm_add_ps(tRef, _mm_loadu_ps(anomalyT + c)), topCoolingV), topPressureV));
+    for (start = chunk; start < end; start += 4) {
       const size_t c = start;
       const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
       const F4 cloudy = _mm_cmpgt_ps(cloud, zero);
       if (_mm_movemask_ps(_mm_or_ps(cloudy, _mm_cmpgt_ps(vapour, _mm_add_ps(set1(s0), _mm_mul_ps(set1(s1), anomaly))))) == 0)
         continue;
       const F4 conv = _mm_loadu_ps(convective + c), top = _mm_loadu_ps(cloudTop + c);
-      const F4 saturated = _mm_mul_ps(rhoHV, saturationMixingRatioFast4(_mm_sub_ps(_mm_add_ps(tRef, anomaly), topCoolingV), topPressureV));
+      const F4 saturated = saturatedOf[(c - chunk) / 4];
       const F4 condensing = _mm_cmpgt_ps(vapour, saturated);
       const F4 evaporating = _mm_andnot_ps(condensing, cloudy);
       const F4 dq = _mm_mul_ps(_mm_sub_ps(vapour, saturated), set1(condense));
@@ -106,19 +118,21 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
       const F4 total = _mm_add_ps(cloud, dq);
       const F4 mixedShare = _mm_and_ps(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_mul_ps(conv, cloud), total));
       _mm_storeu_ps(convective + c, select(condensing, mixedShare, conv));
-      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(_mm_loadu_ps(ascent + c), zero), set1(1e5f))));
+      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(ascent ? _mm_loadu_ps(ascent + c) : uniformAscent, zero), set1(1e5f))));
       const F4 lower = _mm_or_ps(_mm_cmplt_ps(conv, set1(0.5f)), _mm_cmplt_ps(top, stratiformTop));
       _mm_storeu_ps(cloudTop + c, select(_mm_and_ps(condensing, lower), maxStd(_mm_mul_ps(top, conv), stratiformTop), top));
+    }
     }
   }
 #endif
   // The remaining cells (all of them without SSE2): those with work, then the update.
-  work.active.assign(n, 0);
+  work.active.assign(n - start, 0);
   markColumns(n - start, s0, s1, s.temperature.data() + start, s.vapour.data() + start, s.cloudWater.data() + start,
-              work.active.data() + start);
+              work.active.data());
 
-  forEachActiveCell(work.active, [&](size_t c) {
-    const float w = lift[c];
+  forEachActiveCell(work.active, [&](size_t k) {
+    const size_t c = start + k;
+    const float w = lifting ? lift[c] : uniformLift;
     float topTemperature = float(layer.referenceTemperature_K) + s.temperature[c] - topCooling;
     float saturated = rhoH * saturationMixingRatioFast(topTemperature, topPressure);
     float vapour = s.vapour[c], cloud = s.cloudWater[c], conv = s.convectiveFraction[c];

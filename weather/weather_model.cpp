@@ -183,27 +183,14 @@ void WeatherModel::substep(double dt, bool windCurrent) {
   if (!windCurrent) updateWind(p);
   clock.charge(0);
 
-  // Transport. Fields that are zero everywhere (no cloud yet) are skipped; they are non-negative, so a
-  // zero sum says so. Water gets one mass fix after advection and mixing together, which also settles
-  // the previous step's pendingVapour (remnants returned, vapour drawn into storms from their catchment).
-  double vapourBefore = sumField(s.vapour) + s.pendingVapour, cloudBefore = sumField(s.cloudWater),
-         rainBefore = sumField(s.rain);
+  // Transport (transport.h). Fields that are zero everywhere (no cloud yet) are not advected. Water gets
+  // one mass fix after advection and mixing together, which also settles the previous step's
+  // pendingVapour (remnants returned, vapour drawn into storms from their catchment).
+  const double owed = s.pendingVapour;
   s.pendingVapour = 0.0;
-  const bool convective = anyNonZero(s.cloudTop) || anyNonZero(s.updraft);  // both are ≥ 0
-  advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt);
-  if (convective)
-    advection_.advectFields({&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
-  else if (cloudBefore > 0.0 || rainBefore > 0.0)
-    advection_.advectFields({&s.temperature, &s.vapour, &s.cloudWater, &s.rain});
-  else
-    advection_.advectFields({&s.temperature, &s.vapour});
+  transport_.advect(s, dt);
   clock.charge(1);
-  mixing_.apply(s.temperature, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
-  mixing_.apply(s.vapour, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
-  if (cloudBefore > 0.0) mixing_.apply(s.cloudWater, s.nx, s.ny, s.cellSize_m, kMixingDiffusivity_m2_s, dt);
-  SemiLagrangianAdvection::restoreTotal(s.vapour, vapourBefore);
-  if (cloudBefore > 0.0) SemiLagrangianAdvection::restoreTotal(s.cloudWater, cloudBefore);
-  if (rainBefore > 0.0) SemiLagrangianAdvection::restoreTotal(s.rain, rainBefore);
+  transport_.mixAndConserve(s, kMixingDiffusivity_m2_s, dt, owed);
   clock.charge(2);
 
   // Sources.

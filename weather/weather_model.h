@@ -13,12 +13,11 @@
 #include <vector>
 
 #include "weather/active_cells.h"
-#include "weather/advection.h"
 #include "weather/compensating_subsidence.h"
-#include "weather/mixing.h"
 #include "weather/parcel_table.h"
 #include "weather/preset_schedule.h"
 #include "weather/solar_day.h"
+#include "weather/transport.h"
 #include "weather/weather_config.h"
 #include "weather/weather_map.h"
 #include "weather/weather_state.h"
@@ -100,8 +99,7 @@ class WeatherModel {
   WindField wind_;
   CompensatingSubsidence subsidence_;
   Field subsidenceWarming_;
-  SemiLagrangianAdvection advection_;
-  Mixing mixing_;
+  Transport transport_;
   ColumnScratch columnScratch_;
   ParcelTable parcelTable_;
   std::array<double, PresetParameters::kCount> tableParameters_{};

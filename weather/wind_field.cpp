@@ -19,10 +19,19 @@ void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
   for (int j = 0; j < ny; ++j) {
     const float* row = &f[size_t(j) * nx];
     float* out = &scratch[size_t(j) * nx];
-    for (int i = 0; i < nx; ++i) {
+    auto at = [&](int i) {
       int w = i == 0 ? nx - 1 : i - 1, e = i + 1 == nx ? 0 : i + 1;
       out[i] = 0.25f * (row[w] + row[e]) + 0.5f * row[i];
-    }
+    };
+    at(0);
+    int i = 1;
+#if defined(__SSE2__)
+    // The interior four cells at a time, the same operations per lane.
+    for (; i + 4 <= nx - 1; i += 4)
+      _mm_storeu_ps(out + i, _mm_add_ps(_mm_mul_ps(_mm_set1_ps(0.25f), _mm_add_ps(_mm_loadu_ps(row + i - 1), _mm_loadu_ps(row + i + 1))),
+                                        _mm_mul_ps(_mm_set1_ps(0.5f), _mm_loadu_ps(row + i))));
+#endif
+    for (; i < nx; ++i) at(i);
   }
   for (int j = 0; j < ny; ++j) {
     const float* south = &scratch[size_t(j == 0 ? ny - 1 : j - 1) * nx];
@@ -37,16 +46,19 @@ void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
 // One coarse row to the fine row of a grid twice as fine (the 400 m grid on 200 m cells): fine cell 2k
 // lies ¾ of the way from coarse k − 1 to k, cell 2k + 1 ¼ of the way from k to k + 1 (the weights
 // coarseNeighbours gives), so four coarse values make eight cells, with the same arithmetic as the
-// general loop in update(): (offset + a) + w (b − a), or a + w (b − a) without an offset. The row is
-// padded with its periodic neighbours.
+// general loop in update(): (offset + a) + w (b − a), or a + w (b − a) without an offset; then, where
+// given, the perturbation b₀ p₀ + b₁ p₁ added as update()'s general loop adds it. The row is padded with
+// its periodic neighbours.
 void interpolatePairs(const std::vector<float>& coarse, float offset, bool withOffset, float* out,
-                      std::vector<float>& padded) {
+                      std::vector<float>& padded, const float* perturbation0 = nullptr,
+                      const float* perturbation1 = nullptr, float b0 = 0.0f, float b1 = 0.0f) {
   const size_t cn = coarse.size();
   padded.resize(cn + 8);
   padded[0] = coarse[cn - 1];
   std::copy(coarse.begin(), coarse.end(), padded.begin() + 1);
   padded[cn + 1] = coarse[0];
   const __m128 offsetV = _mm_set1_ps(offset), threeQuarters = _mm_set1_ps(0.75f), quarter = _mm_set1_ps(0.25f);
+  const __m128 b0V = _mm_set1_ps(b0), b1V = _mm_set1_ps(b1);
   size_t k = 0;
   for (; k + 4 <= cn; k += 4) {
     const __m128 left = _mm_loadu_ps(&padded[k]), centre = _mm_loadu_ps(&padded[k + 1]), right = _mm_loadu_ps(&padded[k + 2]);
@@ -54,13 +66,22 @@ void interpolatePairs(const std::vector<float>& coarse, float offset, bool withO
     const __m128 oddBase = withOffset ? _mm_add_ps(offsetV, centre) : centre;
     const __m128 even = _mm_add_ps(evenBase, _mm_mul_ps(threeQuarters, _mm_sub_ps(centre, left)));
     const __m128 odd = _mm_add_ps(oddBase, _mm_mul_ps(quarter, _mm_sub_ps(right, centre)));
-    _mm_storeu_ps(out + 2 * k, _mm_unpacklo_ps(even, odd));
-    _mm_storeu_ps(out + 2 * k + 4, _mm_unpackhi_ps(even, odd));
+    __m128 lo = _mm_unpacklo_ps(even, odd), hi = _mm_unpackhi_ps(even, odd);
+    if (perturbation0) {
+      lo = _mm_add_ps(lo, _mm_add_ps(_mm_mul_ps(b0V, _mm_loadu_ps(perturbation0 + 2 * k)),
+                                     _mm_mul_ps(b1V, _mm_loadu_ps(perturbation1 + 2 * k))));
+      hi = _mm_add_ps(hi, _mm_add_ps(_mm_mul_ps(b0V, _mm_loadu_ps(perturbation0 + 2 * k + 4)),
+                                     _mm_mul_ps(b1V, _mm_loadu_ps(perturbation1 + 2 * k + 4))));
+    }
+    _mm_storeu_ps(out + 2 * k, lo);
+    _mm_storeu_ps(out + 2 * k + 4, hi);
   }
   for (; k < cn; ++k) {
     const float a = padded[k], b = padded[k + 1], c = padded[k + 2];
     out[2 * k] = (withOffset ? offset + a : a) + 0.75f * (b - a);
     out[2 * k + 1] = (withOffset ? offset + b : b) + 0.25f * (c - b);
+    if (perturbation0)
+      for (size_t i = 2 * k; i < 2 * k + 2; ++i) out[i] += b0 * perturbation0[i] + b1 * perturbation1[i];
   }
 }
 #endif
@@ -137,27 +158,40 @@ void WindField::perturbationSnapshot(double t_s, double turbulence, Field& u, Fi
   // amplitude · turbulence.
   const int nx = nx_, ny = ny_;
   const double lx = nx * cellSize_, ly = ny * cellSize_;
-  u.assign(size_t(nx) * ny, 0.0f);
-  v.assign(size_t(nx) * ny, 0.0f);
-  for (size_t m = 0; m < modes_.size(); ++m) {
+  // All modes in one pass over the cells, each cell's sum in the order of the modes (as a pass per mode
+  // would add them).
+  u.resize(size_t(nx) * ny);
+  v.resize(size_t(nx) * ny);
+  const size_t modes = modes_.size();
+  std::vector<float> cu(modes), cv(modes), cp(modes), sp(modes), cb(modes), sb(modes);
+  for (size_t m = 0; m < modes; ++m) {
     const Mode& mode = modes_[m];
     double kxw = mode.kx / lx, kyw = mode.ky / ly, kNorm = std::hypot(kxw, kyw);
-    float cu = float(turbulence * mode.amplitude * kyw / kNorm);
-    float cv = float(-turbulence * mode.amplitude * kxw / kNorm);
+    cu[m] = float(turbulence * mode.amplitude * kyw / kNorm);
+    cv[m] = float(-turbulence * mode.amplitude * kxw / kNorm);
     double phase = mode.phase + mode.angularFrequency * t_s;
-    float cp = float(std::cos(phase)), sp = float(std::sin(phase));
-    const float* cx = &cosX_[m * nx];
-    const float* sx = &sinX_[m * nx];
-    for (int j = 0; j < ny; ++j) {
-      // cos(a + b + φ) with the y part and φ folded into (cb, sb).
+    cp[m] = float(std::cos(phase));
+    sp[m] = float(std::sin(phase));
+  }
+  for (int j = 0; j < ny; ++j) {
+    // cos(a + b + φ) with the y part and φ folded into (cb, sb).
+    for (size_t m = 0; m < modes; ++m) {
       float cy = cosY_[m * ny + j], sy = sinY_[m * ny + j];
-      float cb = cy * cp - sy * sp, sb = sy * cp + cy * sp;
-      float* ur = &u[size_t(j) * nx];
-      float* vr = &v[size_t(j) * nx];
+      cb[m] = cy * cp[m] - sy * sp[m];
+      sb[m] = sy * cp[m] + cy * sp[m];
+    }
+    float* ur = &u[size_t(j) * nx];
+    float* vr = &v[size_t(j) * nx];
+    std::fill(ur, ur + nx, 0.0f);
+    std::fill(vr, vr + nx, 0.0f);
+    for (size_t m = 0; m < modes; ++m) {
+      const float* cx = &cosX_[m * nx];
+      const float* sx = &sinX_[m * nx];
+      const float cbm = cb[m], sbm = sb[m], cum = cu[m], cvm = cv[m];
       for (int i = 0; i < nx; ++i) {
-        float c = cx[i] * cb - sx[i] * sb;
-        ur[i] += cu * c;
-        vr[i] += cv * c;
+        float c = cx[i] * cbm - sx[i] * sbm;
+        ur[i] += cum * c;
+        vr[i] += cvm * c;
       }
     }
   }
@@ -168,16 +202,37 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
   const int f = factor_, cnx = cnx_, cny = cny_;
   const float inv = 1.0f / float(f * f);
   std::fill(coarseT_.begin(), coarseT_.end(), 0.0f);
-  for (int j = 0; j < ny_; ++j) {
-    const float* row = &s.temperature[size_t(j) * nx_];
-    float* out = &coarseT_[size_t(j / f) * cnx];
-    for (int b = 0; b < cnx; ++b, row += f) {
-      float sum = 0.0f;
-      for (int k = 0; k < f; ++k) sum += row[k];
-      out[b] += sum;
+  int j0 = 0;
+#if defined(__SSE2__)
+  // Blocks of 2 × 2 (200 m cells), four coarse cells from two rows of eight: each row's pair sum added to
+  // the block's running sum of zero as the general loop below adds them, then the mean.
+  if (f == 2 && nx_ % 8 == 0) {
+    const __m128 invV = _mm_set1_ps(inv);
+    for (; j0 + 2 <= ny_; j0 += 2) {
+      const float* a = &s.temperature[size_t(j0) * nx_];
+      const float* b = a + nx_;
+      float* out = &coarseT_[size_t(j0 / 2) * cnx];
+      for (int i = 0; i < nx_; i += 8) {
+        const __m128 a0 = _mm_loadu_ps(a + i), a1 = _mm_loadu_ps(a + i + 4), b0 = _mm_loadu_ps(b + i), b1 = _mm_loadu_ps(b + i + 4);
+        const __m128 first = _mm_add_ps(_mm_shuffle_ps(a0, a1, _MM_SHUFFLE(2, 0, 2, 0)), _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(3, 1, 3, 1)));
+        const __m128 second = _mm_add_ps(_mm_shuffle_ps(b0, b1, _MM_SHUFFLE(2, 0, 2, 0)), _mm_shuffle_ps(b0, b1, _MM_SHUFFLE(3, 1, 3, 1)));
+        _mm_storeu_ps(out + i / 2, _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_setzero_ps(), first), second), invV));
+      }
     }
   }
-  for (float& t : coarseT_) t *= inv;
+#endif
+  if (j0 < ny_) {
+    for (int j = j0; j < ny_; ++j) {
+      const float* row = &s.temperature[size_t(j) * nx_];
+      float* out = &coarseT_[size_t(j / f) * cnx];
+      for (int b = 0; b < cnx; ++b, row += f) {
+        float sum = 0.0f;
+        for (int k = 0; k < f; ++k) sum += row[k];
+        out[b] += sum;
+      }
+    }
+    for (float& t : coarseT_) t *= inv;
+  }
   binomialSmooth(coarseT_, scratch_, cnx, cny);
   binomialSmooth(coarseT_, scratch_, cnx, cny);
 
@@ -187,24 +242,57 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
   const float depth = float(p.boundaryLayerDepth_m);
   const Field& T = coarseT_;
   float maxCurvature = 0.0f;  // max over cells of κ·limit·(|∂²T/∂x²| + |∂²T/∂y²|)·D²
+  // One coarse cell's flow, limit and lift (the same operations in SSE2 lanes below).
+  auto cell = [&](size_t c, float tc, float te, float tw, float tn, float ts) {
+    float ub = kappa * (te - tw) * inv2d, vb = kappa * (tn - ts) * inv2d;
+    float speed2 = ub * ub + vb * vb;
+    float limit = speed2 > maxSpeed * maxSpeed ? maxSpeed / std::sqrt(speed2) : 1.0f;
+    coarseU_[c] = ub * limit;
+    coarseV_[c] = vb * limit;
+    // ∇·u_b = κ ∇²T̃′ (limited alike); w at the boundary-layer top = −h ∇·u_b.
+    float laplacian = (te + tw + tn + ts - 4.0f * tc) * invD2;
+    coarseLift_[c] = -depth * kappa * limit * laplacian;
+    maxCurvature = std::max(maxCurvature, kappa * limit * (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
+  };
   for (int j = 0; j < cny; ++j) {
     int jn = j + 1 == cny ? 0 : j + 1, js = j == 0 ? cny - 1 : j - 1;
     const float* row = &T[size_t(j) * cnx];
     const float* north = &T[size_t(jn) * cnx];
     const float* south = &T[size_t(js) * cnx];
-    for (int i = 0; i < cnx; ++i) {
-      int ie = i + 1 == cnx ? 0 : i + 1, iw = i == 0 ? cnx - 1 : i - 1;
-      float tc = row[i], te = row[ie], tw = row[iw], tn = north[i], ts = south[i];
-      float ub = kappa * (te - tw) * inv2d, vb = kappa * (tn - ts) * inv2d;
-      float speed2 = ub * ub + vb * vb;
-      float limit = speed2 > maxSpeed * maxSpeed ? maxSpeed / std::sqrt(speed2) : 1.0f;
-      size_t c = size_t(j) * cnx + i;
-      coarseU_[c] = ub * limit;
-      coarseV_[c] = vb * limit;
-      // ∇·u_b = κ ∇²T̃′ (limited alike); w at the boundary-layer top = −h ∇·u_b.
-      float laplacian = (te + tw + tn + ts - 4.0f * tc) * invD2;
-      coarseLift_[c] = -depth * kappa * limit * laplacian;
-      maxCurvature = std::max(maxCurvature, kappa * limit * (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
+    const size_t base = size_t(j) * cnx;
+    cell(base, row[0], row[cnx > 1 ? 1 : 0], row[cnx - 1], north[0], south[0]);
+    int i = 1;
+#if defined(__SSE2__)
+    {
+      const __m128 kappaV = _mm_set1_ps(kappa), inv2dV = _mm_set1_ps(inv2d), invD2V = _mm_set1_ps(invD2);
+      const __m128 maxSpeedV = _mm_set1_ps(maxSpeed), maxSpeed2 = _mm_set1_ps(maxSpeed * maxSpeed), one = _mm_set1_ps(1.0f);
+      const __m128 four = _mm_set1_ps(4.0f), two = _mm_set1_ps(2.0f), minusDepthKappa = _mm_set1_ps(-depth * kappa);
+      const __m128 sign = _mm_set1_ps(-0.0f);
+      __m128 curvature = _mm_setzero_ps();
+      for (; i + 4 <= cnx - 1; i += 4) {
+        const __m128 tc = _mm_loadu_ps(row + i), te = _mm_loadu_ps(row + i + 1), tw = _mm_loadu_ps(row + i - 1);
+        const __m128 tn = _mm_loadu_ps(north + i), ts = _mm_loadu_ps(south + i);
+        const __m128 ub = _mm_mul_ps(_mm_mul_ps(kappaV, _mm_sub_ps(te, tw)), inv2dV);
+        const __m128 vb = _mm_mul_ps(_mm_mul_ps(kappaV, _mm_sub_ps(tn, ts)), inv2dV);
+        const __m128 speed2 = _mm_add_ps(_mm_mul_ps(ub, ub), _mm_mul_ps(vb, vb));
+        const __m128 fast = _mm_cmpgt_ps(speed2, maxSpeed2);
+        const __m128 limit = _mm_or_ps(_mm_and_ps(fast, _mm_div_ps(maxSpeedV, _mm_sqrt_ps(speed2))), _mm_andnot_ps(fast, one));
+        _mm_storeu_ps(&coarseU_[base + i], _mm_mul_ps(ub, limit));
+        _mm_storeu_ps(&coarseV_[base + i], _mm_mul_ps(vb, limit));
+        const __m128 laplacian = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_add_ps(te, tw), tn), ts), _mm_mul_ps(four, tc)), invD2V);
+        _mm_storeu_ps(&coarseLift_[base + i], _mm_mul_ps(_mm_mul_ps(minusDepthKappa, limit), laplacian));
+        const __m128 bendX = _mm_andnot_ps(sign, _mm_sub_ps(_mm_add_ps(te, tw), _mm_mul_ps(two, tc)));
+        const __m128 bendY = _mm_andnot_ps(sign, _mm_sub_ps(_mm_add_ps(tn, ts), _mm_mul_ps(two, tc)));
+        curvature = _mm_max_ps(curvature, _mm_mul_ps(_mm_mul_ps(kappaV, limit), _mm_add_ps(bendX, bendY)));
+      }
+      alignas(16) float lanes[4];
+      _mm_store_ps(lanes, curvature);
+      for (float x : lanes) maxCurvature = std::max(maxCurvature, x);
+    }
+#endif
+    for (; i < cnx; ++i) {
+      const int ie = i + 1 == cnx ? 0 : i + 1, iw = i - 1;
+      cell(base + i, row[i], row[ie], row[iw], north[i], south[i]);
     }
   }
   return double(maxCurvature) * double(invD2);
@@ -236,7 +324,12 @@ double WindField::update(WeatherState& s, const WindParameters& p, double t_s) {
   // u = U₀ + perturbation (interpolated in time) + u_b (interpolated from the coarse grid), one pass.
   const float u0 = float(p.prevailingU_m_s), v0 = float(p.prevailingV_m_s);
   const float b0 = 1.0f - a, b1 = a;
-  std::vector<float> rowU(cnx_), rowV(cnx_), rowLift(cnx_);
+  std::vector<float>& rowU = rowU_;
+  std::vector<float>& rowV = rowV_;
+  std::vector<float>& rowLift = rowLift_;
+  rowU.resize(size_t(cnx_));
+  rowV.resize(size_t(cnx_));
+  rowLift.resize(size_t(cnx_));
   for (int j = 0; j < ny; ++j) {
     const float wy = wy_[j];
     const size_t r0 = size_t(y0_[j]) * cnx_, r1 = size_t(y1_[j]) * cnx_;
@@ -251,10 +344,17 @@ double WindField::update(WeatherState& s, const WindParameters& p, double t_s) {
     float* lift = &s.lift[row];
 #if defined(__SSE2__)
     if (factor_ == 2 && cnx_ >= 4) {
-      interpolatePairs(rowU, u0, true, u, padded_);
-      interpolatePairs(rowV, v0, true, v, padded_);
+      // The perturbation added in the same pass (the general loop's arithmetic).
+      if (turbulent) {
+        interpolatePairs(rowU, u0, true, u, padded_, &snapU_[0][row], &snapU_[1][row], b0, b1);
+        interpolatePairs(rowV, v0, true, v, padded_, &snapV_[0][row], &snapV_[1][row], b0, b1);
+      } else {
+        interpolatePairs(rowU, u0, true, u, padded_);
+        interpolatePairs(rowV, v0, true, v, padded_);
+      }
       interpolatePairs(rowLift, 0.0f, false, lift, padded_);
-    } else
+      continue;
+    }
 #endif
     for (int i = 0; i < nx; ++i) {
       const int c0 = x0_[i], c1 = x1_[i];

@@ -73,6 +73,7 @@ class WindField {
   std::vector<int32_t> x0_, x1_, y0_, y1_;  // per fine column / row: coarse neighbours
   std::vector<float> wx_, wy_;              // and the weight of the second
   std::vector<float> padded_;               // a coarse row with its periodic neighbours (update)
+  std::vector<float> rowU_, rowV_, rowLift_;  // a fine row's coarse values (update)
 };
 
 }  // namespace firmament::weather
