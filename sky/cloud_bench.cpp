@@ -101,7 +101,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     const Scene scene = Scene::parse(sc.text, "<bench " + sc.name + ">");
     SkyRenderOptions base;
     base.clouds.ambient = false;
-    base.clouds.aerialPerspective = false;
+    base.clouds.aerialPerspective = AerialPerspective::Off;
     const RenderResult first = renderer.render(scene, base);
     double bakeMs = 0.0;
     for (const auto& t : first.timings)

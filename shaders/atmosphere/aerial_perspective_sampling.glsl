@@ -1,0 +1,25 @@
+// aerial_perspective_sampling.glsl (GPU only): reading the aerial-perspective volume
+// (common/aerial_perspective.glsl has its layout; sky/aerial_perspective_volume.comp writes it): the
+// air between the camera and distance d along the ray through image point `pixel`.
+#ifndef FIRMAMENT_AERIAL_PERSPECTIVE_SAMPLING_GLSL
+#define FIRMAMENT_AERIAL_PERSPECTIVE_SAMPLING_GLSL
+
+#include "common/aerial_perspective.glsl"
+
+// pixel: image point in pixel units (a pixel's centre is its index + 0.5); image: width, height;
+// volume: linear filtering, clamp to edge; maxDistance: the volume's D (m). Out: the in-scattered
+// light (linear Rec.709 cd/m^2, this batch's wavelengths) and the transmittance (this batch's three
+// wavelengths). Two trilinear fetches.
+void aerialPerspectiveLookup(sampler3D volume, vec2 pixel, ivec2 image, float d, float maxDistance, out vec3 light,
+                             out vec3 transmittance) {
+  ivec3 size = textureSize(volume, 0);
+  int columns = size.x / 2;
+  vec2 z = aerialDepthCoordinate(d, size.z, maxDistance);
+  float y = aerialTileY(pixel.y, image.y, size.y);
+  vec3 inscattered = textureLod(volume, vec3(aerialTileX(pixel.x, image.x, columns, 0), y, z.x), 0.0).rgb;
+  vec3 through = textureLod(volume, vec3(aerialTileX(pixel.x, image.x, columns, 1), y, z.x), 0.0).rgb;
+  light = z.y * inscattered;
+  transmittance = 1.0 - z.y * (1.0 - through);
+}
+
+#endif  // FIRMAMENT_AERIAL_PERSPECTIVE_SAMPLING_GLSL
