@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/aerial_perspective.glsl"
 #include "core/error.h"
 #include "gpu/buffer.h"
 
@@ -47,7 +48,7 @@ void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& sett
     throw InputError("aerial-perspective volume: steps per slice must be 1..64");
   settings_ = settings;
   const size_t batches = luts.batchCount();
-  const uint32_t width = uint32_t(2 * settings.columns), height = uint32_t(settings.rows), depth = uint32_t(settings.slices);
+  const uint32_t width = uint32_t(shared::kAerialTiles * settings.columns), height = uint32_t(settings.rows), depth = uint32_t(settings.slices);
   volumes_.resize(batches);
   blocks_.resize(batches);
   for (size_t b = 0; b < batches; ++b) {

@@ -38,7 +38,7 @@ class AerialPerspectiveVolume {
   void record(const AerialPerspectiveVolumeSettings& settings, const glm::dvec3& cameraPosition, const glm::dvec3& sun,
               const shared::CameraParameters& camera, const AtmosphereLuts& luts, gpu::CommandList& commands);
 
-  // RGBA32F, 2C x R x N, one per spectral batch of the last record() (valid after its commands ran).
+  // RGBA32F, 3C x R x N (three tiles), one per spectral batch of the last record() (valid after its commands ran).
   std::vector<const gpu::Image*> volumes() const;
   const gpu::Image& volume(size_t batch) const { return volumes_.at(batch); }
   // The settings of the last record().

@@ -14,7 +14,7 @@
 //     transmittance and in-scattering up to there, chosen at compile time (CLOUD_AERIAL_PERSPECTIVE;
 //     lavapipe runs both sides of a branch on a uniform, docs/gpu.md):
 //       2 (render_clouds.comp, default): read from the per-frame aerial-perspective volume
-//         (sky/aerial_perspective_volume.comp; two trilinear fetches);
+//         (sky/aerial_perspective_volume.comp; three trilinear fetches);
 //       1 (render_clouds_ap_march.comp): a per-pixel march of `aerial steps` (default 8) of the
 //         same clear-sky integrand (atmosphere/air_integrand.glsl);
 //       0 (render_clouds_ap_off.comp): none (T_air = 1, no air light);
@@ -283,7 +283,8 @@ void main() {
   vec3 airLight = vec3(0.0), airT = vec3(1.0);
   float meanDepth = depthWeight > 0.0 ? depthSum / depthWeight : 0.0;
 #if CLOUD_AERIAL_PERSPECTIVE == 2
-  aerialPerspectiveLookup(aerialVolume, vec2(pixel) + 0.5, cloud.image.xy, meanDepth, cloud.aerial.x, airLight, airT);
+  aerialPerspectiveLookup(aerialVolume, vec2(pixel) + 0.5, cloud.image.xy, meanDepth, cloud.aerial.x,
+                          cornetteShanksPhase(atmosphere.mie_phase_g, nu), airLight, airT);
 #elif CLOUD_AERIAL_PERSPECTIVE == 1
   if (depthWeight > 0.0) airToDepth(atmosphere, origin, dir, sun, meanDepth, max(int(cloud.aerial.y + 0.5), 1), airLight, airT);
 #endif

@@ -14,10 +14,15 @@
 //  - slice k (0 .. N-1) holds the air from the camera to the distance d_k = D ((k + 1) / N)^2 along
 //    the column's ray (quadratic: 78 m, 313 m, ... for D = 80 km and N = 32; the air near the camera
 //    changes fastest). Before d_0 the value is interpolated from the camera's (no light, T = 1).
-//  - the texture is RGBA, 2C x R x N: tile 0 (x < C) the in-scattered light in linear Rec.709 cd/m^2
-//    (the batch's sky-like and sun-like parts already converted), tile 1 (x >= C) the transmittance at
-//    the batch's three wavelengths. A lookup interpolates within a tile only (corner alignment keeps
-//    the coordinate between the tile's first and last texel centres).
+//  - the texture is RGBA, 3C x R x N, three tiles side by side: tile 0 (x < C) the in-scattered light
+//    with the sky's spectrum (Rayleigh single scattering and all multiple scattering) in linear
+//    Rec.709 cd/m^2, tile 1 the aerosols' single scattering of sunlight *without its phase function*
+//    (converted with the sun's factors; the reader multiplies by p_M(nu) of its own pixel: nu is
+//    constant along a ray, and the aerosol phase's forward peak (g = 0.8, ~10 degrees wide) is
+//    narrower than what interpolation between columns a few degrees apart reproduces: with the phase
+//    stored, the froxels' error peaked at 2 % around the sun), tile 2 the transmittance at the
+//    batch's three wavelengths. Alpha is unused (1). A lookup interpolates within a tile only
+//    (corner alignment keeps the coordinate between the tile's first and last texel centres).
 // Depth is the distance along the ray (not a view-space z), as the cloud march measures it.
 #ifndef FIRMAMENT_AERIAL_PERSPECTIVE_GLSL
 #define FIRMAMENT_AERIAL_PERSPECTIVE_GLSL
@@ -58,10 +63,12 @@ SHARED_INLINE vec3 aerialColumnDirection(CameraParameters camera, vec2 pixel) {
   return cameraRayDirection(camera, point, valid);
 }
 
-// Texture x coordinate of image point `pixel` (pixel units) in tile 0 or 1 of a volume of C columns.
+const int kAerialTiles = 3;  // in-scattered sky-like light, aerosol single scattering / p_M, transmittance
+
+// Texture x coordinate of image point `pixel` (pixel units) in tile 0, 1 or 2 of a volume of C columns.
 SHARED_INLINE Real aerialTileX(Real pixelX, int width, int columns, int tile) {
   Real c = clamp(pixelX / Real(width), 0.0, 1.0) * Real(columns - 1);
-  return (Real(tile * columns) + c + 0.5) / Real(2 * columns);
+  return (Real(tile * columns) + c + 0.5) / Real(kAerialTiles * columns);
 }
 
 // Texture y coordinate of image point `pixel` for R rows.

@@ -3,8 +3,8 @@
 // Aerial-perspective volume (Hillaire 2020, section 5.4), per frame and per spectral batch: for every
 // froxel column (one invocation) the air along the camera's ray through the column's image point is
 // marched once, from the camera out to the volume's maximum distance D, and the in-scattered light
-// and transmittance accumulated up to every slice's far end are written (layout:
-// common/aerial_perspective.glsl). The integrand and the step integration are the sky's
+// (sky-like; the aerosols' single scattering without its phase) and the transmittance accumulated up
+// to every slice's far end are written (layout: common/aerial_perspective.glsl). The integrand and the step integration are the sky's
 // (atmosphere/air_integrand.glsl: single scattering through the transmittance table with the
 // planet's shadow, multiple scattering Psi_ms with its anisotropy), so the volume differs from a
 // per-pixel march only by its quadrature (steps per slice) and its interpolation between froxels.
@@ -23,7 +23,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 3) uniform sampler2D multipleScatteringAnisotropy;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image3D volume;  // 2C x R x N (two tiles)
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image3D volume;  // 3C x R x N (three tiles)
 layout(std140, set = 0, binding = 5) uniform AerialBlock {
   vec4 camera_position;  // planet-centred, m; w = maximum distance D (m)
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -68,7 +68,9 @@ void main() {
 
   float nu = dot(dir, sun);
   float phase_r = rayleighPhase(nu);
-  float phase_m = cornetteShanksPhase(atmosphere.mie_phase_g, nu);
+  // The aerosols' single scattering is stored without its phase function (the reader applies its
+  // own pixel's): phase 1 here.
+  const float phase_m = 1.0;
   mat3 skyToRgb = skyRadianceToRgb();
   mat3 sunToRgb = sunRadianceToRgb();
   vec3 sky = vec3(0.0), sunlike = vec3(0.0), throughput = vec3(1.0);
@@ -89,7 +91,8 @@ void main() {
       accumulateAirStep(air, dt, sky, sunlike, throughput);
     }
     previous = depth;
-    imageStore(volume, ivec3(column, k), vec4(skyToRgb * sky + sunToRgb * sunlike, 1.0));
-    imageStore(volume, ivec3(column.x + columns, column.y, k), vec4(throughput, 1.0));
+    imageStore(volume, ivec3(column, k), vec4(skyToRgb * sky, 1.0));
+    imageStore(volume, ivec3(column.x + columns, column.y, k), vec4(sunToRgb * sunlike, 1.0));
+    imageStore(volume, ivec3(column.x + 2 * columns, column.y, k), vec4(throughput, 1.0));
   }
 }
