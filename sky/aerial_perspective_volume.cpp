@@ -1,5 +1,6 @@
 #include "sky/aerial_perspective_volume.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -19,8 +20,9 @@ struct AerialBlock {
   float sunDirection[4];
   int32_t image[4];  // width, height, projection, steps per slice
   int32_t size[4];   // columns, rows, slices, unused
+  float steps[4];    // largest altitude change per step (m), its altitude cap (m), unused x2
 };
-static_assert(sizeof(AerialBlock) == 7 * 16);
+static_assert(sizeof(AerialBlock) == 8 * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x), out[1] = float(v.y), out[2] = float(v.z), out[3] = float(w);
@@ -71,6 +73,8 @@ void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& sett
   block.size[0] = settings.columns;
   block.size[1] = settings.rows;
   block.size[2] = settings.slices;
+  block.steps[0] = float(std::max(settings.maxStepRise_m, 0.0));
+  block.steps[1] = float(settings.stepRiseCap_m);
   for (size_t b = 0; b < batches; ++b) {
     blocks_[b].upload(&block, sizeof(block));
     const AtmosphereLuts::Batch& batch = luts.batch(b);

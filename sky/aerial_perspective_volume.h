@@ -24,7 +24,12 @@ struct AerialPerspectiveVolumeSettings {
   // D (m). 0: the reader's own far limit (the cloud march's, 80 km by default), so every depth a
   // reader can ask for lies inside the volume.
   double maxDistance_m = 0.0;
-  int stepsPerSlice = 1;  // march steps inside each slice (equal steps over the slice's stretch)
+  int stepsPerSlice = 1;  // march steps inside each slice at least (equal steps over the slice's stretch)
+  // More steps in a slice where the ray climbs or descends: at most this change of scaled altitude
+  // per step (m; 0: none), the altitude up to stepRiseCap_m and an eighth of it above (at most 64
+  // steps per slice; shaders/sky/aerial_perspective_volume.comp).
+  double maxStepRise_m = 500.0;
+  double stepRiseCap_m = 10000.0;
 };
 
 class AerialPerspectiveVolume {

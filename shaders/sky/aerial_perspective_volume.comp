@@ -32,7 +32,15 @@ layout(std140, set = 0, binding = 5) uniform AerialBlock {
   vec4 sun_direction;    // xyz
   ivec4 image;           // width, height, projection, steps per slice
   ivec4 size;            // columns C, rows R, slices N, unused
+  vec4 steps;            // largest scaled-altitude change per step (m; 0: no limit), cap of the scaling (m), unused x2
 } aerial;
+
+// Altitude (m) scaled for the step rule: itself up to the cap, an eighth of the rest above it; 0 below
+// the ground (samples there take the ground's air).
+float scaledAltitude(float h) {
+  float cap = aerial.steps.y;
+  return clamp(h, 0.0, cap) + max(h - cap, 0.0) / 8.0;
+}
 
 void main() {
   ivec2 column = ivec2(gl_GlobalInvocationID.xy);
@@ -66,6 +74,10 @@ void main() {
     t_out = far_root;
   }
 
+  // Where the column meets the ground (none: beyond every slice).
+  float t_ground = rayIntersectsGround(r, mu, atmosphere.bottom_radius)
+                       ? distanceToBottomAtmosphereBoundary(r, mu, atmosphere.bottom_radius)
+                       : 2.0 * maxDistance + 1.0;
   float nu = dot(dir, sun);
   float phase_r = rayleighPhase(nu);
   // The aerosols' single scattering is stored without its phase function (the reader applies its
@@ -78,17 +90,40 @@ void main() {
   for (int k = 0; k < slices; ++k) {
     float depth = aerialSliceDepth(k, slices, maxDistance);
     // This slice's stretch of the ray inside the atmosphere, in equal steps (none if it is outside:
-    // dt = 0 adds nothing and leaves the throughput).
+    // dt = 0 adds nothing and leaves the throughput). Steps: `steps per slice`, more where the ray
+    // climbs or descends, so that no step changes the scaled altitude by more than `max rise` (the
+    // medium is exponential in altitude, and a step's midpoint misses its curvature: a camera 10 km
+    // up looking down crosses the 1.2 km aerosol scale height every slice). The scaled altitude is
+    // the altitude up to the cap (10 km) and an eighth of it above (only molecules, scale height
+    // 8 km, and ozone are there). The lowest point of the ray may lie inside the stretch: the change
+    // is counted down to it and up again.
     float a = clamp(previous, t_in, t_out);
     float b = clamp(depth, t_in, t_out);
-    float dt = max(b - a, 0.0) / float(stepsPerSlice);
-    for (int s = 0; s < stepsPerSlice; ++s) {
-      vec3 p = origin + dir * (a + (float(s) + 0.5) * dt);
-      float r_p = length(p);
-      p *= max(r_p, atmosphere.bottom_radius) / r_p;  // below the ground: the air at the ground
-      AirSample air = airSampleAt(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, p, sun,
-                                  dir, phase_r, phase_m);
-      accumulateAirStep(air, dt, sky, sunlike, throughput);
+    int n = stepsPerSlice;
+    if (aerial.steps.x > 0.0) {
+      float t_low = clamp(-r * mu, a, b);
+      float h_a = scaledAltitude(length(origin + dir * a) - atmosphere.bottom_radius);
+      float h_low = scaledAltitude(length(origin + dir * t_low) - atmosphere.bottom_radius);
+      float h_b = scaledAltitude(length(origin + dir * b) - atmosphere.bottom_radius);
+      float rise = abs(h_a - h_low) + abs(h_b - h_low);
+      n = clamp(int(ceil(rise / aerial.steps.x)), stepsPerSlice, 64);
+    }
+    // The slice that holds the ground hit is split there (n steps on each side): the medium's
+    // altitude has a kink where the column meets the ground, which a step across it would blur.
+    float split = clamp(t_ground, a, b);
+    for (int part = 0; part < 2; ++part) {
+      float lo = part == 0 ? a : split;
+      float hi = part == 0 ? split : b;
+      int count = hi > lo ? n : 0;
+      float dt = max(hi - lo, 0.0) / float(n);
+      for (int s = 0; s < count; ++s) {
+        vec3 p = origin + dir * (lo + (float(s) + 0.5) * dt);
+        float r_p = length(p);
+        p *= max(r_p, atmosphere.bottom_radius) / r_p;  // below the ground: the air at the ground
+        AirSample air = airSampleAt(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, p,
+                                    sun, dir, phase_r, phase_m);
+        accumulateAirStep(air, dt, sky, sunlike, throughput);
+      }
     }
     previous = depth;
     imageStore(volume, ivec3(column, k), vec4(skyToRgb * sky, 1.0));
