@@ -1,4 +1,4 @@
-// bench_aerial_perspective [--repeats N] [--set /path=value]... [--heatmap OUT.png] [SCENE.json ...]
+// bench_aerial_perspective [--repeats N] [--rounds N [--cheap-clouds]] [--set /path=value]... [--heatmap OUT.png] [SCENE.json ...]
 // The clouds' aerial perspective, error against time (docs/atmosphere.md, "Aerial-perspective
 // volume"): each scene (default scenes/cumulus.json) is rendered with the air in front of the clouds
 // from the volume (several sizes), from the per-pixel march (8, 16, 64 steps) and without it; every
@@ -7,8 +7,14 @@
 // cloud march is the same in every frame (deterministic jitter), so the differences are the air's.
 // With --repeats N > 0, also the median GPU time of clouds/render_clouds + sky/aerial_perspective_volume
 // over N frames after a warm-up (on a shared CPU, alternate runs: bench_sky_frame does one mode).
+// --rounds N: timing only, interleaved: N rounds, each rendering off, march 8, volume 32^3 and volume
+// 64x64x32 once (after one warm-up round), so that the load of a shared machine drifts over all of
+// them alike; prints per variant the median and range of clouds/render_clouds + the volume pass.
+// --cheap-clouds makes the cloud march itself cheap (8 view steps, 1 light step, 1 octave) so the
+// air's share of the pass shows.
 // --heatmap: the default volume's relative luminance error against the reference as a PNG heat map
 // (yellow = 1 %; grey: not a cloud pixel), for the last scene.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -77,7 +83,8 @@ double passMs(const RenderResult& r, const std::string& label) {
 
 int main(int argc, char** argv) {
   try {
-    int repeats = 0;
+    int repeats = 0, rounds = 0;
+    bool cheapClouds = false;
     std::string heatmap;
     std::vector<std::string> scenes, overrides;
     for (int i = 1; i < argc; ++i) {
@@ -85,6 +92,8 @@ int main(int argc, char** argv) {
       if (a == "--repeats" && i + 1 < argc) repeats = std::stoi(argv[++i]);
       else if (a == "--set" && i + 1 < argc) overrides.push_back(argv[++i]);
       else if (a == "--heatmap" && i + 1 < argc) heatmap = argv[++i];
+      else if (a == "--rounds" && i + 1 < argc) rounds = std::stoi(argv[++i]);
+      else if (a == "--cheap-clouds") cheapClouds = true;
       else scenes.push_back(a);
     }
     if (scenes.empty()) scenes.push_back("scenes/cumulus.json");
@@ -93,6 +102,35 @@ int main(int argc, char** argv) {
     gpu::Context context(options);
     SkyRenderer renderer(context);
     std::printf("device: %s\n", context.description().c_str());
+    if (rounds > 0) {
+      const Scene scene = Scene::load(scenes.front(), overrides);
+      std::vector<Variant> timed;
+      for (const Variant& v : variants())
+        if (v.name == "off" || v.name == "march 8" || v.name == "volume 32x32x32 (default)" || v.name == "volume 64x64x32")
+          timed.push_back(v);
+      std::vector<std::vector<double>> ms(timed.size()), volumeMs(timed.size());
+      for (int round = -1; round < rounds; ++round)
+        for (size_t v = 0; v < timed.size(); ++v) {
+          SkyRenderOptions o;
+          if (cheapClouds) {
+            o.clouds.viewSteps = 8;
+            o.clouds.lightSteps = 1;
+          }
+          timed[v].apply(o);
+          const RenderResult r = renderer.render(scene, o);
+          if (round < 0) continue;  // warm-up (pipelines, first touch)
+          ms[v].push_back(passMs(r, "clouds/render_clouds") + passMs(r, "sky/aerial_perspective_volume"));
+          volumeMs[v].push_back(passMs(r, "sky/aerial_perspective_volume"));
+        }
+      std::printf("%s%s, %d interleaved rounds: clouds/render_clouds + sky/aerial_perspective_volume (ms)\n",
+                  scene.source().c_str(), cheapClouds ? " (cheap clouds: 8 view steps, 1 light step)" : "", rounds);
+      for (size_t v = 0; v < timed.size(); ++v) {
+        const auto [lo, hi] = std::minmax_element(ms[v].begin(), ms[v].end());
+        std::printf("  %-32s median %8.1f  range %8.1f - %8.1f   (volume pass median %.2f)\n", timed[v].name.c_str(),
+                    bench::median(ms[v]), *lo, *hi, bench::median(volumeMs[v]));
+      }
+      return kExitOk;
+    }
     for (const std::string& path : scenes) {
       const Scene scene = Scene::load(path, overrides);
       SkyRenderOptions base;
