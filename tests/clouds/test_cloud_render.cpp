@@ -122,8 +122,9 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
 // The air in front of the clouds (docs/atmosphere.md, "Aerial-perspective volume"): the volume agrees
 // with a 256-step per-pixel march of the same integrand over the cloud pixels, for a perspective, a
 // fisheye and an equirectangular camera (measured at 640 x 360: 1.3e-4 to 8e-4 of the frame's
-// luminance; here 64 x 36, where one column spans 2 pixels), leaving out the air is at least 10x
-// worse, and only the volume mode runs the volume pass.
+// luminance; here at 64 x 36, where the horizon and the sun take a larger share of the cloud pixels:
+// 7.5e-4, 1.6e-3 (fisheye), 4.7e-4), leaving out the air is at least 10x worse (measured 45-165x),
+// and only the volume mode runs the volume pass.
 TEST_F(CloudRender, AerialVolumeAgreesWithAFineAirMarch) {
   for (const std::vector<std::string>& view :
        {std::vector<std::string>{"/camera/pitch_deg=8"},
@@ -150,7 +151,7 @@ TEST_F(CloudRender, AerialVolumeAgreesWithAFineAirMarch) {
     const double offError = compareImages(off.image, fine.image, mask).luminance.relativeRmse;
     std::printf("%s: aerial perspective volume %.2e, off %.2e (rel RMSE over %zu cloud pixels vs the 256-step march)\n",
                 view.front().c_str(), volumeError, offError, cloudPixels);
-    EXPECT_LT(volumeError, 2e-3) << view.front();
+    EXPECT_LT(volumeError, 3e-3) << view.front();
     EXPECT_GT(offError, 10.0 * volumeError) << view.front();
     auto ran = [](const RenderResult& r) {
       for (const auto& t : r.timings)
