@@ -1,7 +1,9 @@
-// bench_sky_frame [SCENE.json] [width height repeats]
-// Times the clear-sky frame passes of a scene (default: the built-in default scene) at a size,
+// bench_sky_frame [SCENE.json] [width height repeats] [/json/path=value ...]
+// Times the frame passes of a scene (default: the built-in default scene) at a size,
 // rendered `repeats` times by one SkyRenderer after a warm-up render (tables, JIT compile, first
-// touch of the frame's memory). Prints the median GPU time (timestamp queries) of every pass.
+// touch of the frame's memory). Prints the median GPU time (timestamp queries) of every pass. Trailing
+// arguments of the form /path=value override scene fields (as `firmament render --set`), e.g.
+// `bench_sky_frame scenes/cumulus.json 640 360 9 /clouds/aerial_perspective=march`.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -27,7 +29,8 @@ int main(int argc, char** argv) {
     const std::string width = argc > arg ? argv[arg] : "1280";
     const std::string height = argc > arg + 1 ? argv[arg + 1] : "720";
     const int repeats = argc > arg + 2 ? std::stoi(argv[arg + 2]) : 9;
-    const std::vector<std::string> overrides = {"/camera/width=" + width, "/camera/height=" + height};
+    std::vector<std::string> overrides = {"/camera/width=" + width, "/camera/height=" + height};
+    for (int i = arg + 3; i < argc; ++i) overrides.push_back(argv[i]);
     const Scene scene = scenePath.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
                                           : Scene::load(scenePath, overrides);
 
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
     }
     std::printf("device: %s\nscene %s, %sx%s, median of %d after a warm-up\n", context.description().c_str(),
                 scene.source().c_str(), width.c_str(), height.c_str(), repeats);
+    for (size_t i = 2; i < overrides.size(); ++i) std::printf("  override %s\n", overrides[i].c_str());
     for (const auto& [label, ms] : passes) std::printf("  %-32s %9.2f ms\n", label.c_str(), median(ms));
     std::printf("  %-32s %9.2f ms\n", "frame (per-frame passes)", median(frame));
     return kExitOk;

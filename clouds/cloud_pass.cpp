@@ -28,9 +28,10 @@ struct CloudBlock {
   float shadowAxisU[4];    // axis u, start distance L (m)
   float shadowAxisV[4];    // axis v, march length (m)
   int32_t shadowSize[4];   // texels, steps, enabled, unused
+  float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, unused x2
   float layers[kMaxLayers * 5][4];
 };
-static_assert(sizeof(CloudBlock) == (17 + kMaxLayers * 5) * 16);
+static_assert(sizeof(CloudBlock) == (18 + kMaxLayers * 5) * 16);
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -48,13 +49,6 @@ void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) { put(out, v.x, v
 CloudPass::CloudPass(gpu::Context& context)
     : context_(context),
       noise_(context),
-      pipeline_(context, {"clouds/render_clouds",
-                          {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                           gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
-                          sizeof(Push)}),
       bakeShadow_(context, {"clouds/bake_shadow_map",
                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
@@ -87,7 +81,7 @@ bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSett
 
 void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                        const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                       const gpu::TileDispatch& tiles, gpu::CommandList& commands) {
+                       const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial) {
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
   if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
@@ -107,7 +101,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.aerialPerspective ? 1 : 0) | (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
+  b.steps[3] = (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
                (m.lightMarchToExit ? 16 : 0) | (m.msZenithDepth ? 32 : 0) |
                (m.msScatteredOnly ? 64 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
@@ -153,6 +147,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
+  const bool volume = m.aerialPerspective == AerialPerspective::Volume;
+  if (volume && (!aerial || aerial->volumes.size() != luts.batchCount() || !(aerial->maxDistance_m > 0.0)))
+    throw std::logic_error("CloudPass: aerial perspective 'volume' needs one volume per spectral batch");
+  put(b.aerial, volume ? aerial->maxDistance_m : 0.0, double(std::max(m.aerialPerspectiveSteps, 1)), 0.0, 0.0);
   block_.upload(&b, sizeof(b));
   const uint32_t zero[2] = {0, 0};
   counters_.upload(zero, sizeof(zero));
@@ -166,33 +164,62 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
   if (!shadowImage_ || shadowImage_.width() != shadowSize)
     shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
-  // The shadow bake and the march share one binding layout; only the last binding differs (the
-  // shadow map written by the bake, read by the march).
-  auto bindCloudPass = [&](const gpu::ComputePipeline& pipeline, size_t batch, gpu::Resource last) {
-    const AtmosphereLuts::Batch& lut = luts.batch(batch);
-    commands.bind(pipeline, {lut.block,
-                             {lut.transmittance, luts.linearClamp()},
-                             {lut.multipleScattering, luts.linearClamp()},
-                             {*skyIrradiance[batch], luts.linearClamp()},
-                             {noise_.shape(), noise_.linearRepeat()},
-                             {noise_.detail(), noise_.linearRepeat()},
-                             {noise_.curl(), noise_.linearRepeat()},
-                             {noise_.blueNoise(), noise_.nearestRepeat()},
-                             skyFrame,
-                             cloudFrame_,
-                             block_,
-                             counters_,
-                             {weatherImage_, noise_.linearRepeat()},
-                             last});
-  };
+  // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
+  // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
+  // air march) and the aerial-perspective volume.
   if (m.beerShadowMap) {
-    bindCloudPass(bakeShadow_, 0, shadowImage_);
+    const AtmosphereLuts::Batch& lut = luts.batch(0);
+    commands.bind(bakeShadow_, {lut.block,
+                                {lut.transmittance, luts.linearClamp()},
+                                {lut.multipleScattering, luts.linearClamp()},
+                                {*skyIrradiance[0], luts.linearClamp()},
+                                {noise_.shape(), noise_.linearRepeat()},
+                                {noise_.detail(), noise_.linearRepeat()},
+                                {noise_.curl(), noise_.linearRepeat()},
+                                {noise_.blueNoise(), noise_.nearestRepeat()},
+                                skyFrame,
+                                cloudFrame_,
+                                block_,
+                                counters_,
+                                {weatherImage_, noise_.linearRepeat()},
+                                shadowImage_});
     const uint32_t groups = (shadowSize + 7) / 8;
     commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
     commands.barrier();
   }
+  const size_t variant = size_t(m.aerialPerspective);
+  static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
+  if (!pipelines_[variant])
+    pipelines_[variant] = std::make_unique<gpu::ComputePipeline>(
+        context_, gpu::PipelineDesc{kVariants[variant],
+                                    {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                                     gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                     gpu::BindingType::SampledImage},
+                                    sizeof(Push)});
+  if (!volume && !aerialPlaceholder_)
+    aerialPlaceholder_ = gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
-    bindCloudPass(pipeline_, batch, {shadowImage_, luts.linearClamp()});
+    const AtmosphereLuts::Batch& lut = luts.batch(batch);
+    const gpu::Image& aerialImage = volume ? *aerial->volumes[batch] : aerialPlaceholder_;
+    commands.bind(*pipelines_[variant], {lut.block,
+                                         {lut.transmittance, luts.linearClamp()},
+                                         {lut.multipleScattering, luts.linearClamp()},
+                                         {*skyIrradiance[batch], luts.linearClamp()},
+                                         {noise_.shape(), noise_.linearRepeat()},
+                                         {noise_.detail(), noise_.linearRepeat()},
+                                         {noise_.curl(), noise_.linearRepeat()},
+                                         {noise_.blueNoise(), noise_.nearestRepeat()},
+                                         skyFrame,
+                                         cloudFrame_,
+                                         block_,
+                                         counters_,
+                                         {weatherImage_, noise_.linearRepeat()},
+                                         {shadowImage_, luts.linearClamp()},
+                                         {lut.multipleScatteringAnisotropy, luts.linearClamp()},
+                                         {aerialImage, luts.linearClamp()}});
     Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/render_clouds");

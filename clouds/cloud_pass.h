@@ -30,6 +30,14 @@ struct CloudSampleCounts {
   double lightPerPixel = 0.0;  // light march samples
 };
 
+// The aerial-perspective volume that the march reads with AerialPerspective::Volume: one image per
+// spectral batch of the atmosphere tables (layout: shaders/common/aerial_perspective.glsl; written by
+// sky/aerial_perspective_volume.h) and the distance D its slices reach.
+struct CloudAerialVolume {
+  std::vector<const gpu::Image*> volumes;
+  double maxDistance_m = 0.0;
+};
+
 class CloudPass {
  public:
   explicit CloudPass(gpu::Context& context);
@@ -43,10 +51,12 @@ class CloudPass {
 
   // Records the march over `skyFrame` (RGBA32F pixels of the view, row-major), one dispatch per batch of `luts`
   // with skyIrradiance[b] the batch's sky irradiance table. The noise must be prepared and baked
-  // (a barrier between) and the sky written before (a barrier between).
+  // (a barrier between) and the sky written before (a barrier between). With
+  // settings.march.aerialPerspective == Volume, `aerial` is the volume of this view, written before (a
+  // barrier between); otherwise it is not read (may be null).
   void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
               const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, const gpu::TileDispatch& tiles,
-              gpu::CommandList& commands);
+              gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr);
 
   // RGBA32F pixels of the view, row-major: rgb = the clouds' light in front of the sky (cd/m^2, aerial
   // perspective included), a = the clouds' transmittance. Valid after the recorded commands ran.
@@ -60,7 +70,10 @@ class CloudPass {
  private:
   gpu::Context& context_;
   CloudNoise noise_;
-  gpu::ComputePipeline pipeline_;
+  // clouds/render_clouds (volume), render_clouds_ap_march, render_clouds_ap_off: created on first use
+  // (indexed by AerialPerspective).
+  std::unique_ptr<gpu::ComputePipeline> pipelines_[3];
+  gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;

@@ -57,6 +57,22 @@ const char* cloudKindName(int kind) {
   }
 }
 
+AerialPerspective aerialPerspectiveFromName(const std::string& name) {
+  if (name == "volume") return AerialPerspective::Volume;
+  if (name == "march") return AerialPerspective::March;
+  if (name == "off") return AerialPerspective::Off;
+  throw InputError("unknown aerial perspective '" + name + "'; allowed: volume, march, off");
+}
+
+const char* aerialPerspectiveName(AerialPerspective mode) {
+  switch (mode) {
+    case AerialPerspective::Volume: return "volume";
+    case AerialPerspective::March: return "march";
+    case AerialPerspective::Off: return "off";
+  }
+  return "unknown";
+}
+
 void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (viewSteps) march.viewSteps = *viewSteps;
   if (lightSteps) march.lightSteps = *lightSteps;
@@ -66,6 +82,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
+  if (aerialPerspectiveSteps) march.aerialPerspectiveSteps = *aerialPerspectiveSteps;
   if (ambient) march.ambient = *ambient;
   if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
   if (lightCone) march.lightCone = *lightCone;
@@ -126,6 +143,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
                        std::to_string(l.msB) + (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +
                        ") of layer " + std::to_string(i) + "; allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
   }
+  s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
   const std::string quality = scene.string("/clouds/quality");
   if (quality == "low") {
     s.march.viewSteps = 32, s.march.lightSteps = 4, light.octaves = std::min(light.octaves, 2);

@@ -25,6 +25,14 @@ struct CloudLayerSettings {
   double msA = 0.5, msB = 0.5, msC = 0.5;
 };
 
+// How the air between the camera and the clouds is applied (docs/clouds.md "Aerial perspective"):
+// Volume reads the per-frame aerial-perspective volume (sky/aerial_perspective_volume.h, default),
+// March marches the air per pixel (CloudMarchSettings::aerialPerspectiveSteps), Off leaves it out.
+// Each is its own compiled variant of the march (a uniform branch costs both sides on lavapipe).
+enum class AerialPerspective { Off, March, Volume };
+AerialPerspective aerialPerspectiveFromName(const std::string& name);  // "volume", "march", "off"; InputError otherwise
+const char* aerialPerspectiveName(AerialPerspective mode);
+
 // Light and march knobs of the fast path (the quality preset fills the step counts).
 struct CloudMarchSettings {
   int viewSteps = 64;    // N: a vertical crossing of the thickest layer takes about N fine steps
@@ -60,7 +68,8 @@ struct CloudMarchSettings {
   int shadowMapSteps = 128;           // march steps per texel
   double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
   bool jitter = true;              // blue-noise jitter of the sample positions
-  bool aerialPerspective = true;
+  AerialPerspective aerialPerspective = AerialPerspective::Volume;  // the scene's /clouds/aerial_perspective
+  int aerialPerspectiveSteps = 8;  // March: equal steps from the camera to the cloud's mean depth
   bool ambient = true;
 };
 
@@ -101,7 +110,8 @@ struct CloudOverrides {
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
   std::optional<bool> beerShadowMap;
-  std::optional<bool> aerialPerspective;
+  std::optional<AerialPerspective> aerialPerspective;
+  std::optional<int> aerialPerspectiveSteps;
   std::optional<bool> ambient;
   std::optional<bool> lightMarchToExit;
   std::optional<double> lightCone;

@@ -6,7 +6,8 @@
 // baseline (64 uniform view steps, 6 light steps). Two diagnostic rows per scenario: the first
 // milestone's light march (a fixed length of one layer thickness), and single scattering (one octave)
 // against the path tracer limited to one scattering event. Sunlight only on both sides (no ambient, no aerial
-// perspective), so the comparison isolates the march and its lighting approximation.
+// perspective), so the comparison isolates the march and its lighting approximation; the
+// aerial_perspective rows turn the air on and compare with the fast path's own 256-step air march.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,12 +34,16 @@ struct CloudBenchRow {
   // compareWithCloudReference): the error with the reference's Monte Carlo noise subtracted, the noise
   // alone (the rel RMSE of a perfect fast path), and mean(fast) / mean(reference) - 1.
   double relRmseNoiseCorrected = 0.0, referenceNoise = 0.0, meanBias = 0.0;
+  // What the row is compared with: "path_tracer", "path_tracer_order_1" (single_scattering rows) or
+  // "air_march_256" (aerial_perspective rows: the whole frame over the cloud pixels against the fast
+  // path with the air marched per pixel in 256 steps; no reference noise).
+  std::string against;
   std::string device;
 };
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config);
 // clouds_results.csv (knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,
-// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
+// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
 // atmosphere's results.csv into the same folder).
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
 

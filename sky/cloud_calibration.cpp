@@ -73,7 +73,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   result.device = context.description();
   SkyRenderOptions options;
   options.clouds.ambient = false;
-  options.clouds.aerialPerspective = false;
+  options.clouds.aerialPerspective = AerialPerspective::Off;
   const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128);
 
   // 1. The references (all orders), once.

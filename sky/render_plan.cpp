@@ -63,17 +63,33 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       plan.unavailable.push_back({"clouds", "clouds need the f_ms path (--multiple-scattering fms) in this version"});
     } else if (scene.at("/clouds/layers").empty()) {
       plan.omitted.push_back({"clouds", "the clouds section has no layers"});
+      plan.omitted.push_back({"sky/aerial_perspective_volume", "nothing at a finite distance reads it (no cloud layers, no terrain)"});
     } else {
       plan.passes.push_back({"clouds/bake_noise_3d", "shape 128^3 and detail 32^3 RGBA noise (+ CPU blue noise)",
                              "cloud density, tileable, from the clouds seed", false});
       plan.passes.push_back({"clouds/bake_curl", "curl noise 128^2", "distorts the detail noise", false});
+      const AerialPerspective aerial = options.aerialPerspective
+                                           ? *options.aerialPerspective
+                                           : aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
+      const std::string each = options.spectralSamples > 3 ? " (once per batch of 3 wavelengths)" : "";
+      if (aerial == AerialPerspective::Volume)
+        plan.passes.push_back({"sky/aerial_perspective_volume",
+                               "aerial-perspective volume (32x32 froxel columns x 32 depth slices by default): air light, Rec.709, and transmittance",
+                               "the air in front of the clouds, marched once per froxel column" + each, true});
+      else
+        plan.omitted.push_back({"sky/aerial_perspective_volume",
+                                aerial == AerialPerspective::March
+                                    ? "aerial perspective 'march': the cloud march marches the air per pixel"
+                                    : "aerial perspective 'off'"});
       plan.passes.push_back({"clouds/render_clouds", "clouds composited over the sky image (cd/m^2)",
                              std::to_string(scene.at("/clouds/layers").size()) +
-                                 " layer(s): view march, light march, octave multiple scattering, aerial perspective",
+                                 " layer(s): view march, light march, octave multiple scattering, aerial perspective (" +
+                                 aerialPerspectiveName(aerial) + ")" + each,
                              true});
     }
   } else {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});
+    plan.omitted.push_back({"sky/aerial_perspective_volume", "nothing at a finite distance reads it (no clouds, no terrain)"});
   }
   const bool cloudLayers = scene.hasSection("clouds") && !scene.at("/clouds/layers").empty() &&
                            options.multipleScattering != MultipleScattering::BrunetonTables;

@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
+#include "clouds/cloud_settings.h"
 #include "core/scene.h"
 
 namespace firmament {
@@ -18,6 +21,8 @@ struct PlanOptions {
   int scatteringOrders = 4;  // BrunetonTables only
   bool skyViewLut = true;     // HillaireFms: read a per-frame sky-view table (cameras inside the atmosphere)
   int spectralSamples = 3;    // HillaireFms: wavelengths, in batches of three
+  // Replaces the scene's /clouds/aerial_perspective (SkyRenderOptions::clouds.aerialPerspective).
+  std::optional<AerialPerspective> aerialPerspective;
 };
 
 struct PlannedPass {

@@ -78,6 +78,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.scatteringOrders = options.tables.scatteringOrders;
   plan.skyViewLut = options.method == SkyMethod::SkyViewLut;
   plan.spectralSamples = options.luts.spectralSamples;
+  plan.aerialPerspective = options.clouds.aerialPerspective;
   return plan;
 }
 
@@ -251,14 +252,25 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     if (b + 1 < renderPasses) commands.barrier();
   }
   if (clouds) {
-    commands.barrier();
     CloudView cloudView;
     cloudView.cameraPosition = glm::dvec3(0.0, 0.0, view.cameraRadius);
     cloudView.sunDirection = view.sunDirection;
     cloudView.camera = view.camera;
+    // The aerial-perspective volume (only when the clouds read it), over the clouds' march limit by
+    // default; the barrier before the clouds covers it and the sky frame.
+    CloudAerialVolume aerialVolume;
+    if (clouds->march.aerialPerspective == AerialPerspective::Volume) {
+      if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
+      AerialPerspectiveVolumeSettings settings = options.aerialPerspective;
+      if (!(settings.maxDistance_m > 0.0)) settings.maxDistance_m = clouds->march.maxDistance_m;
+      aerial_->record(settings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands);
+      aerialVolume.volumes = aerial_->volumes();
+      aerialVolume.maxDistance_m = settings.maxDistance_m;
+    }
+    commands.barrier();
     std::vector<const gpu::Image*> irradiance;
     for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
-    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands);
+    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume);
   }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {

@@ -16,6 +16,7 @@
 #include "core/scene.h"
 #include "gpu/context.h"
 #include "gpu/dispatch.h"
+#include "sky/aerial_perspective_volume.h"
 #include "sky/render_plan.h"
 #include "sky/scene_view.h"
 
@@ -45,6 +46,8 @@ struct SkyRenderOptions {
   int skyViewHeight = 108; // zenith samples
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
   CloudOverrides clouds;          // march knobs over the scene's clouds quality preset
+  // The aerial-perspective volume, for scenes whose clouds read it (aerial perspective "volume").
+  AerialPerspectiveVolumeSettings aerialPerspective;
   CloudNoiseSettings cloudNoise;  // noise texture sizes (tests use small ones)
   // Replaces the scene's weather map (tests, tools); unset: sky/scene_weather.h decides.
   std::shared_ptr<const CloudWeatherMap> cloudWeather;
@@ -89,6 +92,7 @@ class SkyRenderer {
   std::unique_ptr<gpu::ComputePipeline> skyMarchPipeline_;  // sky/render_sky_march: a march per pixel
   std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
   std::unique_ptr<CloudPass> clouds_;  // created for the first scene with clouds
+  std::unique_ptr<AerialPerspectiveVolume> aerial_;  // created for the first scene that reads it
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
 };

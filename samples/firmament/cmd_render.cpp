@@ -47,6 +47,22 @@ int runRender(const Args& args) {
     throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
   }
 
+  if (auto size = args.get("aerial-volume")) {
+    // CxRxN: froxel columns, rows, depth slices of the aerial-perspective volume.
+    int c = 0, r = 0, n = 0;
+    char x1 = 0, x2 = 0;
+    char tail = 0;
+    if (std::sscanf(size->c_str(), "%d%c%d%c%d%c", &c, &x1, &r, &x2, &n, &tail) != 5 || x1 != 'x' || x2 != 'x' || c < 2 ||
+        r < 2 || n < 2 || c > 1024 || r > 1024 || n > 1024)
+      throw InputError("--aerial-volume " + *size + ": allowed: CxRxN with each of C, R, N in 2..1024, e.g. 32x32x32");
+    options.aerialPerspective.columns = c;
+    options.aerialPerspective.rows = r;
+    options.aerialPerspective.slices = n;
+  }
+  options.aerialPerspective.maxDistance_m = args.number("aerial-volume-depth", 0.0);
+  if (!(options.aerialPerspective.maxDistance_m >= 0.0) || options.aerialPerspective.maxDistance_m > 1e7)
+    throw InputError("--aerial-volume-depth: allowed: 0 (the clouds' march limit) or a distance in metres up to 1e7");
+
   RenderPlan plan = planRender(scene, planOptions(options));
   if (args.has("explain")) {
     std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
@@ -92,7 +108,7 @@ const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
                                "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
-                               "[--explain] [--device D]",
+                               "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
                                 {"width", "W", "image width (same as --set /camera/width=W)"},
@@ -107,6 +123,11 @@ const CommandRegistration reg{{"render",
                                  "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
                                  "4D tables of N orders"},
                                 {"orders", "N", "scattering orders of the 4D tables (default 4)"},
+                                {"aerial-volume", "CxRxN",
+                                 "aerial-perspective volume read by the clouds (/clouds/aerial_perspective volume): froxel "
+                                 "columns x rows x depth slices (default 32x32x32)"},
+                                {"aerial-volume-depth", "M",
+                                 "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
                                 deviceOption()},
                                0,
                                1,

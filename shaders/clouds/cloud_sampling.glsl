@@ -17,7 +17,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 aerial perspective, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only)
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only)
   vec4 octaves;          // unused x3 (a, b, c are per layer), light march length (m; the largest one with flag 16)
   vec4 phase;            // g forward, g back, back weight, single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
@@ -28,6 +28,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
+  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps, unused x2
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
 } cloud;
 

@@ -24,6 +24,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   writeCloudBenchOutputs(config, rows);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
     int baseline = 0, defaults = 0, milestone = 0, single = 0;
+    double apOff = -1.0, apVolume = -1.0, apMarch = -1.0;
     double spp16 = 0.0, spp256 = 0.0;
     for (const auto& r : rows) {
       if (r.scenario != scenario) continue;
@@ -34,6 +35,13 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
       milestone += r.knob == "milestone_1_lighting";
       single += r.knob == "single_scattering";
       ASSERT_TRUE(std::isfinite(r.relRmseNoiseCorrected) && std::isfinite(r.meanBias)) << r.knob << " " << r.value;
+      if (r.knob == "aerial_perspective") {
+        EXPECT_EQ(r.against, "air_march_256");
+        if (r.value == "off") apOff = r.relRmse;
+        if (r.value == "volume 32x32x32") apVolume = r.relRmse;
+        if (r.value == "march 8") apMarch = r.relRmse;
+        continue;
+      }
       ASSERT_GT(r.referenceNoise, 0.0) << r.knob << " " << r.value;
       if (r.knob == "view_steps" && r.value == "16") spp16 = r.samplesPerPixel;
       if (r.knob == "view_steps" && r.value == "256") spp256 = r.samplesPerPixel;
@@ -43,12 +51,20 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(milestone, 1) << scenario;
     EXPECT_EQ(single, 2) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
+    // The air in front of the clouds matters (leaving it out is the largest error), and both ways of
+    // computing it are far closer to the fine march than leaving it out.
+    ASSERT_GE(apOff, 0.0) << scenario;
+    ASSERT_GE(apVolume, 0.0) << scenario;
+    ASSERT_GE(apMarch, 0.0) << scenario;
+    EXPECT_GT(apOff, 1e-3) << scenario;
+    EXPECT_LT(apVolume, 0.1 * apOff) << scenario;
+    EXPECT_LT(apMarch, 0.1 * apOff) << scenario;
   }
   std::ifstream csv(config.outDir / "clouds_results.csv");
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
-                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,device");
+                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device");
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
 }
 

@@ -27,7 +27,7 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   o.clouds.lightSteps = 16;
   o.clouds.jitter = false;
   o.clouds.ambient = false;
-  o.clouds.aerialPerspective = false;
+  o.clouds.aerialPerspective = AerialPerspective::Off;
   RenderResult gpu = test::cloudRenderer().render(scene, o);
 
   CloudSettings settings = CloudSettings::fromScene(scene);
@@ -96,7 +96,7 @@ SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scen
   o.clouds.lightCone = 0.0;
   o.clouds.jitter = false;
   o.clouds.ambient = false;
-  o.clouds.aerialPerspective = false;
+  o.clouds.aerialPerspective = AerialPerspective::Off;
   const RenderResult gpu = test::cloudRenderer().render(scene, o);
   o.clouds.lightMarchToExit = false;
   const RenderResult fixedLength = test::cloudRenderer().render(scene, o);

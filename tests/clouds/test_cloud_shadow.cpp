@@ -42,7 +42,7 @@ TEST_F(CloudShadow, AgreesWithTheLightMarchOnASlab) {
   o.cloudWeather = std::make_shared<CloudWeatherMap>(
       uniformCloudWeatherMap(glm::vec4(1.0f, 0.0f, 0.0f, float(shared::kCloudWeatherNoTop))));
   o.clouds.ambient = false;
-  o.clouds.aerialPerspective = false;
+  o.clouds.aerialPerspective = AerialPerspective::Off;
   o.clouds.jitter = false;
   o.clouds.lightSteps = 16;
   o.clouds.viewSteps = 128;

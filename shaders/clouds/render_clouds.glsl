@@ -1,0 +1,305 @@
+// Cloud layers over the clear sky (docs/clouds.md). Per pixel:
+//  1. the view ray's stretches inside every layer's shell (common/cloud_density.glsl), in order;
+//  2. a march of fine steps growing with the distance from the camera (common/cloud_march.glsl: the
+//     base step is the thickest layer's thickness / `view steps`, growing in proportion to distance
+//     beyond one thickness, capped), or, with the uniform flag, `view steps` equal steps spread over the
+//     stretches' total length; blue-noise jitter; coarse steps of the shape-only density until it is
+//     non-zero (empty-space skipping; exact, since the shape-only density bounds the full one); an
+//     early exit at low transmittance;
+//  3. at every step with cloud: sunlight through the atmosphere (transmittance table at the sample)
+//     and through the cloud (a light march of `light steps` in a cone), dual-lobe Henyey-Greenstein,
+//     octave multiple scattering; ambient from the sky irradiance table and the ground; each step
+//     integrated with Hillaire 2016's energy-conserving formula (cloudStepIntegral);
+//  4. aerial perspective to the transmittance-weighted mean depth of the cloud: the air's
+//     transmittance and in-scattering up to there, chosen at compile time (CLOUD_AERIAL_PERSPECTIVE;
+//     lavapipe runs both sides of a branch on a uniform, docs/gpu.md):
+//       2 (render_clouds.comp, default): read from the per-frame aerial-perspective volume
+//         (sky/aerial_perspective_volume.comp; three trilinear fetches);
+//       1 (render_clouds_ap_march.comp): a per-pixel march of `aerial steps` (default 8) of the
+//         same clear-sky integrand (atmosphere/air_integrand.glsl);
+//       0 (render_clouds_ap_off.comp): none (T_air = 1, no air light);
+//  5. composite over the sky image: out = T_cloud * sky + L, with L = T_air L_cloud + (1 - T_cloud) L_air.
+// Radiance is carried at the batch's three wavelengths in two parts, light with the sun's spectrum and
+// light with the sky's, converted to Rec.709 cd/m^2 with the atmosphere block's matrices.
+#ifndef CLOUD_AERIAL_PERSPECTIVE
+#error "define CLOUD_AERIAL_PERSPECTIVE (0 off, 1 march, 2 volume) before including clouds/render_clouds.glsl"
+#endif
+#include "atmosphere/aerial_perspective_sampling.glsl"
+#include "atmosphere/air_integrand.glsl"
+#include "atmosphere/atmosphere_sampling.glsl"
+#include "atmosphere/irradiance_sampling.glsl"
+#include "common/camera.glsl"
+#include "common/cloud_density.glsl"
+#include "common/cloud_lighting.glsl"
+#include "common/cloud_march.glsl"
+#include "common/cloud_weather.glsl"
+#include "common/dispatch.glsl"
+#include "clouds/cloud_sampling.glsl"
+#include "common/cloud_shadow.glsl"
+
+layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
+layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
+layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
+layout(set = 0, binding = 3) uniform sampler2D skyIrradianceLut;
+layout(set = 0, binding = 7) uniform sampler2D blueNoise;    // read with texelFetch
+// The frames (one vec4 per pixel, row-major; storage buffers, see sky/render_sky.comp):
+layout(std430, set = 0, binding = 8) buffer SkyFrame { vec4 pixels[]; } skyFrame;      // read, composited, written
+layout(std430, set = 0, binding = 9) buffer CloudFrame { vec4 pixels[]; } cloudFrame;  // rgb: cloud light L; a: T_cloud
+// Sample counters (summed over the pixels by the first batch): view-march density evaluations (coarse
+// and fine), light-march density evaluations.
+layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
+layout(push_constant) uniform Push {
+  TileDispatch tiles;
+  int firstBatch;  // 1: write (composite over the sky); 0: add this spectral batch's light
+  int pad0;
+  int pad1;
+  int pad2;
+} push;
+
+const int kMaxSegments = 16;  // two stretches per layer, 8 layers
+layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
+
+layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
+layout(set = 0, binding = 15) uniform sampler3D aerialVolume;  // the aerial-perspective volume (linear, clamp)
+
+// Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
+// integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
+// in-scattered light in linear Rec.709 cd/m^2 (sky-like and sun-like parts converted) and the
+// transmittance at the batch's wavelengths.
+void airToDepth(AtmosphereParameters atmosphere, vec3 origin, vec3 dir, vec3 sun, float d, int steps, out vec3 light,
+                out vec3 transmittance) {
+  vec3 sky = vec3(0.0);
+  vec3 sunlike = vec3(0.0);
+  transmittance = vec3(1.0);
+  float nu = dot(dir, sun);
+  float phaseR = rayleighPhase(nu);
+  float phaseM = cornetteShanksPhase(atmosphere.mie_phase_g, nu);
+  float dt = d / float(steps);
+  for (int i = 0; i < steps; ++i) {
+    vec3 p = origin + dir * ((float(i) + 0.5) * dt);
+    AirSample air = airSampleAt(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, p, sun, dir,
+                                phaseR, phaseM);
+    accumulateAirStep(air, dt, sky, sunlike, transmittance);
+  }
+  light = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
+}
+
+void main() {
+  uvec2 tiled;
+  if (!tilePixel(push.tiles, tiled)) return;
+  ivec2 pixel = ivec2(tiled);
+  AtmosphereParameters atmosphere = atmosphereFromBlock();
+  CameraParameters camera;
+  camera.forward = cloud.camera_forward.xyz;
+  camera.right = cloud.camera_right.xyz;
+  camera.up = cloud.camera_up.xyz;
+  camera.fov = cloud.camera_forward.w;
+  camera.yaw = cloud.camera_right.w;
+  camera.projection = cloud.image.z;
+  camera.width = cloud.image.x;
+  camera.height = cloud.image.y;
+  bool valid;
+  vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
+  uint index = uint(pixel.y) * uint(cloud.image.x) + uint(pixel.x);
+  vec4 skyValue = skyFrame.pixels[index];
+  if (!valid) {
+    if (push.firstBatch != 0) cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
+    return;
+  }
+  vec3 sun = cloud.sun_direction.xyz;
+  vec3 origin = cloud.camera_position.xyz;
+  float r = max(length(origin), atmosphere.bottom_radius + 0.01);
+  origin = normalize(origin) * r;
+  float mu = clamp(dot(origin, dir) / r, -1.0, 1.0);
+  float nu = dot(dir, sun);
+
+  // 1. The stretches inside the shells, before the ground and the march limit, sorted by start.
+  float tMax = cloud.sun_direction.w;
+  if (rayIntersectsGround(r, mu, atmosphere.bottom_radius)) tMax = min(tMax, distanceToBottomAtmosphereBoundary(r, mu, atmosphere.bottom_radius));
+  vec2 segments[kMaxSegments];
+  int segmentLayer[kMaxSegments];
+  int count = 0;
+  float total = 0.0;
+  for (int i = 0; i < cloud.image.w; ++i) {
+    CloudLayer layer = layerAt(i);
+    vec2 first, second;
+    cloudShellSegments(r, mu, layer.bottom_radius, layer.top_radius, tMax, first, second);
+    if (first.y > first.x) { segments[count] = first; segmentLayer[count] = i; total += first.y - first.x; ++count; }
+    if (second.y > second.x) { segments[count] = second; segmentLayer[count] = i; total += second.y - second.x; ++count; }
+  }
+  for (int i = 1; i < count; ++i)  // insertion sort by start
+    for (int j = i; j > 0 && segments[j].x < segments[j - 1].x; --j) {
+      vec2 s = segments[j]; segments[j] = segments[j - 1]; segments[j - 1] = s;
+      int l = segmentLayer[j]; segmentLayer[j] = segmentLayer[j - 1]; segmentLayer[j - 1] = l;
+    }
+
+  // 2.-3. The march.
+  int viewSteps = max(cloud.steps.x, 1);
+  int lightSteps = max(cloud.steps.y, 1);
+  int octaves = clamp(cloud.steps.z, 1, 8);
+  bool jitter = (cloud.steps.w & 2) != 0;
+  bool ambientOn = (cloud.steps.w & 4) != 0;
+  float lightLength = cloud.octaves.w;
+  float albedo = cloud.phase.w;
+  float bottomVisibility = cloud.march.x;
+  float earlyExit = cloud.march.y;
+  int coarse = max(int(cloud.march.z + 0.5), 1);
+  float cone = cloud.march.w;
+  bool uniformSteps = (cloud.steps.w & 8) != 0;
+  bool lightToExit = (cloud.steps.w & 16) != 0;
+  bool msZenith = (cloud.steps.w & 32) != 0;
+  bool msScattered = (cloud.steps.w & 64) != 0;
+  float uniformStep = max(total / float(viewSteps), 1e-3);
+  float baseStep = max(cloud.stepGrowth.x, 1e-3);
+  float growthStart = max(cloud.stepGrowth.y, 1.0);
+  float maxFactor = cloud.stepGrowth.z;
+  uint viewCount = 0u, lightCount = 0u;
+  ivec2 blueSize = textureSize(blueNoise, 0);
+  float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
+  float phaseOctave[8];
+  int phaseLayer = -1;  // the layer whose octave phases phaseOctave holds
+  float a = 0.5, b = 0.5;
+
+  float transmittance = 1.0;
+  vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
+  vec3 skylike = vec3(0.0);  // cloud light with the sky's spectrum
+  float depthSum = 0.0, depthWeight = 0.0;
+  // Hard cap on samples (segment ends add partial steps). Growing steps: a stretch [t0, t1] takes
+  // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
+  // D >= 1 km that stays below ~8 N for G >= 10, hence 8 N.
+  int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
+  for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
+    CloudLayer layer = layerAt(segmentLayer[s]);
+    if (segmentLayer[s] != phaseLayer) {
+      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s) and
+      // its octaves' phase values for this pixel's scattering angle.
+      phaseLayer = segmentLayer[s];
+      a = cloud.layers[5 * phaseLayer + 2].w;
+      b = cloud.layers[5 * phaseLayer + 3].w;
+      float c = cloud.layers[5 * phaseLayer + 4].w;
+      for (int o = 0; o < octaves; ++o)
+        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+    }
+    float t = segments[s].x;
+    float end = segments[s].y;
+    int emptyRun = coarse;  // start in coarse mode
+    while (t < end && transmittance > earlyExit && budget > 0) {
+      --budget;
+      float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
+      if (emptyRun >= coarse && coarse > 1) {
+        // Coarse step: the shape-only density at one point of the next `coarse` fine steps.
+        float span = min(float(coarse) * dt, end - t);
+        CloudLayer column;
+        float ph;
+        vec3 local;
+        ++viewCount;
+        if (shapeDensityAt(layer, origin + dir * (t + xi * span), column, ph, local) <= 0.0) {
+          t += span;
+          continue;
+        }
+        emptyRun = 0;  // cloud ahead: march this stretch in fine steps
+      }
+      float h = min(dt, end - t);
+      vec3 p = origin + dir * (t + xi * h);
+      float d = densityAt(layer, p);
+      ++viewCount;
+      if (d <= 0.0) {
+        ++emptyRun;
+        t += h;
+        continue;
+      }
+      emptyRun = 0;
+      float sigmaT = layer.extinction * d;
+      float sigmaS = albedo * sigmaT;
+      float rp = length(p);
+      float muS = dot(p, sun) / rp;
+      float ph = cloudHeightFraction(layer, rp);
+      // Sun: atmosphere transmittance at the sample, cloud optical depth by the light march.
+      vec3 sunLight = transmittanceToSun(transmittanceLut, atmosphere, rp, muS) * atmosphere.solar_irradiance;
+      bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
+      float tau = 0.0;
+      if (sunVisible) {
+        // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
+        vec3 shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
+                                            cloud.shadowCentre.w, cloud.shadowAxisU.w);
+        if (cloud.shadowSize.z != 0 && all(greaterThanEqual(shadow.xy, vec2(0.0))) && all(lessThanEqual(shadow.xy, vec2(1.0)))) {
+          tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
+          lightCount += 1u;
+        } else {
+          // Bit 16: march to where the sun ray leaves the layer (at most lightLength); else the first
+          // milestone's fixed length (the thickest layer's thickness, at most 4 km), for comparisons.
+          float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
+          tau = opticalDepthToSun(layer, p, sun, lightSteps, marchLength, cone);
+          lightCount += uint(lightSteps);
+        }
+      }
+      // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
+      // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
+      // optical depth tau_sun) or diffusing down from the layer top (E mu_s on a horizontal top, times
+      // the Eddington angular factor, cloudTopEntryWeight; optical depth tau_up straight up): at a low
+      // sun the sun ray crosses ~10 km of cloud while scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
+      float tauUp = -1.0;
+      if (msZenith && octaves > 1 && sunVisible && muS > 0.0) {
+        vec3 up = p / rp;
+        int upSteps = max(lightSteps / 2, 2);
+        tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+        lightCount += uint(upSteps);
+      }
+      float topWeight = cloudTopEntryWeight(muS);
+      float octaveSum = phaseOctave[0] * exp(-tau);
+      for (int o = 1; o < octaves; ++o) {
+        float scale = cloudOctaveExtinctionScale(a, o);
+        float attenuation = cloudOctaveTransmittance(scale, tau, msScattered);
+        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(scale, tauUp, msScattered));
+        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * attenuation;
+      }
+      vec3 sunSource = sunLight * octaveSum;
+      vec3 skySource = vec3(0.0);
+      if (ambientOn) {
+        // Ambient: (L_sky v_sky + L_ground v_ground) / 2 (common/cloud_lighting.glsl).
+        vec3 skyIrradiance = irradianceLookup(skyIrradianceLut, atmosphere, rp, muS);
+        float rg = atmosphere.bottom_radius;
+        vec3 groundSun = transmittanceToSun(transmittanceLut, atmosphere, rg, muS) * atmosphere.solar_irradiance * max(muS, 0.0);
+        vec3 groundSky = irradianceLookup(skyIrradianceLut, atmosphere, rg, muS);
+        float vSky = cloudSkyVisibility(ph, bottomVisibility);
+        float vGround = cloudGroundVisibility(ph, bottomVisibility);
+        vec3 reflectance = atmosphere.ground_albedo / kPi;
+        skySource = 0.5 * (vSky * skyIrradiance / kPi + vGround * reflectance * groundSky);
+        sunSource += 0.5 * vGround * reflectance * groundSun;
+      }
+      float integral = cloudStepIntegral(sigmaT, h);
+      sunlike += transmittance * sigmaS * sunSource * integral;
+      skylike += transmittance * sigmaS * skySource * integral;
+      float stepT = exp(-sigmaT * h);
+      float opacity = transmittance * (1.0 - stepT);
+      depthSum += opacity * (t + 0.5 * h);
+      depthWeight += opacity;
+      transmittance *= stepT;
+      t += h;
+    }
+  }
+
+  // 4. Aerial perspective to the cloud's mean depth (none without cloud: opacity 0 below).
+  vec3 airLight = vec3(0.0), airT = vec3(1.0);
+  float meanDepth = depthWeight > 0.0 ? depthSum / depthWeight : 0.0;
+#if CLOUD_AERIAL_PERSPECTIVE == 2
+  aerialPerspectiveLookup(aerialVolume, vec2(pixel) + 0.5, cloud.image.xy, meanDepth, cloud.aerial.x,
+                          cornetteShanksPhase(atmosphere.mie_phase_g, nu), airLight, airT);
+#elif CLOUD_AERIAL_PERSPECTIVE == 1
+  if (depthWeight > 0.0) airToDepth(atmosphere, origin, dir, sun, meanDepth, max(int(cloud.aerial.y + 0.5), 1), airLight, airT);
+#endif
+  float opacity = 1.0 - transmittance;
+  vec3 light = skyRadianceToRgb() * (airT * skylike) + sunRadianceToRgb() * (airT * sunlike) + opacity * airLight;
+
+  // 5. Composite.
+  if (push.firstBatch != 0) {
+    atomicAdd(counters.viewSamples, viewCount);
+    atomicAdd(counters.lightSamples, lightCount);
+    cloudFrame.pixels[index] = vec4(light, transmittance);
+    skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
+  } else {
+    vec4 previous = cloudFrame.pixels[index];
+    cloudFrame.pixels[index] = vec4(previous.rgb + light, previous.a);
+    skyFrame.pixels[index] = vec4(skyValue.rgb + light, skyValue.a);
+  }
+}
