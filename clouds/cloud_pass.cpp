@@ -36,7 +36,17 @@ static_assert(sizeof(CloudBlock) == (18 + kMaxLayers * 5) * 16);
 struct Push {
   gpu::TileDispatch tiles;
   int32_t firstBatch;
-  int32_t pad[3];
+  int32_t divisor;    // the march's grid is 1/divisor of the image in x and y
+  int32_t composite;  // 1: the march composites over the sky; 0: clouds/upsample_clouds does
+  int32_t pad;
+};
+
+struct UpsamplePush {
+  gpu::TileDispatch tiles;  // the image
+  int32_t coarseWidth;
+  int32_t coarseHeight;
+  int32_t divisor;
+  int32_t pad;
 };
 
 void put(float (&out)[4], double x, double y, double z, double w) {
@@ -56,6 +66,9 @@ CloudPass::CloudPass(gpu::Context& context)
                              gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
                             0}),
+      upsample_(context, {"clouds/upsample_clouds",
+                          {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
+                          sizeof(UpsamplePush)}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
       counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters") {}
 
@@ -160,6 +173,20 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     throw std::logic_error("CloudPass: the sky frame must hold the view's RGBA32F pixels");
   if (!cloudFrame_ || cloudFrame_.size() != skyFrame.size())
     cloudFrame_ = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+  // Reduced resolution: the march covers a grid d times coarser (each coarse pixel at the centre of its
+  // d x d image pixels) into coarseFrame_, then clouds/upsample_clouds interpolates and composites.
+  const int divisor = std::clamp(m.resolutionDivisor, 1, 8);
+  const uint32_t coarseWidth = (width + uint32_t(divisor) - 1) / uint32_t(divisor);
+  const uint32_t coarseHeight = (height + uint32_t(divisor) - 1) / uint32_t(divisor);
+  const VkDeviceSize coarseBytes = VkDeviceSize(coarseWidth) * coarseHeight * 4 * sizeof(float);
+  if (divisor > 1 && (!coarseFrame_ || coarseFrame_.size() != coarseBytes))
+    coarseFrame_ = gpu::Buffer(context_, coarseBytes, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "coarse cloud frame");
+  const gpu::TileDispatch marchTiles =
+      divisor > 1 ? gpu::tileDispatch(context_, coarseWidth, coarseHeight,
+                                      tiles.stride == 1 ? gpu::DispatchOrder::RowMajor : gpu::DispatchOrder::Interleaved)
+                  : tiles;
+  gpu::Buffer& marchFrame = divisor > 1 ? coarseFrame_ : cloudFrame_;
+  // Samples are reported per image pixel: what a frame costs, whatever grid the march ran on.
   cloudPixels_ = size_t(width) * height;
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
   if (!shadowImage_ || shadowImage_.width() != shadowSize)
@@ -213,17 +240,23 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          {noise_.curl(), noise_.linearRepeat()},
                                          {noise_.blueNoise(), noise_.nearestRepeat()},
                                          skyFrame,
-                                         cloudFrame_,
+                                         marchFrame,
                                          block_,
                                          counters_,
                                          {weatherImage_, noise_.linearRepeat()},
                                          {shadowImage_, luts.linearClamp()},
                                          {lut.multipleScatteringAnisotropy, luts.linearClamp()},
                                          {aerialImage, luts.linearClamp()}});
-    Push push{tiles, batch == 0 ? 1 : 0, {0, 0, 0}};
+    Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0, 0};
     commands.pushConstants(push);
-    commands.dispatchTiles(tiles, "clouds/render_clouds");
-    if (batch + 1 < luts.batchCount()) commands.barrier();
+    commands.dispatchTiles(marchTiles, "clouds/render_clouds");
+    if (batch + 1 < luts.batchCount() || divisor > 1) commands.barrier();
+  }
+  if (divisor > 1) {
+    commands.bind(upsample_, {coarseFrame_, cloudFrame_, skyFrame});
+    UpsamplePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), divisor, 0};
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "clouds/upsample_clouds");
   }
 }
 

@@ -75,12 +75,14 @@ class CloudPass {
   std::unique_ptr<gpu::ComputePipeline> pipelines_[3];
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
+  gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
   glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)
   gpu::Buffer cloudFrame_;
+  gpu::Buffer coarseFrame_;  // the march's frame at reduced resolution
   size_t cloudPixels_ = 0;
 };
 

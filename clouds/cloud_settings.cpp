@@ -78,6 +78,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightSteps) march.lightSteps = *lightSteps;
   if (coarseFactor) march.coarseFactor = *coarseFactor;
   if (jitter) march.jitter = *jitter;
+  if (resolutionDivisor) march.resolutionDivisor = *resolutionDivisor;
   if (uniformSteps) march.uniformSteps = *uniformSteps;
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
@@ -144,6 +145,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
                        ") of layer " + std::to_string(i) + "; allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
   }
   s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
+  s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));
   const std::string quality = scene.string("/clouds/quality");
   if (quality == "low") {
     s.march.viewSteps = 32, s.march.lightSteps = 4, light.octaves = std::min(light.octaves, 2);

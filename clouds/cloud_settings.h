@@ -68,6 +68,10 @@ struct CloudMarchSettings {
   int shadowMapSteps = 128;           // march steps per texel
   double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
   bool jitter = true;              // blue-noise jitter of the sample positions
+  // The march runs on a grid this many times coarser in x and y (1, 2 or 4), each of its pixels at the
+  // centre of the image pixels it stands for, then is interpolated bilinearly to the image
+  // (clouds/upsample_clouds). The scene's /clouds/resolution_divisor.
+  int resolutionDivisor = 1;
   AerialPerspective aerialPerspective = AerialPerspective::Volume;  // the scene's /clouds/aerial_perspective
   int aerialPerspectiveSteps = 8;  // March: equal steps from the camera to the cloud's mean depth
   bool ambient = true;
@@ -107,6 +111,7 @@ struct CloudOverrides {
   std::optional<int> lightSteps;
   std::optional<int> coarseFactor;
   std::optional<bool> jitter;
+  std::optional<int> resolutionDivisor;
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
   std::optional<bool> beerShadowMap;

@@ -86,6 +86,11 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                  " layer(s): view march, light march, octave multiple scattering, aerial perspective (" +
                                  aerialPerspectiveName(aerial) + ")" + each,
                              true});
+      const int divisor = options.cloudResolutionDivisor ? *options.cloudResolutionDivisor
+                                                         : int(scene.integer("/clouds/resolution_divisor"));
+      if (divisor > 1)
+        plan.passes.push_back({"clouds/upsample_clouds", "the clouds at full size, composited over the sky image",
+                               "the march ran at 1/" + std::to_string(divisor) + " of the width and height", true});
     }
   } else {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});

@@ -23,6 +23,8 @@ struct PlanOptions {
   int spectralSamples = 3;    // HillaireFms: wavelengths, in batches of three
   // Replaces the scene's /clouds/aerial_perspective (SkyRenderOptions::clouds.aerialPerspective).
   std::optional<AerialPerspective> aerialPerspective;
+  // Replaces the scene's /clouds/resolution_divisor (SkyRenderOptions::clouds.resolutionDivisor).
+  std::optional<int> cloudResolutionDivisor;
 };
 
 struct PlannedPass {

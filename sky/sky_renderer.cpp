@@ -79,6 +79,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.skyViewLut = options.method == SkyMethod::SkyViewLut;
   plan.spectralSamples = options.luts.spectralSamples;
   plan.aerialPerspective = options.clouds.aerialPerspective;
+  plan.cloudResolutionDivisor = options.clouds.resolutionDivisor;
   return plan;
 }
 

@@ -51,9 +51,9 @@ layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; u
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   int firstBatch;  // 1: write (composite over the sky); 0: add this spectral batch's light
+  int divisor;     // the march runs at 1/divisor of the image's width and height (tiles: the reduced grid)
+  int composite;   // 1: composite over the sky frame here; 0: clouds/upsample_clouds does it at full size
   int pad0;
-  int pad1;
-  int pad2;
 } push;
 
 const int kMaxSegments = 16;  // two stretches per layer, 8 layers
@@ -99,9 +99,12 @@ void main() {
   camera.width = cloud.image.x;
   camera.height = cloud.image.y;
   bool valid;
-  vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
-  uint index = uint(pixel.y) * uint(cloud.image.x) + uint(pixel.x);
-  vec4 skyValue = skyFrame.pixels[index];
+  // A reduced-grid pixel p stands for the full image's pixels [d p, d p + d): its ray goes through their
+  // centre, d (p + 1/2) in full-image pixels (exactly where the upsampling puts it).
+  vec2 imagePoint = (vec2(pixel) + 0.5) * float(push.divisor);
+  vec3 dir = cameraRayDirection(camera, imagePoint, valid);
+  uint index = uint(pixel.y) * push.tiles.width + uint(pixel.x);
+  vec4 skyValue = push.composite != 0 ? skyFrame.pixels[index] : vec4(0.0);
   if (!valid) {
     if (push.firstBatch != 0) cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
     return;
@@ -283,7 +286,7 @@ void main() {
   vec3 airLight = vec3(0.0), airT = vec3(1.0);
   float meanDepth = depthWeight > 0.0 ? depthSum / depthWeight : 0.0;
 #if CLOUD_AERIAL_PERSPECTIVE == 2
-  aerialPerspectiveLookup(aerialVolume, vec2(pixel) + 0.5, cloud.image.xy, meanDepth, cloud.aerial.x,
+  aerialPerspectiveLookup(aerialVolume, imagePoint, cloud.image.xy, meanDepth, cloud.aerial.x,
                           cornetteShanksPhase(atmosphere.mie_phase_g, nu), airLight, airT);
 #elif CLOUD_AERIAL_PERSPECTIVE == 1
   if (depthWeight > 0.0) airToDepth(atmosphere, origin, dir, sun, meanDepth, max(int(cloud.aerial.y + 0.5), 1), airLight, airT);
@@ -296,10 +299,10 @@ void main() {
     atomicAdd(counters.viewSamples, viewCount);
     atomicAdd(counters.lightSamples, lightCount);
     cloudFrame.pixels[index] = vec4(light, transmittance);
-    skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
+    if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
   } else {
     vec4 previous = cloudFrame.pixels[index];
     cloudFrame.pixels[index] = vec4(previous.rgb + light, previous.a);
-    skyFrame.pixels[index] = vec4(skyValue.rgb + light, skyValue.a);
+    if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb + light, skyValue.a);
   }
 }

@@ -202,24 +202,6 @@ TEST_F(CloudRender, GrowingStepsBeatUniformSteps) {
   EXPECT_GT(uniform.cloudSamples.viewPerPixel, 0.0);
 }
 
-// Not a test: the numbers of docs/clouds.md (640x360 cumulus, growing vs uniform steps). Run with
-// --gtest_also_run_disabled_tests --gtest_filter=*Measure*.
-TEST_F(CloudRender, DISABLED_MeasureDefaultSceneSteps) {
-  const Scene s = Scene::load(test::sourceDir() / "scenes" / "cumulus.json");
-  for (bool uniform : {true, false}) {
-    SkyRenderOptions o;
-    o.clouds.uniformSteps = uniform;
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      const RenderResult r = test::cloudRenderer().render(s, o);
-      double ms = 0.0;
-      for (const auto& t : r.timings)
-        if (t.label == "clouds/render_clouds") ms += t.milliseconds;
-      std::printf("%s steps: clouds/render_clouds %.1f ms, %.1f view + %.1f light samples/pixel\n",
-                  uniform ? "uniform" : "growing", ms, r.cloudSamples.viewPerPixel, r.cloudSamples.lightPerPixel);
-    }
-  }
-}
-
 TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=0.8", "/clouds/lighting/ms_b=0.5"})),
                InputError);
