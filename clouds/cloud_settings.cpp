@@ -146,6 +146,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   }
   s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
   s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));
+  s.march.beerShadowMap = scene.boolean("/clouds/shadow_map");
   const std::string quality = scene.string("/clouds/quality");
   if (quality == "low") {
     s.march.viewSteps = 32, s.march.lightSteps = 4, light.octaves = std::min(light.octaves, 2);

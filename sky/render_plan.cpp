@@ -38,7 +38,12 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                                " wavelengths)"
                                          : "";
     plan.passes.push_back({"atmosphere/multiple_scattering_lut", "multiple-scattering table Psi_ms(r, mu_s)",
-                           "light scattered more than once (Hillaire 2020)" + each, false});
+                           "light scattered more than once (Hillaire 2020): the first order" + each, false});
+    if (options.multipleScatteringOrders > 1)
+      plan.passes.push_back({"atmosphere/multiple_scattering_order", "Psi_ms orders 2.." + std::to_string(options.multipleScatteringOrders),
+                             "each order marches through the previous one's table; a geometric tail after the last" + each, false});
+    else
+      plan.omitted.push_back({"atmosphere/multiple_scattering_order", "one order: Hillaire's f_ms series"});
     plan.passes.push_back({"atmosphere/fms_sky_irradiance", "ground sky irradiance table E(r, mu_s)",
                            "skylight on the ground, from the same single + Psi_ms sky" + each, false});
     // The sky-view table holds the sky seen from inside the atmosphere; from above it every pixel marches.
@@ -81,6 +86,12 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                 aerial == AerialPerspective::March
                                     ? "aerial perspective 'march': the cloud march marches the air per pixel"
                                     : "aerial perspective 'off'"});
+      const bool shadowMap = options.cloudShadowMap ? *options.cloudShadowMap : scene.boolean("/clouds/shadow_map");
+      if (shadowMap)
+        plan.passes.push_back({"clouds/bake_shadow_map", "Beer shadow map: front depth, mean extinction, optical depth to the sun",
+                               "the light march reads the sun's optical depth through all layers from it", true});
+      else
+        plan.omitted.push_back({"clouds/bake_shadow_map", "/clouds/shadow_map off: the light march alone"});
       plan.passes.push_back({"clouds/render_clouds", "clouds composited over the sky image (cd/m^2)",
                              std::to_string(scene.at("/clouds/layers").size()) +
                                  " layer(s): view march, light march, octave multiple scattering, aerial perspective (" +

@@ -21,10 +21,13 @@ struct PlanOptions {
   int scatteringOrders = 4;  // BrunetonTables only
   bool skyViewLut = true;     // HillaireFms: read a per-frame sky-view table (cameras inside the atmosphere)
   int spectralSamples = 3;    // HillaireFms: wavelengths, in batches of three
+  int multipleScatteringOrders = 3;  // HillaireFms: Psi_ms orders iterated (1 = Hillaire's one pass)
   // Replaces the scene's /clouds/aerial_perspective (SkyRenderOptions::clouds.aerialPerspective).
   std::optional<AerialPerspective> aerialPerspective;
   // Replaces the scene's /clouds/resolution_divisor (SkyRenderOptions::clouds.resolutionDivisor).
   std::optional<int> cloudResolutionDivisor;
+  // Replaces the scene's /clouds/shadow_map (SkyRenderOptions::clouds.beerShadowMap).
+  std::optional<bool> cloudShadowMap;
 };
 
 struct PlannedPass {

@@ -78,8 +78,10 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.scatteringOrders = options.tables.scatteringOrders;
   plan.skyViewLut = options.method == SkyMethod::SkyViewLut;
   plan.spectralSamples = options.luts.spectralSamples;
+  plan.multipleScatteringOrders = options.luts.multipleScatteringOrders;
   plan.aerialPerspective = options.clouds.aerialPerspective;
   plan.cloudResolutionDivisor = options.clouds.resolutionDivisor;
+  plan.cloudShadowMap = options.clouds.beerShadowMap;
   return plan;
 }
 

@@ -29,6 +29,23 @@ TEST(CloudResolutionPlan, UpsampleListedOnlyWhenReduced) {
   EXPECT_FALSE(planRender(Scene::parse("{}", "<t>")).has("clouds/upsample_clouds"));
 }
 
+// The Beer shadow map is a scene knob too: planned (and baked) only when on.
+TEST(CloudResolutionPlan, ShadowMapPlannedOnlyWhenOn) {
+  EXPECT_FALSE(planRender(test::cloudScene()).has("clouds/bake_shadow_map"));
+  EXPECT_TRUE(planRender(test::cloudScene({"/clouds/shadow_map=true"})).has("clouds/bake_shadow_map"));
+  PlanOptions off;
+  off.cloudShadowMap = false;
+  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/shadow_map=true"}), off).has("clouds/bake_shadow_map"));
+}
+
+TEST_F(CloudResolution, ShadowMapFromTheSceneRunsItsPass) {
+  const RenderResult r = test::cloudRenderer().render(test::cloudScene({"/clouds/shadow_map=true"}), test::smallCloudOptions());
+  bool baked = false;
+  for (const auto& t : r.timings) baked = baked || t.label == "clouds/bake_shadow_map";
+  EXPECT_TRUE(baked);
+  for (const auto& t : r.timings) EXPECT_TRUE(r.plan.has(t.label)) << t.label;
+}
+
 // Where there is no cloud the upsampled transmittance is exactly 1 and the light 0: the sky is unchanged.
 TEST_F(CloudResolution, NoCloudLeavesTheSkyUnchanged) {
   const Scene clear = test::cloudScene({"/clouds/layers/0/coverage=0"});
