@@ -242,13 +242,22 @@ void main() {
       // the Eddington angular factor, cloudTopEntryWeight; optical depth tau_up straight up): at a low
       // sun the sun ray crosses ~10 km of cloud while scattered light arrives from above. Flag 64: only the scattered part (cloudOctaveTransmittance).
       float tauUp = -1.0;
-      if (msZenith && octaves > 1 && sunVisible && muS > 0.0) {
+      float topWeight = cloudTopEntryWeight(muS);
+      // The way from the top can only win the max below if, for some octave, its best case (any
+      // tau_up, cloudOctaveTransmittanceBound) beats the sun ray's value: otherwise its march is
+      // skipped with the same result (the 1e-4 margin covers the bound's float rounding).
+      bool upCanWin = false;
+      for (int o = 1; o < octaves; ++o) {
+        float scale = cloudOctaveExtinctionScale(a, o);
+        if (topWeight * cloudOctaveTransmittanceBound(scale, msScattered) * 1.0001 > cloudOctaveTransmittance(scale, tau, msScattered))
+          upCanWin = true;
+      }
+      if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
         int upSteps = max(lightSteps / 2, 2);
         tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
         lightCount += uint(upSteps);
       }
-      float topWeight = cloudTopEntryWeight(muS);
       float octaveSum = phaseOctave[0] * exp(-tau);
       for (int o = 1; o < octaves; ++o) {
         float scale = cloudOctaveExtinctionScale(a, o);

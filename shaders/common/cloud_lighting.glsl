@@ -53,6 +53,18 @@ SHARED_INLINE Real cloudOctaveTransmittance(Real extinctionScale, Real tau, bool
   return scatteredOnly ? max(t - exp(-tau), 0.0) : t;
 }
 
+// The most octave i can pass along any way in: the largest cloudOctaveTransmittance(s, tau) over
+// tau >= 0. For e^(-s tau) it is 1 (tau = 0). For the scattered part e^(-s tau) - e^(-tau) with
+// 0 < s < 1 the derivative -s e^(-s tau) + e^(-tau) vanishes at tau* = -ln(s) / (1 - s), the maximum;
+// s <= 0 tends to 1 (tau -> inf) and s >= 1 gives 0. The march uses it to skip the way down from the
+// layer top where that way cannot beat the sun ray for any optical depth (the result is unchanged).
+SHARED_INLINE Real cloudOctaveTransmittanceBound(Real extinctionScale, bool scatteredOnly) {
+  if (!scatteredOnly || extinctionScale <= 0.0) return 1.0;
+  if (extinctionScale >= 1.0) return 0.0;
+  Real tauStar = -log(extinctionScale) / (1.0 - extinctionScale);
+  return exp(-extinctionScale * tauStar) - exp(-tauStar);
+}
+
 // The length of the light march from p (inside the layer's shell) towards the sun: the distance along
 // the sun ray to where it leaves the shell (through the top, or the base for a sun below the local
 // horizontal), at most maxLength. A sun at zenith angle theta crosses a layer of thickness H over
