@@ -214,6 +214,72 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
   return rows;
 }
 
+std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBenchConfig& config) {
+  struct Setting {
+    std::string name;
+    std::function<void(SkyRenderOptions&)> apply;
+  };
+  const std::vector<Setting> settings = {
+      {"default", [](SkyRenderOptions&) {}},
+      {"baseline_fixed_steps", [](SkyRenderOptions& o) { o.clouds.uniformSteps = true; }},
+      {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
+      {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
+  };
+  const int width = config.quick ? 320 : 640, height = config.quick ? 180 : 360;
+  std::vector<CloudTimingRow> rows;
+  SkyRenderer renderer(context);
+  for (const Scenario& sc : scenarios(config.quick)) {
+    const Scene scene = Scene::parse(sc.text, "<bench " + sc.name + ">",
+                                     {"/camera/width=" + std::to_string(width), "/camera/height=" + std::to_string(height)});
+    for (const Setting& setting : settings) {
+      SkyRenderOptions o;
+      setting.apply(o);
+      RenderResult r = renderer.render(scene, o);  // warm-up: tables, noise, JIT
+      std::vector<double> cloud, frame;
+      for (int i = 0; i < std::max(config.repeats, 1); ++i) {
+        r = renderer.render(scene, o);
+        cloud.push_back(cloudPassMs(r));
+        double all = 0.0;
+        for (const auto& t : r.timings)
+          if (t.label.rfind("clouds/bake", 0) != 0) all += t.milliseconds;  // the noise bake is once per seed
+        frame.push_back(all);
+      }
+      CloudTimingRow row{sc.name, setting.name, width, height, median(cloud), median(frame),
+                         r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel, context.description()};
+      char line[256];
+      std::snprintf(line, sizeof(line), "%-20s %-22s %dx%d clouds %7.1f ms  frame %7.1f ms  samples/pixel %.1f", sc.name.c_str(),
+                    setting.name.c_str(), width, height, row.cloudMs, row.frameMs, row.samplesPerPixel);
+      logInfo(line);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<CloudTimingRow>& rows) {
+  std::string csv = "scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,device\n";
+  std::string md =
+      "# Cloud frame time\n\nEach scenario's view at full default quality (ambient and aerial perspective on), median of " +
+      std::to_string(std::max(config.repeats, 1)) +
+      " renders after a warm-up. cloud ms: clouds/render_clouds + clouds/upsample_clouds + sky/aerial_perspective_volume; "
+      "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
+      "(view + light march) per image pixel. Errors of the same settings: clouds_results.csv.\n\n";
+  if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
+  md += "| scenario | setting | size | cloud ms | frame ms | samples/pixel |\n| --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& r : rows) {
+    char line[512];
+    std::snprintf(line, sizeof(line), "%s,%s,%d,%d,%.3f,%.3f,%.2f,\"%s\"\n", r.scenario.c_str(), r.setting.c_str(), r.width,
+                  r.height, r.cloudMs, r.frameMs, r.samplesPerPixel, r.device.c_str());
+    csv += line;
+    std::snprintf(line, sizeof(line), "| %s | %s | %dx%d | %.1f | %.1f | %.1f |\n", r.scenario.c_str(), r.setting.c_str(),
+                  r.width, r.height, r.cloudMs, r.frameMs, r.samplesPerPixel);
+    md += line;
+  }
+  if (!rows.empty()) md += "\nDevice: " + rows.front().device + "\n";
+  writeTextFileAtomically(config.outDir / "clouds_timing.csv", csv);
+  writeTextFileAtomically(config.outDir / "clouds_timing.md", md);
+}
+
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows) {
   std::string csv =
       "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,rel_rmse_noise_corrected,"

@@ -47,4 +47,21 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
 // atmosphere's results.csv into the same folder).
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
 
+// The frame-time table: each scenario's view at 640x360 (320x180 with --quick), full default
+// quality (ambient and aerial perspective on), for the shipped defaults, the fixed-step baseline (64
+// uniform view steps, 6 light steps) and the reduced resolutions, in one run: median GPU ms of the cloud
+// passes and density samples per image pixel. No reference (the errors are in clouds_results.csv).
+struct CloudTimingRow {
+  std::string scenario, setting;
+  int width = 0, height = 0;
+  double cloudMs = 0.0;   // clouds/render_clouds + clouds/upsample_clouds + sky/aerial_perspective_volume
+  double frameMs = 0.0;   // every per-frame pass (sky included)
+  double samplesPerPixel = 0.0;
+  std::string device;
+};
+std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBenchConfig& config);
+// clouds_timing.csv (scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,device) and
+// clouds_timing.md in config.outDir.
+void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<CloudTimingRow>& rows);
+
 }  // namespace firmament

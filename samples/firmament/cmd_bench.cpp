@@ -116,6 +116,9 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
                              " (timings on a shared machine are noisy).";
   writeCloudBenchOutputs(config, rows);
   logInfo("wrote " + (out / "clouds_results.csv").string() + " and " + (out / "clouds_report.md").string());
+  const std::vector<CloudTimingRow> timing = runCloudTiming(context, config);
+  writeCloudTimingOutputs(config, timing);
+  logInfo("wrote " + (out / "clouds_timing.csv").string() + " and " + (out / "clouds_timing.md").string());
   return kExitOk;
 }
 

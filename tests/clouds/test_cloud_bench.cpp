@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "sky/cloud_bench.h"
@@ -66,6 +67,37 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
                     "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device");
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
+}
+
+// The frame-time table (clouds_timing.csv): every scenario and setting, times > 0, and the samples
+// ordered as the settings imply (a coarser grid marches fewer; the fixed-step baseline more than the
+// growing steps). Times are reported, not asserted (speed targets live in the benchmark).
+TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
+  CloudBenchConfig config;
+  config.quick = true;
+  config.repeats = 1;
+  config.outDir = test::scratchDir("cloud_timing");
+  const std::vector<CloudTimingRow> rows = runCloudTiming(context(), config);
+  writeCloudTimingOutputs(config, rows);
+  ASSERT_EQ(rows.size(), 8u);
+  for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
+    std::map<std::string, double> samples;
+    for (const auto& r : rows) {
+      if (r.scenario != scenario) continue;
+      EXPECT_GT(r.cloudMs, 0.0) << r.setting;
+      EXPECT_GE(r.frameMs, r.cloudMs) << r.setting;
+      EXPECT_EQ(r.width, 320);
+      samples[r.setting] = r.samplesPerPixel;
+    }
+    ASSERT_EQ(samples.size(), 4u) << scenario;
+    EXPECT_GT(samples["baseline_fixed_steps"], samples["default"]) << scenario;
+    EXPECT_LT(samples["resolution_divisor 2"], 0.4 * samples["default"]) << scenario;
+    EXPECT_LT(samples["resolution_divisor 4"], 0.4 * samples["resolution_divisor 2"]) << scenario;
+  }
+  std::ifstream csv(config.outDir / "clouds_timing.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,device");
 }
 
 }  // namespace
