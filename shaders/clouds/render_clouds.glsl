@@ -19,6 +19,8 @@
 //         same clear-sky integrand (atmosphere/air_integrand.glsl);
 //       0 (render_clouds_ap_off.comp): none (T_air = 1, no air light);
 //  5. composite over the sky image: out = T_cloud * sky + L, with L = T_air L_cloud + (1 - T_cloud) L_air.
+//     With a resolution divisor d > 1 the pixels are those of a grid d times coarser and only (L, T_cloud)
+//     is written; clouds/upsample_clouds.comp interpolates it to the image and composites there.
 // Radiance is carried at the batch's three wavelengths in two parts, light with the sun's spectrum and
 // light with the sky's, converted to Rec.709 cd/m^2 with the atmosphere block's matrices.
 #ifndef CLOUD_AERIAL_PERSPECTIVE
