@@ -57,10 +57,15 @@ struct CloudTimingRow {
   double cloudMs = 0.0;   // clouds/render_clouds + clouds/upsample_clouds + sky/aerial_perspective_volume
   double frameMs = 0.0;   // every per-frame pass (sky included)
   double samplesPerPixel = 0.0;
+  // Luminance of the whole frame against the defaults' frame at the same size, over the defaults' cloud
+  // pixels (T < 0.95): relative RMSE and mean(setting) / mean(default) - 1 (0 for the defaults). What a
+  // setting changes at a realistic size, beside its error against the path tracer at the bench's small one.
+  double relRmseVsDefault = 0.0, biasVsDefault = 0.0;
   std::string device;
 };
 std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBenchConfig& config);
-// clouds_timing.csv (scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,device) and
+// clouds_timing.csv (scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,rel_rmse_vs_default,
+// bias_vs_default,device) and
 // clouds_timing.md in config.outDir.
 void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<CloudTimingRow>& rows);
 
