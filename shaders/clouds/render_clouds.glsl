@@ -161,9 +161,11 @@ void main() {
   uint viewCount = 0u, lightCount = 0u;
   ivec2 blueSize = textureSize(blueNoise, 0);
   float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
-  float phaseOctave[8];
-  int phaseLayer = -1;  // the layer whose octave phases phaseOctave holds
-  float a = 0.5, b = 0.5;
+  // Per octave of the current layer (set when the march enters a layer): the phase for this pixel's
+  // scattering angle, the extinction scale a^i, the weight b^i, and the most the way down from the layer
+  // top can pass (cloudOctaveTransmittanceBound, with a 1e-4 margin for its float rounding).
+  float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
+  int phaseLayer = -1;  // the layer the octave arrays hold
 
   float transmittance = 1.0;
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
@@ -176,14 +178,17 @@ void main() {
   for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
     CloudLayer layer = layerAt(segmentLayer[s]);
     if (segmentLayer[s] != phaseLayer) {
-      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s) and
-      // its octaves' phase values for this pixel's scattering angle.
+      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
       phaseLayer = segmentLayer[s];
-      a = cloud.layers[5 * phaseLayer + 2].w;
-      b = cloud.layers[5 * phaseLayer + 3].w;
+      float a = cloud.layers[5 * phaseLayer + 2].w;
+      float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
-      for (int o = 0; o < octaves; ++o)
+      for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+        octaveScale[o] = cloudOctaveExtinctionScale(a, o);
+        octaveWeight[o] = cloudOctaveWeight(b, o);
+        octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
+      }
     }
     float t = segments[s].x;
     float end = segments[s].y;
@@ -246,13 +251,13 @@ void main() {
       float tauUp = -1.0;
       float topWeight = cloudTopEntryWeight(muS);
       // The way from the top can only win the max below if, for some octave, its best case (any
-      // tau_up, cloudOctaveTransmittanceBound) beats the sun ray's value: otherwise its march is
-      // skipped with the same result (the 1e-4 margin covers the bound's float rounding).
+      // tau_up, octaveTopBound) beats the sun ray's value: otherwise its march is skipped with the same
+      // result.
+      float sunAttenuation[8];
       bool upCanWin = false;
       for (int o = 1; o < octaves; ++o) {
-        float scale = cloudOctaveExtinctionScale(a, o);
-        if (topWeight * cloudOctaveTransmittanceBound(scale, msScattered) * 1.0001 > cloudOctaveTransmittance(scale, tau, msScattered))
-          upCanWin = true;
+        sunAttenuation[o] = cloudOctaveTransmittance(octaveScale[o], tau, msScattered);
+        if (topWeight * octaveTopBound[o] > sunAttenuation[o]) upCanWin = true;
       }
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
@@ -262,10 +267,9 @@ void main() {
       }
       float octaveSum = phaseOctave[0] * exp(-tau);
       for (int o = 1; o < octaves; ++o) {
-        float scale = cloudOctaveExtinctionScale(a, o);
-        float attenuation = cloudOctaveTransmittance(scale, tau, msScattered);
-        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(scale, tauUp, msScattered));
-        octaveSum += cloudOctaveWeight(b, o) * phaseOctave[o] * attenuation;
+        float attenuation = sunAttenuation[o];
+        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp, msScattered));
+        octaveSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
