@@ -5,6 +5,7 @@
 
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/table_file.h"
+#include "common/atmosphere_lut.glsl"  // kAnisotropyTiles
 #include "core/hash.h"
 #include "gpu/shaders.h"
 
@@ -83,7 +84,7 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     if (!batch.multipleScatteringAnisotropy ||
         int(batch.multipleScatteringAnisotropy.height()) != settings.multipleScatteringSize)
       batch.multipleScatteringAnisotropy =
-          gpu::Image(context_, {uint32_t(kAnisotropyTableTiles * settings.multipleScatteringSize),
+          gpu::Image(context_, {uint32_t(kAnisotropyTiles * settings.multipleScatteringSize),
                                 uint32_t(settings.multipleScatteringSize), 1, gpu::Format::RGBA32F, true, true,
                                 "multiple-scattering anisotropy"});
   }

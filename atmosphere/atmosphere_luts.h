@@ -19,8 +19,6 @@
 
 namespace firmament {
 
-// RGBA tiles of the anisotropy table: kAnisotropyTiles of common/atmosphere_lut.glsl.
-constexpr int kAnisotropyTableTiles = 4;
 
 // Quality knobs of the tables (each is swept by `firmament bench atmosphere`).
 struct AtmosphereLutSettings {
@@ -62,9 +60,9 @@ class AtmosphereLuts {
     gpu::Buffer block;  // the AtmosphereBlock of this batch's wavelengths
     gpu::Image transmittance;
     gpu::Image multipleScattering;
-    // (4 size) x size: the multiple-scattering field's anisotropy over Psi_ms, five RGB coefficients
-    // packed into kAnisotropyTableTiles RGBA tiles (zero for Hillaire's one-order form;
-    // atmosphere/atmosphere_sampling.glsl).
+    // (kAnisotropyTiles size) x size: the multiple-scattering field's anisotropy over Psi_ms, five RGB
+    // coefficients packed into RGBA tiles (atmosphere/atmosphere_sampling.glsl); zero for Hillaire's
+    // one-order form.
     gpu::Image multipleScatteringAnisotropy;
     shared::AtmosphereParameters parameters{};
   };
