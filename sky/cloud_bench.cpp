@@ -5,14 +5,13 @@
 #include <cstdio>
 #include <functional>
 
-#include "clouds/cloud_noise.h"
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
 #include "core/image_metrics.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "sky/atmosphere_bench.h"
-#include "sky/scene_weather.h"
+#include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
 
 namespace firmament {
@@ -132,13 +131,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
 
     // The reference over the same medium: the same noise texels (default sizes, same seed) and map.
     const CloudSettings settings = CloudSettings::fromScene(scene);
-    CloudNoise noise(context);
-    gpu::CommandList commands(context);
-    noise.update(settings.seed, base.cloudNoise, commands);
-    commands.submitAndWait();
-    const double ground = first.view.cameraRadius - scene.number("/camera/height_above_ground_m");
-    const CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
-                             noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+    const CloudMedium medium = sceneCloudMedium(scene, first.view, context, base.cloudNoise);
     CloudReferenceSettings rs;
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;

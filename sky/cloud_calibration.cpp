@@ -7,12 +7,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "clouds/cloud_noise.h"
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
 #include "core/log.h"
 #include "core/scene.h"
-#include "sky/scene_weather.h"
+#include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
 
 namespace firmament {
@@ -84,13 +83,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     auto renderer = std::make_unique<SkyRenderer>(context);
     const RenderResult first = renderer->render(scene, options);
     const CloudSettings settings = CloudSettings::fromScene(scene);
-    CloudNoise noise(context);
-    gpu::CommandList commands(context);
-    noise.update(settings.seed, options.cloudNoise, commands);
-    commands.submitAndWait();
-    const double ground = first.view.cameraRadius - scene.number("/camera/height_above_ground_m");
-    const CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
-                             noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+    const CloudMedium medium = sceneCloudMedium(scene, first.view, context, options.cloudNoise);
     CloudReferenceSettings rs;
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;

@@ -1,4 +1,5 @@
 #include "sky/render_plan.h"
+#include "sky/scene_cloud_medium.h"
 
 namespace firmament {
 
@@ -107,8 +108,7 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});
     plan.omitted.push_back({"sky/aerial_perspective_volume", "nothing at a finite distance reads it (no clouds, no terrain)"});
   }
-  const bool cloudLayers = scene.hasSection("clouds") && !scene.at("/clouds/layers").empty() &&
-                           options.multipleScattering != MultipleScattering::BrunetonTables;
+  const bool cloudLayers = sceneHasCloudLayers(scene) && options.multipleScattering != MultipleScattering::BrunetonTables;
   if (scene.hasSection("weather") && cloudLayers) {
     plan.passes.push_back({"weather/simulate (CPU)", "the weather map the clouds read (coverage, type, top)",
                            "simulated from the local solar midnight to the scene's time", false});

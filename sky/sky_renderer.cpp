@@ -11,6 +11,7 @@
 #include "core/exr_io.h"
 #include "core/error.h"
 #include "core/tonemap.h"
+#include "sky/scene_cloud_medium.h"
 #include "sky/scene_weather.h"
 
 namespace firmament {
@@ -99,7 +100,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   result.view = makeSceneView(scene);
   const SceneView& view = result.view;
   SkyRenderOptions options = requestedOptions;
-  const bool hasClouds = scene.hasSection("clouds") && !scene.at("/clouds/layers").empty();
+  const bool hasClouds = sceneHasCloudLayers(scene);
   options.luts.spectralSamples = resolveSpectralSamples(options.luts.spectralSamples, view.sunZenith, hasClouds, useTables);
   result.spectralSamples = options.luts.spectralSamples;
   result.plan = planRender(scene, planOptions(options));
