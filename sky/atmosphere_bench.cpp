@@ -10,18 +10,12 @@
 #include "core/error.h"
 #include "core/image_metrics.h"
 #include "core/log.h"
+#include "core/statistics.h"
 #include "sky/reference_image_cache.h"
 #include "sky/scene_view.h"
 
 namespace firmament {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Index of the median element (the lower one for an even count), to report that run's passes.
 size_t medianIndex(const std::vector<double>& v) {

@@ -10,6 +10,7 @@
 #include "core/image_metrics.h"
 #include "core/log.h"
 #include "core/scene.h"
+#include "core/statistics.h"
 #include "sky/atmosphere_bench.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
@@ -97,11 +98,6 @@ std::vector<KnobValue> knobValues(bool quick) {
                    o.clouds.aerialPerspectiveSteps = n;
                  }, false, true});
   return v;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 // The cloud march and the aerial-perspective volume it reads (when it does).

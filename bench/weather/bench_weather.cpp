@@ -17,8 +17,10 @@
 #include <numbers>
 #include <vector>
 
+#include "core/statistics.h"
 #include "weather/weather_model.h"
 
+using firmament::median;
 using namespace firmament::weather;
 using Clock = std::chrono::steady_clock;
 
@@ -38,11 +40,6 @@ SunElevationFunction summerDay() {
                                       parseUtc("2026-06-21T03:00:00Z"));
 }
 double localSolarHours(double t_s) { return 3.0 + 7.98 / 15.0 + t_s / 3600.0; }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 // The state a case measures: from `earliest_s`, advanced in 10 min chunks until `ready` holds (at most
 // 12 h more), so the case stays "cloudy" or "stormy" whatever the physics' timing.
