@@ -82,7 +82,7 @@ double passMs(const RenderResult& r, const std::string& label) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return bench::runReportingErrors([&]() -> int {
     int repeats = 0, rounds = 0;
     bool cheapClouds = false;
     std::string heatmap;
@@ -186,11 +186,5 @@ int main(int argc, char** argv) {
       }
     }
     return kExitOk;
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitRuntime;
-  }
+  });
 }

@@ -34,7 +34,7 @@ using bench::median;
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return bench::runReportingErrors([&]() -> int {
     uint32_t width = argc > 1 ? uint32_t(std::stoul(argv[1])) : 1280;
     uint32_t height = argc > 2 ? uint32_t(std::stoul(argv[2])) : 720;
     uint32_t heavy = argc > 3 ? uint32_t(std::stoul(argv[3])) : 200;
@@ -84,11 +84,5 @@ int main(int argc, char** argv) {
                 median(cases[0].ms) / median(cases[1].ms), median(cases[2].ms) / median(cases[3].ms));
     if (!lists[0]->timingNote().empty()) std::printf("note: %s\n", lists[0]->timingNote().c_str());
     return kExitOk;
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitRuntime;
-  }
+  });
 }

@@ -34,7 +34,7 @@ using bench::median;
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return bench::runReportingErrors([&]() -> int {
     uint32_t width = argc > 1 ? uint32_t(std::stoul(argv[1])) : 1280;
     uint32_t height = argc > 2 ? uint32_t(std::stoul(argv[2])) : 720;
     int repeats = argc > 3 ? std::stoi(argv[3]) : 9;
@@ -70,11 +70,5 @@ int main(int argc, char** argv) {
     for (uint32_t mode = 0; mode < 3; ++mode) std::printf("  %-16s %9.2f ms\n", names[mode], median(ms[mode]));
     if (!lists[0]->timingNote().empty()) std::printf("note: %s\n", lists[0]->timingNote().c_str());
     return kExitOk;
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitRuntime;
-  }
+  });
 }

@@ -22,7 +22,7 @@ using namespace firmament;
 using bench::median;
 
 int main(int argc, char** argv) {
-  try {
+  return bench::runReportingErrors([&]() -> int {
     int arg = 1;
     std::string scenePath;
     if (argc > 1 && std::string(argv[1]).find(".json") != std::string::npos) scenePath = argv[arg++];
@@ -53,11 +53,5 @@ int main(int argc, char** argv) {
     for (const auto& [label, ms] : passes) std::printf("  %-32s %9.2f ms\n", label.c_str(), median(ms));
     std::printf("  %-32s %9.2f ms\n", "frame (per-frame passes)", median(frame));
     return kExitOk;
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitRuntime;
-  }
+  });
 }
