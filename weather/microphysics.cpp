@@ -49,19 +49,31 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     alignas(16) F4 saturatedOf[kChunk / 4], accretionOf[kChunk / 4], fallShareOf[kChunk / 4], convertedOf[kChunk / 4],
         evaporatingShareOf[kChunk / 4];
     uint32_t blockOf[kChunk / 4];
+    // The layer of the four cells at c: base, top (at least 100 m above the base), depth, and the cloud
+    // water that autoconversion leaves (the threshold mixing ratio over the depth, at most 2 km of it).
+    struct Column {
+      F4 base, top, depth, threshold;
+    };
+    auto columnAt = [&](size_t c) {
+      Column k;
+      k.base = _mm_loadu_ps(baseZ + c);
+      k.top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(k.base, set1(100.0f)));
+      k.depth = _mm_sub_ps(k.top, k.base);
+      k.threshold = _mm_mul_ps(thresholdPerMetre, minStd(k.depth, set1(2000.0f)));
+      return k;
+    };
+    // Cells with work: some cloud or rain, unless there is no rain and the cloud is at most the threshold.
+    auto activeMask = [&](F4 cloud, F4 rain, F4 threshold) {
+      const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
+      const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
+      return _mm_andnot_ps(_mm_or_ps(empty, idle), allOnes);
+    };
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
       start = end;
       size_t count = 0;
       for (size_t c = chunk; c < end; c += 4) {
-        const F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
-        const F4 base = _mm_loadu_ps(baseZ + c);
-        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
-        const F4 depth = _mm_sub_ps(top, base);
-        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(depth, set1(2000.0f)));
-        const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
-        const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
-        const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), allOnes);
+        const F4 active = activeMask(_mm_loadu_ps(cloudW + c), _mm_loadu_ps(rainW + c), columnAt(c).threshold);
         _mm_storeu_ps(rateOut + c, zero);
         blockOf[count] = uint32_t(c);
         count += _mm_movemask_ps(active) != 0;
@@ -70,19 +82,17 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
         const size_t c = blockOf[k];
         saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + c)), set1(p0)));
         // Accretion's (r_r)^0.875 and the share of the rain that falls out in the step.
-        const F4 base = _mm_loadu_ps(baseZ + c);
-        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
-        const F4 depth = _mm_sub_ps(top, base);
-        accretionOf[k] = powFast(_mm_div_ps(_mm_loadu_ps(rainW + c), _mm_mul_ps(rhoV, depth)), 0.875f);
-        const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(base, top)), set1(500.0f));
+        const Column column = columnAt(c);
+        accretionOf[k] = powFast(_mm_div_ps(_mm_loadu_ps(rainW + c), _mm_mul_ps(rhoV, column.depth)), 0.875f);
+        const F4 midHeight = maxStd(_mm_mul_ps(set1(0.5f), _mm_add_ps(column.base, column.top)), set1(500.0f));
         fallShareOf[k] = oneMinusExpFast(_mm_div_ps(set1(dt * kFallSpeed), midHeight));
       }
       // What converts, and the share of the falling rain that evaporates below the base.
       for (size_t k = 0; k < count; ++k) {
         const size_t c = blockOf[k];
-        const F4 cloud = _mm_loadu_ps(cloudW + c), base = _mm_loadu_ps(baseZ + c);
-        const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
-        const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(_mm_sub_ps(top, base), set1(2000.0f)));
+        const F4 cloud = _mm_loadu_ps(cloudW + c);
+        const Column column = columnAt(c);
+        const F4 base = column.base, threshold = column.threshold;
         const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
                                    _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
         const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
@@ -94,13 +104,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       for (size_t k = 0; k < count; ++k) {
       const size_t c = blockOf[k];
       F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
-      const F4 base = _mm_loadu_ps(baseZ + c);
-      const F4 top = maxStd(_mm_loadu_ps(topZ + c), _mm_add_ps(base, set1(100.0f)));
-      const F4 depth = _mm_sub_ps(top, base);
-      const F4 threshold = _mm_mul_ps(thresholdPerMetre, minStd(depth, set1(2000.0f)));
-      const F4 empty = _mm_and_ps(_mm_cmple_ps(cloud, zero), _mm_cmple_ps(rain, zero));
-      const F4 idle = _mm_and_ps(_mm_cmpeq_ps(rain, zero), _mm_cmple_ps(cloud, threshold));
-      const F4 active = _mm_andnot_ps(_mm_or_ps(empty, idle), _mm_castsi128_ps(_mm_set1_epi32(-1)));
+      const F4 active = activeMask(cloud, rain, columnAt(c).threshold);
       // Cloud → rain (the amount from above; 0: no move).
       F4 newCloud = cloud, rainNow = rain;
       transferWater(newCloud, rainNow, convertedOf[k]);
