@@ -91,15 +91,7 @@ void main() {
   if (!tilePixel(push.tiles, tiled)) return;
   ivec2 pixel = ivec2(tiled);
   AtmosphereParameters atmosphere = atmosphereFromBlock();
-  CameraParameters camera;
-  camera.forward = cloud.camera_forward.xyz;
-  camera.right = cloud.camera_right.xyz;
-  camera.up = cloud.camera_up.xyz;
-  camera.fov = cloud.camera_forward.w;
-  camera.yaw = cloud.camera_right.w;
-  camera.projection = cloud.image.z;
-  camera.width = cloud.image.x;
-  camera.height = cloud.image.y;
+  CameraParameters camera = cameraFromBlock(cloud.camera_forward, cloud.camera_right, cloud.camera_up, cloud.image);
   bool valid;
   // A reduced-grid pixel p stands for the full image's pixels [d p, d p + d): its ray goes through their
   // centre, d (p + 1/2) in full-image pixels (exactly where the upsampling puts it).

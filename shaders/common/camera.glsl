@@ -64,4 +64,22 @@ SHARED_INLINE vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(b
 
 SHARED_END
 
+#ifndef __cplusplus
+// The camera as the frame, cloud and aerial-perspective uniform blocks carry it (packed on the host
+// from SceneView::camera): forward.w = horizontal field of view (rad), right.w = yaw (rad),
+// image = (width, height, projection, per-pass use).
+CameraParameters cameraFromBlock(vec4 forward, vec4 right, vec4 up, ivec4 image) {
+  CameraParameters camera;
+  camera.forward = forward.xyz;
+  camera.right = right.xyz;
+  camera.up = up.xyz;
+  camera.fov = forward.w;
+  camera.yaw = right.w;
+  camera.projection = image.z;
+  camera.width = image.x;
+  camera.height = image.y;
+  return camera;
+}
+#endif
+
 #endif  // FIRMAMENT_CAMERA_GLSL

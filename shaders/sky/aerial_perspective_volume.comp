@@ -47,15 +47,7 @@ void main() {
   int columns = aerial.size.x, rows = aerial.size.y, slices = aerial.size.z;
   if (column.x >= columns || column.y >= rows) return;
   AtmosphereParameters atmosphere = atmosphereFromBlock();
-  CameraParameters camera;
-  camera.forward = aerial.camera_forward.xyz;
-  camera.right = aerial.camera_right.xyz;
-  camera.up = aerial.camera_up.xyz;
-  camera.fov = aerial.camera_forward.w;
-  camera.yaw = aerial.camera_right.w;
-  camera.projection = aerial.image.z;
-  camera.width = aerial.image.x;
-  camera.height = aerial.image.y;
+  CameraParameters camera = cameraFromBlock(aerial.camera_forward, aerial.camera_right, aerial.camera_up, aerial.image);
   vec3 dir = aerialColumnDirection(camera, aerialColumnPixel(column.x, column.y, columns, rows, camera.width, camera.height));
   vec3 sun = aerial.sun_direction.xyz;
   float maxDistance = aerial.camera_position.w;

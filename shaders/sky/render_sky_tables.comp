@@ -47,15 +47,7 @@ void main() {
 
   AtmosphereParameters atmosphere = atmosphereFromBlock();
   ScatteringTableSize tableSize = ScatteringTableSize(push.table_size.x, push.table_size.y, push.table_size.z, push.table_size.w);
-  CameraParameters camera;
-  camera.forward = frame.camera_forward.xyz;
-  camera.right = frame.camera_right.xyz;
-  camera.up = frame.camera_up.xyz;
-  camera.fov = frame.camera_forward.w;
-  camera.yaw = frame.camera_right.w;
-  camera.projection = frame.image.z;
-  camera.width = frame.image.x;
-  camera.height = frame.image.y;
+  CameraParameters camera = cameraFromBlock(frame.camera_forward, frame.camera_right, frame.camera_up, frame.image);
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
   if (!valid) {
