@@ -37,9 +37,50 @@ struct Push {
   gpu::TileDispatch tiles;
   int32_t firstBatch;
   int32_t divisor;    // the march's grid is 1/divisor of the image in x and y
-  int32_t composite;  // 1: the march composites over the sky; 0: clouds/upsample_clouds does
+  int32_t composite;  // 1: the march composites over the sky; 0: clouds/upsample_clouds or temporal_resolve does
+  int32_t noiseShift;
+  float pointOffset[2];  // grid pixel p marches image point divisor p + pointOffset
+  float pad[2];
+};
+
+// std140 mirror of TemporalBlock in shaders/clouds/temporal_resolve.comp.
+struct TemporalBlock {
+  float cameraPosition[4];
+  float cameraForward[4];
+  float cameraRight[4];
+  float cameraUp[4];
+  int32_t image[4];
+  float previousPosition[4];
+  float previousForward[4];
+  float previousRight[4];
+  float previousUp[4];
+  int32_t previousImage[4];
+  float motion[4];
+};
+static_assert(sizeof(TemporalBlock) == 11 * 16);
+
+struct ResolvePush {
+  gpu::TileDispatch tiles;  // the image
+  int32_t gridWidth;
+  int32_t gridHeight;
+  int32_t k;
+  int32_t historyOn;
+  int32_t offset[2];
+  int32_t clampHistory;
   int32_t pad;
 };
+
+// The order in which a k x k block's pixels are marched over k^2 frames: the Bayer matrix's (each
+// next pixel far from the ones just marched). kBayer4[n] = (x, y) of the n-th frame's pixel.
+constexpr int kBayer2[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+constexpr int kBayer4[16][2] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {1, 1}, {3, 3}, {3, 1}, {1, 3},
+                                {1, 0}, {3, 2}, {3, 0}, {1, 2}, {0, 1}, {2, 3}, {2, 1}, {0, 3}};
+
+uint64_t fnv1a(const void* data, size_t bytes, uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
 
 struct UpsamplePush {
   gpu::TileDispatch tiles;  // the image
@@ -69,8 +110,13 @@ CloudPass::CloudPass(gpu::Context& context)
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
+      resolve_(context, {"clouds/temporal_resolve",
+                         {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                          gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                         sizeof(ResolvePush)}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
-      counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters") {}
+      counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters"),
+      temporalBlock_(context, sizeof(TemporalBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud temporal block") {}
 
 void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   if (map.map.channels != 4 || map.map.pixelCount() == 0) throw std::logic_error("CloudPass: weather map must be RGBA");
@@ -79,6 +125,8 @@ void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
     weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
   weatherImage_.uploadFloats(map.map.pixels);
   weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
+  weatherHash_ = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
+                       fnv1a(&weatherRegion_, sizeof(weatherRegion_), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h)))));
 }
 
 CloudSampleCounts CloudPass::sampleCounts() const {
@@ -94,7 +142,8 @@ bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSett
 
 void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                        const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                       const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial) {
+                       const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial,
+                       bool continueSequence) {
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
   if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
@@ -165,17 +214,68 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     throw std::logic_error("CloudPass: aerial perspective 'volume' needs one volume per spectral batch");
   put(b.aerial, volume ? aerial->maxDistance_m : 0.0, double(std::max(m.aerialPerspectiveSteps, 1)), 0.0, 0.0);
   block_.upload(&b, sizeof(b));
+  // The history's key: the block without what reprojection follows (camera, sun, wind offset).
+  std::vector<uint8_t> settingsKey;
+  {
+    CloudBlock k = b;
+    std::fill(std::begin(k.cameraPosition), std::end(k.cameraPosition), 0.0f);
+    std::fill(std::begin(k.cameraForward), std::end(k.cameraForward), 0.0f);
+    std::fill(std::begin(k.cameraRight), std::end(k.cameraRight), 0.0f);
+    std::fill(std::begin(k.cameraUp), std::end(k.cameraUp), 0.0f);
+    std::fill(k.sunDirection, k.sunDirection + 3, 0.0f);
+    std::fill(std::begin(k.shadowAxisU), std::end(k.shadowAxisU), 0.0f);
+    std::fill(std::begin(k.shadowAxisV), std::end(k.shadowAxisV), 0.0f);
+    for (size_t i = 0; i < layers.size(); ++i) std::fill(k.layers[5 * i + 3], k.layers[5 * i + 3] + 3, 0.0f);
+    const auto* bytes = reinterpret_cast<const uint8_t*>(&k);
+    settingsKey.assign(bytes, bytes + sizeof(k));
+  }
   const uint32_t zero[2] = {0, 0};
   counters_.upload(zero, sizeof(zero));
 
   const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
   if (skyFrame.size() != VkDeviceSize(width) * height * 4 * sizeof(float))
     throw std::logic_error("CloudPass: the sky frame must hold the view's RGBA32F pixels");
-  if (!cloudFrame_ || cloudFrame_.size() != skyFrame.size())
-    cloudFrame_ = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+  // The previous frame's cloud frame becomes the history; this frame writes the other.
+  current_ = 1 - current_;
+  for (gpu::Buffer& frame : cloudFrames_)
+    if (!frame || frame.size() != skyFrame.size())
+      frame = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+  gpu::Buffer& cloudFrame = cloudFrames_[current_];
+  const gpu::Buffer& historyFrame = cloudFrames_[1 - current_];
+  if (!depth_ || depth_.size() != VkDeviceSize(width) * height * sizeof(float))
+    depth_ = gpu::Buffer(context_, VkDeviceSize(width) * height * sizeof(float), gpu::BufferUsage::Storage,
+                         gpu::MemoryLocation::Device, "cloud depth");
+
+  // Temporal reprojection (clouds/temporal_resolve.comp): the march covers every k-th pixel of the
+  // image in x and y, one pixel of each k x k block cycling over k^2 frames, when the previous frame
+  // can be reprojected: same settings and weather, and the camera outside the layers (flying through a
+  // cloud, the parallax inside the volume is not that of one depth per pixel: march everything).
+  const int update = m.temporalUpdate;
+  if (update != 1 && update != 4 && update != 16)
+    throw InputError("clouds: temporal_update " + std::to_string(update) + "; allowed: 1, 4, 16");
+  if (update > 1 && m.resolutionDivisor != 1)
+    throw InputError("clouds: temporal_update " + std::to_string(update) + " needs resolution_divisor 1 (it is " +
+                     std::to_string(m.resolutionDivisor) + ")");
+  const double cameraRadius = glm::length(view.cameraPosition);
+  bool cameraInLayer = false;
+  for (const shared::CloudLayer& c : layers) {
+    const double margin = 0.05 * (c.top_radius - c.bottom_radius);
+    cameraInLayer = cameraInLayer || (cameraRadius > c.bottom_radius - margin && cameraRadius < c.top_radius + margin);
+  }
+  const glm::dvec3 windOffset = layers.empty() ? glm::dvec3(0.0) : glm::dvec3(layers[0].wind_offset);
+  const int k = update == 16 ? 4 : update == 4 ? 2 : 1;
+  reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey &&
+                 history_.weather == weatherHash_;
+  int offset[2] = {0, 0};
+  if (reprojected_) {
+    const int n = int(temporalFrame_ % uint32_t(k * k));
+    offset[0] = k == 4 ? kBayer4[n][0] : kBayer2[n][0];
+    offset[1] = k == 4 ? kBayer4[n][1] : kBayer2[n][1];
+  }
+
   // Reduced resolution: the march covers a grid d times coarser (each coarse pixel at the centre of its
   // d x d image pixels) into coarseFrame_, then clouds/upsample_clouds interpolates and composites.
-  const int divisor = std::clamp(m.resolutionDivisor, 1, 8);
+  const int divisor = reprojected_ ? k : std::clamp(m.resolutionDivisor, 1, 8);
   const uint32_t coarseWidth = (width + uint32_t(divisor) - 1) / uint32_t(divisor);
   const uint32_t coarseHeight = (height + uint32_t(divisor) - 1) / uint32_t(divisor);
   const VkDeviceSize coarseBytes = VkDeviceSize(coarseWidth) * coarseHeight * 4 * sizeof(float);
@@ -185,7 +285,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
       divisor > 1 ? gpu::tileDispatch(context_, coarseWidth, coarseHeight,
                                       tiles.stride == 1 ? gpu::DispatchOrder::RowMajor : gpu::DispatchOrder::Interleaved)
                   : tiles;
-  gpu::Buffer& marchFrame = divisor > 1 ? coarseFrame_ : cloudFrame_;
+  gpu::Buffer& marchFrame = divisor > 1 ? coarseFrame_ : cloudFrame;
   // Samples are reported per image pixel: what a frame costs, whatever grid the march ran on.
   cloudPixels_ = size_t(width) * height;
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
@@ -205,7 +305,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                 {noise_.curl(), noise_.linearRepeat()},
                                 {noise_.blueNoise(), noise_.nearestRepeat()},
                                 skyFrame,
-                                cloudFrame_,
+                                cloudFrame,
                                 block_,
                                 counters_,
                                 {weatherImage_, noise_.linearRepeat()},
@@ -224,7 +324,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage},
+                                     gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer},
                                     sizeof(Push)});
   if (!volume && !aerialPlaceholder_)
     aerialPlaceholder_ = gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
@@ -246,18 +346,54 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          {weatherImage_, noise_.linearRepeat()},
                                          {shadowImage_, luts.linearClamp()},
                                          {lut.multipleScatteringAnisotropy, luts.linearClamp()},
-                                         {aerialImage, luts.linearClamp()}});
-    Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0, 0};
+                                         {aerialImage, luts.linearClamp()},
+                                         depth_});
+    // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
+    // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
+    Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,
+              reprojected_ ? int32_t((temporalFrame_ * 37u) % 4096u) : 0,
+              {reprojected_ ? float(offset[0]) + 0.5f : 0.5f * float(divisor),
+               reprojected_ ? float(offset[1]) + 0.5f : 0.5f * float(divisor)},
+              {0.0f, 0.0f}};
     commands.pushConstants(push);
     commands.dispatchTiles(marchTiles, "clouds/render_clouds");
     if (batch + 1 < luts.batchCount() || divisor > 1) commands.barrier();
   }
-  if (divisor > 1) {
-    commands.bind(upsample_, {coarseFrame_, cloudFrame_, skyFrame});
+  if (reprojected_) {
+    TemporalBlock t{};
+    put(t.cameraPosition, view.cameraPosition);
+    put(t.cameraForward, view.camera.forward, view.camera.fov);
+    put(t.cameraRight, view.camera.right, view.camera.yaw);
+    put(t.cameraUp, view.camera.up);
+    t.image[0] = view.camera.width, t.image[1] = view.camera.height, t.image[2] = view.camera.projection;
+    const CloudView& p = history_.view;
+    put(t.previousPosition, p.cameraPosition);
+    put(t.previousForward, p.camera.forward, p.camera.fov);
+    put(t.previousRight, p.camera.right, p.camera.yaw);
+    put(t.previousUp, p.camera.up);
+    t.previousImage[0] = p.camera.width, t.previousImage[1] = p.camera.height, t.previousImage[2] = p.camera.projection;
+    // The noise is read at p + wind offset: a feature at P now was at P + (offset now - offset then).
+    // The clamp everywhere in proportion to the sun's move, fully from 0.25 degrees per frame (a
+    // time-lapse; the day's course moves it ~1e-4 degrees per frame at 30 frames per second).
+    const double sunMove = std::acos(std::clamp(glm::dot(glm::normalize(view.sunDirection), glm::normalize(p.sunDirection)), -1.0, 1.0));
+    put(t.motion, windOffset - history_.windOffset, std::clamp(sunMove / (0.25 * 3.14159265358979323846 / 180.0), 0.0, 1.0));
+    temporalBlock_.upload(&t, sizeof(t));
+    commands.bind(resolve_, {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_});
+    ResolvePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), k, 1, {offset[0], offset[1]}, m.temporalClamp ? 1 : 0, 0};
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "clouds/temporal_resolve");
+    ++temporalFrame_;
+  } else if (divisor > 1) {
+    commands.bind(upsample_, {coarseFrame_, cloudFrame, skyFrame});
     UpsamplePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), divisor, 0};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/upsample_clouds");
   }
+  history_.usable = k > 1;
+  history_.settings = std::move(settingsKey);
+  history_.weather = weatherHash_;
+  history_.view = view;
+  history_.windOffset = windOffset;
 }
 
 }  // namespace firmament

@@ -54,13 +54,21 @@ class CloudPass {
   // (a barrier between) and the sky written before (a barrier between). With
   // settings.march.aerialPerspective == Volume, `aerial` is the volume of this view, written before (a
   // barrier between); otherwise it is not read (may be null).
+  //
+  // continueSequence: this frame follows the previous record() in a sequence, so with
+  // settings.march.temporalUpdate N > 1 it may march 1 in N pixels and reproject the rest from the
+  // previous frame (clouds/temporal_resolve). It does so only when the previous frame was recorded
+  // with the same cloud settings, image size and weather map, and the camera is not inside a layer;
+  // otherwise every pixel is marched (and the next frame can reproject from this one).
   void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
               const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, const gpu::TileDispatch& tiles,
-              gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr);
+              gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr, bool continueSequence = false);
 
   // RGBA32F pixels of the view, row-major: rgb = the clouds' light in front of the sky (cd/m^2, aerial
   // perspective included), a = the clouds' transmittance. Valid after the recorded commands ran.
-  const gpu::Buffer& cloudFrame() const { return cloudFrame_; }
+  const gpu::Buffer& cloudFrame() const { return cloudFrames_[current_]; }
+  // Whether the last record() reprojected (marched 1 in temporalUpdate pixels).
+  bool lastFrameReprojected() const { return reprojected_; }
   // The Beer shadow map of the last record() with it enabled (RGBA32F: front depth m, mean extinction
   // 1/m, total optical depth, 0; common/cloud_shadow.glsl).
   const gpu::Image& shadowMap() const { return shadowImage_; }
@@ -76,14 +84,30 @@ class CloudPass {
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
+  gpu::ComputePipeline resolve_;   // clouds/temporal_resolve (temporal reprojection)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
   glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)
-  gpu::Buffer cloudFrame_;
+  // This frame's and the previous frame's cloud frames (the history), swapped by every record().
+  gpu::Buffer cloudFrames_[2];
+  int current_ = 0;
   gpu::Buffer coarseFrame_;  // the march's frame at reduced resolution
+  gpu::Buffer depth_;        // the march's depth per pixel of its grid (common to all grids: w x h floats)
+  gpu::Buffer temporalBlock_;
   size_t cloudPixels_ = 0;
+  // What the previous frame was, for reprojection.
+  struct History {
+    bool usable = false;            // recorded with temporal update > 1
+    std::vector<uint8_t> settings;  // the cloud block without camera, sun and wind (clouds/cloud_pass.cpp)
+    uint64_t weather = 0;
+    CloudView view;
+    glm::dvec3 windOffset{0.0};
+  } history_;
+  uint64_t weatherHash_ = 0;
+  uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
+  bool reprojected_ = false;
 };
 
 }  // namespace firmament

@@ -79,6 +79,8 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (coarseFactor) march.coarseFactor = *coarseFactor;
   if (jitter) march.jitter = *jitter;
   if (resolutionDivisor) march.resolutionDivisor = *resolutionDivisor;
+  if (temporalUpdate) march.temporalUpdate = *temporalUpdate;
+  if (temporalClamp) march.temporalClamp = *temporalClamp;
   if (uniformSteps) march.uniformSteps = *uniformSteps;
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
@@ -146,6 +148,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   }
   s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
   s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));
+  s.march.temporalUpdate = int(scene.integer("/clouds/temporal_update"));
   s.march.beerShadowMap = scene.boolean("/clouds/shadow_map");
   const std::string quality = scene.string("/clouds/quality");
   if (quality == "low") {

@@ -72,6 +72,13 @@ struct CloudMarchSettings {
   // centre of the image pixels it stands for, then is interpolated bilinearly to the image
   // (clouds/upsample_clouds). The scene's /clouds/resolution_divisor.
   int resolutionDivisor = 1;
+  // Temporal reprojection (docs/clouds.md "Temporal reprojection"; the scene's /clouds/temporal_update):
+  // a frame that continues a sequence (SkyRenderOptions::continueSequence) marches 1 in N of the pixels
+  // (N = 1, 4 or 16: one pixel of every 1x1, 2x2 or 4x4 block, cycling) and takes the rest from the
+  // previous frame, reprojected with the camera's and the wind's motion and clamped to the fresh
+  // samples around. 1: every pixel, every frame. Needs resolutionDivisor 1.
+  int temporalUpdate = 1;
+  bool temporalClamp = true;  // clamp the reprojected history to the fresh samples around (off: comparisons)
   AerialPerspective aerialPerspective = AerialPerspective::Volume;  // the scene's /clouds/aerial_perspective
   int aerialPerspectiveSteps = 8;  // March: equal steps from the camera to the cloud's mean depth
   bool ambient = true;
@@ -112,6 +119,8 @@ struct CloudOverrides {
   std::optional<int> coarseFactor;
   std::optional<bool> jitter;
   std::optional<int> resolutionDivisor;
+  std::optional<int> temporalUpdate;
+  std::optional<bool> temporalClamp;
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
   std::optional<bool> beerShadowMap;

@@ -83,6 +83,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.aerialPerspective = options.clouds.aerialPerspective;
   plan.cloudResolutionDivisor = options.clouds.resolutionDivisor;
   plan.cloudShadowMap = options.clouds.beerShadowMap;
+  plan.cloudTemporalUpdate = options.clouds.temporalUpdate;
   return plan;
 }
 
@@ -274,7 +275,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     commands.barrier();
     std::vector<const gpu::Image*> irradiance;
     for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
-    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume);
+    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume, options.continueSequence);
   }
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
@@ -289,6 +290,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     result.clouds = Image(width, height, 4);
     result.clouds.pixels = clouds_->cloudFrame().download<float>();
     result.cloudSamples = clouds_->sampleCounts();
+    result.cloudsReprojected = clouds_->lastFrameReprojected();
   }
   Image& image = result.image;
   image.metadata["firmament.scene_hash"] = scene.hash();
@@ -354,7 +356,8 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   j["spectral_samples"] = result.spectralSamples;
   if (result.clouds.pixelCount() > 0)
     j["clouds"] = {{"view_samples_per_pixel", result.cloudSamples.viewPerPixel},
-                   {"light_samples_per_pixel", result.cloudSamples.lightPerPixel}};
+                   {"light_samples_per_pixel", result.cloudSamples.lightPerPixel},
+                   {"reprojected", result.cloudsReprojected}};
   if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
   j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
                           {"max", maxY},

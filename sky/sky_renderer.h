@@ -51,6 +51,10 @@ struct SkyRenderOptions {
   CloudNoiseSettings cloudNoise;  // noise texture sizes (tests use small ones)
   // Replaces the scene's weather map (tests, tools); unset: sky/scene_weather.h decides.
   std::shared_ptr<const CloudWeatherMap> cloudWeather;
+  // This frame continues the sequence of this renderer's previous render() (the same scene with the
+  // camera, its orientation, the time or the sun moved): the clouds may reproject that frame
+  // (/clouds/temporal_update, docs/clouds.md "Temporal reprojection"). False: a still, every pixel marched.
+  bool continueSequence = false;
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).
@@ -72,6 +76,7 @@ struct RenderResult {
   // is sky * a + rgb). Empty without clouds.
   Image clouds;
   CloudSampleCounts cloudSamples;  // density evaluations per pixel of the cloud march
+  bool cloudsReprojected = false;  // the clouds marched 1 in /clouds/temporal_update pixels, reprojected the rest
 };
 
 class SkyRenderer {

@@ -1,5 +1,6 @@
 // `firmament render [SCENE] [-o OUT.exr]`: the fast path on the GPU (lavapipe without one). Writes the
 // EXR, a PNG preview and a stats JSON beside it.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -78,19 +79,70 @@ int runRender(const Args& args) {
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
 
-  // Phases: device, render (tables + frame), write. The bar appears only past one second.
-  auto progress = std::make_unique<Progress>("render", 3);
+  // A sequence: frame i moves the camera and the clouds' clock by i times the rates; each frame
+  // continues the previous one (temporal reprojection, /clouds/temporal_update) and is written as
+  // OUT_NNNN.exr.
+  const int frames = args.integer("frames", 1, 1, 100000);
+  const double interval = args.number("frame-interval", 1.0 / 30.0);
+  if (!(interval >= 0.0) || interval > 86400.0)
+    throw InputError("--frame-interval " + std::to_string(interval) + ": allowed: 0 to 86400 s");
+  const double yawRate = args.number("yaw-rate", 0.0), pitchRate = args.number("pitch-rate", 0.0);
+  const double climbRate = args.number("climb-rate", 0.0);
+  for (double rate : {yawRate, pitchRate, climbRate})
+    if (!std::isfinite(rate)) throw InputError("--yaw-rate, --pitch-rate, --climb-rate: allowed: finite numbers");
+  if (frames == 1 && (args.has("yaw-rate") || args.has("pitch-rate") || args.has("climb-rate") || args.has("frame-interval")))
+    throw InputError("--yaw-rate, --pitch-rate, --climb-rate and --frame-interval describe a sequence: give --frames N (N > 1)");
+  auto frameScene = [&](int i) {
+    if (i == 0) return scene;
+    const double t = double(i) * interval;
+    std::vector<std::string> o = overrides;
+    double yaw = std::fmod(scene.number("/camera/yaw_deg") + yawRate * t, 360.0);
+    o.push_back("/camera/yaw_deg=" + std::to_string(yaw));
+    const double pitch = scene.number("/camera/pitch_deg") + pitchRate * t;
+    if (pitch < -90.0 || pitch > 90.0)
+      throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " + std::to_string(pitch) +
+                       " deg; allowed: -90 to 90");
+    o.push_back("/camera/pitch_deg=" + std::to_string(pitch));
+    o.push_back("/camera/height_above_ground_m=" + std::to_string(scene.number("/camera/height_above_ground_m") + climbRate * t));
+    if (scene.hasSection("clouds")) o.push_back("/clouds/time_s=" + std::to_string(scene.number("/clouds/time_s") + t));
+    return args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o) : Scene::load(scenePath, o);
+  };
+  auto framePath = [&](int i) {
+    if (frames == 1) return out;
+    char suffix[32];
+    std::snprintf(suffix, sizeof(suffix), "_%04d.exr", i);
+    return std::filesystem::path(out).replace_extension("").concat(suffix);
+  };
+  for (int i = 1; i < frames; ++i) frameScene(i);  // bad rates fail before anything is written
+
+  // Phases: device, then render (tables + frame) and write per frame. The bar appears only past one second.
+  auto progress = std::make_unique<Progress>("render", 1 + 2 * frames);
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
   logInfo("device: " + context.description());
   SkyRenderer renderer(context);
   progress->advance();
-  RenderResult result = renderer.render(scene, options);
-  progress->advance();
-  double ev100 = writeRenderOutputs(out.string(), scene, result, context.description());
-  progress->advance();
+  RenderResult result;
+  double ev100 = 0.0;
+  for (int i = 0; i < frames; ++i) {
+    const Scene current = frameScene(i);
+    options.continueSequence = i > 0;
+    result = renderer.render(current, options);
+    progress->advance();
+    ev100 = writeRenderOutputs(framePath(i).string(), current, result, context.description());
+    progress->advance();
+    if (frames > 1) {
+      char line[200];
+      std::snprintf(line, sizeof(line), "  frame %4d: %9.3f ms%s", i, result.frameMilliseconds,
+                    result.clouds.pixelCount() == 0 ? ""
+                    : result.cloudsReprojected      ? ", clouds reprojected"
+                                                    : ", clouds marched in full");
+      logInfo(line);
+    }
+  }
   progress.reset();  // ends the bar's line before the summary
+  out = framePath(frames - 1);
 
   for (const auto& t : result.timings) {
     char line[160];
@@ -108,7 +160,8 @@ const CommandRegistration reg{{"render",
                                "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
                                "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
                                "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
-                               "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--explain] [--device D]",
+                               "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--frames N [--frame-interval S] "
+                               "[--yaw-rate DEG/S] [--pitch-rate DEG/S] [--climb-rate M/S]] [--explain] [--device D]",
                                {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
                                  false, 'o'},
                                 {"width", "W", "image width (same as --set /camera/width=W)"},
@@ -128,6 +181,12 @@ const CommandRegistration reg{{"render",
                                  "columns x rows x depth slices (default 32x32x32)"},
                                 {"aerial-volume-depth", "M",
                                  "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
+                                {"frames", "N", "render a sequence of N frames (OUT_0000.exr ...), each continuing the last "
+                                                "(clouds: temporal reprojection, /clouds/temporal_update)"},
+                                {"frame-interval", "S", "seconds between frames: the clouds' clock advances by it (default 1/30)"},
+                                {"yaw-rate", "DEG/S", "camera turn rate in a sequence (clockwise from above)"},
+                                {"pitch-rate", "DEG/S", "camera pitch rate in a sequence"},
+                                {"climb-rate", "M/S", "camera climb rate in a sequence"},
                                 deviceOption()},
                                0,
                                1,

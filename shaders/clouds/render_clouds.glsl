@@ -50,12 +50,18 @@ layout(std430, set = 0, binding = 9) buffer CloudFrame { vec4 pixels[]; } cloudF
 // Sample counters (summed over the pixels by the first batch): view-march density evaluations (coarse
 // and fine), light-march density evaluations.
 layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
+// The cloud's depth per pixel of the march's grid (m along the ray): the transmittance-weighted mean
+// depth where there is cloud, else where the ray enters the first shell (the march limit if none).
+// Temporal reprojection (clouds/temporal_resolve.comp) moves each pixel's history with it.
+layout(std430, set = 0, binding = 16) writeonly buffer CloudDepth { float depth[]; } cloudDepth;
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   int firstBatch;  // 1: write (composite over the sky); 0: add this spectral batch's light
-  int divisor;     // the march runs at 1/divisor of the image's width and height (tiles: the reduced grid)
-  int composite;   // 1: composite over the sky frame here; 0: clouds/upsample_clouds does it at full size
-  int pad0;
+  int divisor;     // the march's grid is 1/divisor of the image's width and height (tiles: that grid)
+  int composite;   // 1: composite over the sky frame here; 0: clouds/upsample_clouds or temporal_resolve does
+  int noiseShift;  // added to the pixel for the blue-noise lookup (a new pattern per temporal frame)
+  vec2 pointOffset;  // grid pixel p marches the image point divisor p + pointOffset (pixel units)
+  vec2 pad1;
 } push;
 
 const int kMaxSegments = 16;  // two stretches per layer, 8 layers
@@ -94,13 +100,17 @@ void main() {
   CameraParameters camera = cameraFromBlock(cloud.camera_forward, cloud.camera_right, cloud.camera_up, cloud.image);
   bool valid;
   // A reduced-grid pixel p stands for the full image's pixels [d p, d p + d): its ray goes through their
-  // centre, d (p + 1/2) in full-image pixels (exactly where the upsampling puts it).
-  vec2 imagePoint = (vec2(pixel) + 0.5) * float(push.divisor);
+  // centre, d p + d/2 in full-image pixels (exactly where the upsampling puts it), or, for temporal
+  // reprojection, through the centre of this frame's pixel of the block, d p + o + 1/2.
+  vec2 imagePoint = vec2(pixel) * float(push.divisor) + push.pointOffset;
   vec3 dir = cameraRayDirection(camera, imagePoint, valid);
   uint index = uint(pixel.y) * push.tiles.width + uint(pixel.x);
   vec4 skyValue = push.composite != 0 ? skyFrame.pixels[index] : vec4(0.0);
   if (!valid) {
-    if (push.firstBatch != 0) cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
+    if (push.firstBatch != 0) {
+      cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
+      cloudDepth.depth[index] = cloud.sun_direction.w;
+    }
     return;
   }
   vec3 sun = cloud.sun_direction.xyz;
@@ -152,7 +162,7 @@ void main() {
   float maxFactor = cloud.stepGrowth.z;
   uint viewCount = 0u, lightCount = 0u;
   ivec2 blueSize = textureSize(blueNoise, 0);
-  float xi = jitter ? texelFetch(blueNoise, pixel % blueSize, 0).r : 0.5;
+  float xi = jitter ? texelFetch(blueNoise, (pixel + push.noiseShift) % blueSize, 0).r : 0.5;
   // Per octave of the current layer (set when the march enters a layer): the phase for this pixel's
   // scattering angle, the extinction scale a^i, the weight b^i, and the most the way down from the layer
   // top can pass (cloudOctaveTransmittanceBound, with a 1e-4 margin for its float rounding).
@@ -306,6 +316,7 @@ void main() {
     atomicAdd(counters.viewSamples, viewCount);
     atomicAdd(counters.lightSamples, lightCount);
     cloudFrame.pixels[index] = vec4(light, transmittance);
+    cloudDepth.depth[index] = depthWeight > 0.0 ? meanDepth : count > 0 ? segments[0].x : tMax;
     if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
   } else {
     vec4 previous = cloudFrame.pixels[index];

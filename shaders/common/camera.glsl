@@ -62,6 +62,51 @@ SHARED_INLINE vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(b
   return normalize(camera.forward + tan_half * (x * camera.right + y * camera.up));
 }
 
+// The inverse of cameraRayDirection: the image point (pixel units) whose ray has direction `dir`
+// (unit). Temporal reprojection uses it to find where a point seen now was in the previous frame.
+// `valid` is false where no pixel looks that way (behind a perspective camera, or at a fisheye's or
+// the equirectangular poles' singular point); the point may lie outside the image, which the caller
+// checks.
+SHARED_INLINE vec2 cameraPixelOfDirection(CameraParameters camera, vec3 dir, OUT(bool) valid) {
+  valid = true;
+  Real w = Real(camera.width);
+  Real h = Real(camera.height);
+  if (camera.projection == kProjectionEquirectangular) {
+    // Invert longitude = yaw + (x / w - 1/2) 2 pi and latitude = (1/2 - y / h) pi.
+    Real horizontal = sqrt(dir.x * dir.x + dir.y * dir.y);
+    if (horizontal <= 0.0) {
+      valid = false;
+      return vec2(0.5 * w, dir.z > 0.0 ? 0.0 : h);
+    }
+    Real turns = (atan(dir.x, dir.y) - camera.yaw) / (2.0 * kPi);
+    turns -= floor(turns + 0.5);  // wrapped to [-1/2, 1/2)
+    Real latitude = atan(dir.z, horizontal);
+    return vec2((turns + 0.5) * w, (0.5 - latitude / kPi) * h);
+  }
+  // Components along the camera's basis; image-plane coordinates (x, y) as in cameraRayDirection.
+  Real f = dot(dir, camera.forward);
+  Real a = dot(dir, camera.right);
+  Real b = dot(dir, camera.up);
+  Real x, y;
+  if (camera.projection == kProjectionFisheye) {
+    // Equidistant: the radius in the image plane is theta / (fov / 2), along (a, b).
+    Real side = sqrt(a * a + b * b);
+    Real theta = atan(side, f);
+    Real radius = theta / (0.5 * camera.fov);
+    x = side > 0.0 ? radius * a / side : 0.0;
+    y = side > 0.0 ? radius * b / side : 0.0;
+  } else {
+    if (f <= 0.0) {
+      valid = false;
+      return vec2(-1.0);
+    }
+    Real tan_half = tan(0.5 * camera.fov);
+    x = a / (f * tan_half);
+    y = b / (f * tan_half);
+  }
+  return vec2(0.5 * (x + 1.0) * w, 0.5 * (1.0 - y * (w / h)) * h);
+}
+
 SHARED_END
 
 #ifndef __cplusplus
