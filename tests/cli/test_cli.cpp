@@ -97,6 +97,32 @@ TEST(Cli, RenderWritesExrPngAndStats) {
   EXPECT_EQ(mismatch.exitCode, 2);
 }
 
+// A sequence: one EXR per frame, the clouds of every frame after the first reprojected (the stats say
+// so); rates that leave the allowed camera range, or rates without --frames, exit 2 before writing.
+TEST(Cli, RenderFramesWritesASequence) {
+  auto dir = test::scratchDir("cli_frames");
+  const std::string scene = writeScene(dir, "clouds.json", R"({"camera": {"width": 32, "height": 18, "pitch_deg": 30},
+      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "wind_m_s": 10}})").string();
+  CommandRun r = firmament("render " + scene + " --frames 3 --yaw-rate 6 -o " + (dir / "seq.exr").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (int i = 0; i < 3; ++i) {
+    const std::string stem = "seq_000" + std::to_string(i);
+    ASSERT_TRUE(std::filesystem::exists(dir / (stem + ".exr"))) << stem;
+    std::ifstream stats(dir / (stem + ".json"));
+    const std::string text((std::istreambuf_iterator<char>(stats)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find(i == 0 ? "\"reprojected\": false" : "\"reprojected\": true"), std::string::npos) << stem << text;
+    Image image = readExr(dir / (stem + ".exr"));
+    for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "seq.exr"));
+  for (const std::string& bad : {std::string("--frames 0"), std::string("--yaw-rate 5"), std::string("--frames 40 --pitch-rate 200")}) {
+    CommandRun b = firmament("render " + scene + " " + bad + " -o " + (dir / "bad.exr").string());
+    EXPECT_EQ(b.exitCode, 2) << bad << ": " << b.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad_0000.exr")) << bad;
+  }
+}
+
 TEST(Cli, ExplainListsOnlyNeededPasses) {
   CommandRun r = firmament("render --explain");
   ASSERT_EQ(r.exitCode, 0) << r.output;
