@@ -249,13 +249,11 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   // Temporal reprojection (clouds/temporal_resolve.comp): the march covers every k-th pixel of the
   // image in x and y, one pixel of each k x k block cycling over k^2 frames, when the previous frame
   // can be reprojected: same settings and weather, and the camera outside the layers (flying through a
-  // cloud, the parallax inside the volume is not that of one depth per pixel: march everything).
+  // cloud, the parallax inside the volume is not that of one depth per pixel: march everything), at
+  // full resolution.
   const int update = m.temporalUpdate;
   if (update != 1 && update != 4 && update != 16)
     throw InputError("clouds: temporal_update " + std::to_string(update) + "; allowed: 1, 4, 16");
-  if (update > 1 && m.resolutionDivisor != 1)
-    throw InputError("clouds: temporal_update " + std::to_string(update) + " needs resolution_divisor 1 (it is " +
-                     std::to_string(m.resolutionDivisor) + ")");
   const double cameraRadius = glm::length(view.cameraPosition);
   bool cameraInLayer = false;
   for (const shared::CloudLayer& c : layers) {
@@ -263,7 +261,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     cameraInLayer = cameraInLayer || (cameraRadius > c.bottom_radius - margin && cameraRadius < c.top_radius + margin);
   }
   const glm::dvec3 windOffset = layers.empty() ? glm::dvec3(0.0) : glm::dvec3(layers[0].wind_offset);
-  const int k = update == 16 ? 4 : update == 4 ? 2 : 1;
+  // A reduced-resolution march (divisor > 1) runs every frame instead: it is already the cheap path.
+  const int k = m.resolutionDivisor > 1 ? 1 : update == 16 ? 4 : update == 4 ? 2 : 1;
   reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey &&
                  history_.weather == weatherHash_;
   int offset[2] = {0, 0};

@@ -76,7 +76,8 @@ struct CloudMarchSettings {
   // a frame that continues a sequence (SkyRenderOptions::continueSequence) marches 1 in N of the pixels
   // (N = 1, 4 or 16: one pixel of every 1x1, 2x2 or 4x4 block, cycling) and takes the rest from the
   // previous frame, reprojected with the camera's and the wind's motion and clamped to the fresh
-  // samples around. 1: every pixel, every frame. Needs resolutionDivisor 1.
+  // samples around. 1: every pixel, every frame. With resolutionDivisor > 1 the reduced grid is marched
+  // every frame instead.
   int temporalUpdate = 1;
   bool temporalClamp = true;  // clamp the reprojected history to the fresh samples around (off: comparisons)
   AerialPerspective aerialPerspective = AerialPerspective::Volume;  // the scene's /clouds/aerial_perspective

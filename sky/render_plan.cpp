@@ -105,13 +105,14 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                "the march ran at 1/" + std::to_string(divisor) + " of the width and height", true});
       const int update = options.cloudTemporalUpdate ? *options.cloudTemporalUpdate
                                                      : int(scene.integer("/clouds/temporal_update"));
-      if (update > 1)
+      if (update > 1 && divisor == 1)
         plan.passes.push_back({"clouds/temporal_resolve", "the clouds at full size from this frame's samples and the last frame's, composited",
                                "frames that continue a sequence march 1 in " + std::to_string(update) +
                                    " pixels and reproject the rest (a still, the first frame and a camera inside a layer march all)",
                                true});
       else
-        plan.omitted.push_back({"clouds/temporal_resolve", "/clouds/temporal_update 1: every pixel marched every frame"});
+        plan.omitted.push_back({"clouds/temporal_resolve", update == 1 ? "/clouds/temporal_update 1: every pixel marched every frame"
+                                                                        : "/clouds/resolution_divisor above 1: the reduced grid marched every frame"});
     }
   } else {
     plan.omitted.push_back({"clouds", "no clouds section: no noise textures, cloud march or shadow map"});

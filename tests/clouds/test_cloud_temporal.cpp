@@ -54,8 +54,10 @@ TEST(CameraInverse, RoundTripsEveryProjection) {
 }
 
 TEST(CloudTemporalPlan, ResolveListedOnlyWithTemporalUpdate) {
-  EXPECT_FALSE(planRender(test::cloudScene()).has("clouds/temporal_resolve"));
-  EXPECT_TRUE(planRender(test::cloudScene({"/clouds/temporal_update=16"})).has("clouds/temporal_resolve"));
+  EXPECT_TRUE(planRender(test::cloudScene()).has("clouds/temporal_resolve"));  // 1/16 by default
+  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/temporal_update=1"})).has("clouds/temporal_resolve"));
+  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/resolution_divisor=2"})).has("clouds/temporal_resolve"));
+  EXPECT_TRUE(planRender(test::cloudScene({"/clouds/temporal_update=4"})).has("clouds/temporal_resolve"));
   PlanOptions off;
   off.cloudTemporalUpdate = 1;
   EXPECT_FALSE(planRender(test::cloudScene({"/clouds/temporal_update=4"}), off).has("clouds/temporal_resolve"));
@@ -176,10 +178,17 @@ TEST_F(CloudTemporal, FallsBackToAFullMarch) {
   EXPECT_FALSE(renderer.render(frameScene(1, 0.0, 0.0), temporal(1, true)).cloudsReprojected);
 }
 
-TEST_F(CloudTemporal, RejectsAReducedResolutionToo) {
+// A reduced-resolution march is the cheap path already: it runs every frame, no reprojection.
+TEST_F(CloudTemporal, ReducedResolutionMarchesEveryFrame) {
   SkyRenderOptions o = temporal(16, false);
   o.clouds.resolutionDivisor = 2;
-  EXPECT_THROW(test::cloudRenderer().render(frameScene(0, 0.0, 0.0), o), InputError);
+  test::cloudRenderer().render(frameScene(0, 0.0, 0.0), o);
+  o.continueSequence = true;
+  const RenderResult r = test::cloudRenderer().render(frameScene(1, 0.0, 0.0), o);
+  EXPECT_FALSE(r.cloudsReprojected);
+  bool upsampled = false;
+  for (const auto& t : r.timings) upsampled = upsampled || t.label == "clouds/upsample_clouds";
+  EXPECT_TRUE(upsampled);
 }
 
 }  // namespace
