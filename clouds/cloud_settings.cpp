@@ -1,5 +1,7 @@
 #include "clouds/cloud_settings.h"
 
+#include "common/cloud_lighting.glsl"
+
 #include <algorithm>
 #include <cmath>
 
@@ -130,6 +132,15 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   light.gForward = scene.number("/clouds/lighting/phase_g_forward");
   light.gBack = scene.number("/clouds/lighting/phase_g_back");
   light.backWeight = scene.number("/clouds/lighting/phase_back_weight");
+  light.dropletDiameter_um = scene.number("/clouds/lighting/droplet_diameter_um");
+  const std::string phase = scene.string("/clouds/lighting/phase");
+  if (phase == "approximate_mie") {
+    light.phase = CloudPhaseModel::ApproximateMie;
+    const glm::dvec4 lobes = shared::cloudApproximateMie(light.dropletDiameter_um);
+    light.gForward = lobes.x, light.gBack = lobes.y, light.backWeight = lobes.z, light.alpha = lobes.w;
+  } else if (phase != "dual_henyey_greenstein") {
+    throw InputError(source + ": /clouds/lighting/phase: '" + phase + "'; allowed: dual_henyey_greenstein, approximate_mie");
+  }
   light.albedo = scene.number("/clouds/lighting/albedo");
   light.octaves = int(scene.integer("/clouds/lighting/ms_octaves"));
   light.ambientBottomVisibility = scene.number("/clouds/lighting/ambient_bottom_visibility");

@@ -85,10 +85,20 @@ struct CloudMarchSettings {
   bool ambient = true;
 };
 
+// The droplets' phase function (common/cloud_lighting.glsl cloudPhase; the scene's
+// /clouds/lighting/phase): two Henyey-Greenstein lobes (default), or Jendersie and d'Eon 2023's
+// approximate Mie phase for a droplet diameter (/clouds/lighting/droplet_diameter_um).
+enum class CloudPhaseModel { DualHenyeyGreenstein, ApproximateMie };
+
 struct CloudLightingSettings {
+  CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein;
+  double dropletDiameter_um = 20.0;  // ApproximateMie: fills the lobes below when the scene is read
+  // The phase's lobes, p = (1 - backWeight) p_HG(gForward) + backWeight p_Draine(gBack, alpha):
+  // the dual-HG model's forward and back lobes (alpha = 0), or the approximate Mie's HG and Draine lobes.
   double gForward = 0.8;
   double gBack = -0.3;
   double backWeight = 0.3;
+  double alpha = 0.0;
   double albedo = 1.0;
   int octaves = 3;  // a, b, c are per layer (CloudLayerSettings::msA, msB, msC)
   double ambientBottomVisibility = 0.5;

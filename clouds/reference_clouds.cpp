@@ -28,6 +28,14 @@ glm::dvec3 directionAround(glm::dvec3 axis, double cosine, double azimuth) {
 
 }  // namespace
 
+double sampleCloudPhaseCosine(const CloudLightingSettings& lighting, reference::Random& random) {
+  if (random.uniform() >= lighting.backWeight) return reference::sampleHenyeyGreensteinCosine(lighting.gForward, random.uniform());
+  for (;;) {  // accepted on average (1 + alpha (1 + 2 g^2) / 3) / (1 + alpha): ~0.6 for the fit's lobes
+    const double nu = reference::sampleHenyeyGreensteinCosine(lighting.gBack, random.uniform());
+    if (lighting.alpha <= 0.0 || random.uniform() * (1.0 + lighting.alpha) <= 1.0 + lighting.alpha * nu * nu) return nu;
+  }
+}
+
 CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl,
                          CloudWeatherMap weather, double groundRadius_m)
     : layers_(std::move(layers)),
@@ -182,13 +190,12 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
       const double nuSun = glm::dot(w, sun_);
       const glm::dvec3 sunLight = sunIrradianceAt(x);
       if (sunLight.x + sunLight.y + sunLight.z > 0.0) {
-        const double phase = shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, nuSun);
+        const double phase = shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, lighting_.alpha, nuSun);
         sunlike += weight * phase * cloudTransmittance(x, sun_, random) * sunLight;
       }
-      // New direction from the dual-lobe phase function (choose the lobe by its weight, then sample
-      // it exactly: the mixture's pdf equals the phase function, so the weight is unchanged).
-      const double g = random.uniform() < lighting_.backWeight ? lighting_.gBack : lighting_.gForward;
-      const double cosine = reference::sampleHenyeyGreensteinCosine(g, random.uniform());
+      // New direction from the two-lobe phase function, sampled exactly (sampleCloudPhaseCosine): the
+      // pdf equals the phase function, so the weight is unchanged.
+      const double cosine = sampleCloudPhaseCosine(lighting_, random);
       w = directionAround(w, cosine, 2.0 * shared::kPi * random.uniform());
       if (weight < 1e-3) {  // Russian roulette for albedo < 1
         if (random.uniform() > weight * 1e3) break;

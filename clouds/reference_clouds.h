@@ -3,8 +3,9 @@
 // over the same medium as the GPU march (common/cloud_density.glsl on the read-back noise textures,
 // clouds/noise_volume.h), with none of the march's approximations: free paths by delta tracking
 // against a majorant per shell (Woodcock et al. 1965), transmittance to the sun by ratio tracking
-// (Novák et al. 2014) through every layer, all scattering orders, the same dual-lobe Henyey-Greenstein
-// phase function sampled exactly, albedo per event.
+// (Novák et al. 2014) through every layer, all scattering orders, the same two-lobe phase function
+// (dual Henyey-Greenstein or the approximate Mie, common/cloud_lighting.glsl) sampled exactly, albedo
+// per event.
 // Light: the sun by next-event estimation, through the clouds and through the atmosphere (the shared
 // optical depth opticalDepthToTop of common/atmosphere_lut.glsl, evaluated in double at the vertex, no
 // table), and an environment for paths that leave the shells: a constant sky radiance over the upper
@@ -29,6 +30,12 @@
 #include "core/image.h"
 
 namespace firmament {
+
+// The cosine of a scattering angle drawn from the lighting's two-lobe phase function (cloudPhase) with
+// exactly its density: the lobe by its weight, then an HG lobe by inversion; a Draine lobe (alpha > 0)
+// by rejection from its HG lobe, accepting with (1 + alpha nu^2) / (1 + alpha), the ratio of the two
+// densities up to their normalisation (at most 1).
+double sampleCloudPhaseCosine(const CloudLightingSettings& lighting, reference::Random& random);
 
 // The medium: layers, the noise textures and the weather map they read (common/cloud_weather.glsl),
 // over a ground sphere of radius groundRadius_m.

@@ -146,7 +146,7 @@ void main() {
   int octaves = clamp(cloud.steps.z, 1, 8);
   bool jitter = (cloud.steps.w & 2) != 0;
   bool ambientOn = (cloud.steps.w & 4) != 0;
-  float lightLength = cloud.octaves.w;
+  float lightLength = cloud.phaseLight.w;
   float albedo = cloud.phase.w;
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
@@ -186,7 +186,8 @@ void main() {
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
       for (int o = 0; o < octaves; ++o) {
-        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o), cloud.phase.z, nu);
+        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
+                                    cloud.phase.z, cloud.phaseLight.x, nu);
         octaveScale[o] = cloudOctaveExtinctionScale(a, o);
         octaveWeight[o] = cloudOctaveWeight(b, o);
         octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);

@@ -24,10 +24,31 @@ SHARED_INLINE Real cloudStepIntegral(Real sigma_t, Real dt) {
   return (1.0 - exp(-k)) / sigma_t;
 }
 
-// The phase function of cloud droplets, approximated by two Henyey-Greenstein lobes (Hillaire 2016):
-// p(nu) = (1 - w) p_HG(g_forward, nu) + w p_HG(g_back, nu). Normalised (1/sr).
-SHARED_INLINE Real cloudPhase(Real gForward, Real gBack, Real backWeight, Real nu) {
-  return mix(henyeyGreensteinPhase(gForward, nu), henyeyGreensteinPhase(gBack, nu), backWeight);
+// Draine's phase function (Draine 2003, eq. 4), a Henyey-Greenstein lobe times (1 + alpha nu^2):
+//     p_D(nu; g, alpha) = p_HG(g, nu) (1 + alpha nu^2) / (1 + alpha (1 + 2 g^2) / 3),
+// normalised (the HG lobe's second moment is (1 + 2 g^2) / 3). alpha = 0 gives p_HG(g, nu) exactly.
+SHARED_INLINE Real drainePhase(Real g, Real alpha, Real nu) {
+  return henyeyGreensteinPhase(g, nu) * (1.0 + alpha * nu * nu) / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0);
+}
+
+// The phase function of cloud droplets: two lobes, p(nu) = (1 - w) p_HG(g1, nu) + w p_D(nu; g2, alpha)
+// (normalised, 1/sr). Two models fill it (clouds/cloud_settings.h, CloudPhaseModel):
+//   - dual Henyey-Greenstein (Hillaire 2016; default): g1 = g forward, g2 = g back, w = back weight,
+//     alpha = 0;
+//   - Jendersie and d'Eon 2023's approximate Mie phase of water droplets of diameter d (5-50 um):
+//     HG plus Draine with g1 = g_HG(d), g2 = g_D(d), w = w_D(d), alpha = alpha(d) (cloudApproximateMie).
+SHARED_INLINE Real cloudPhase(Real g1, Real g2, Real w, Real alpha, Real nu) {
+  return mix(henyeyGreensteinPhase(g1, nu), drainePhase(g2, alpha, nu), w);
+}
+
+// Jendersie and d'Eon 2023, "An Approximate Mie Scattering Function for Fog and Cloud Rendering"
+// (SIGGRAPH 2023 Talks), their fits for droplet diameters 5 <= d <= 50 um (d in um):
+//   g_HG = exp(-0.0990567 / (d - 1.67154)),       g_D = exp(-2.20679 / (d + 3.91029) - 0.428934),
+//   alpha = exp(3.62489 - 8.29288 / (d + 5.52825)), w_D = exp(-0.599085 / (d - 0.641583) - 0.665888).
+// Returns (g1, g2, w, alpha) for cloudPhase.
+SHARED_INLINE vec4 cloudApproximateMie(Real d) {
+  return vec4(exp(-0.0990567 / (d - 1.67154)), exp(-2.20679 / (d + 3.91029) - 0.428934),
+              exp(-0.599085 / (d - 0.641583) - 0.665888), exp(3.62489 - 8.29288 / (d + 5.52825)));
 }
 
 // Octave i of the multiple-scattering approximation (Wrenninge et al. 2013, "Oz: the great and

@@ -148,5 +148,17 @@ TEST_F(CloudReference, SingleScatteringAgreesWithFirstOrder) {
   EXPECT_GT(low.fixedLength.meanBias, 0.5);
 }
 
+// The approximate Mie phase (HG + Draine, 20 um droplets) on both sides: the fast path's one octave
+// against the path tracer's first order, the same bounds as the dual-HG noon case.
+TEST_F(CloudReference, SingleScatteringWithTheApproximateMiePhase) {
+  const Scene cumulus = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
+                                          "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500", "/clouds/lighting/ms_octaves=1",
+                                          "/clouds/lighting/phase=approximate_mie"});
+  const SingleScatteringResult noon = singleScattering(context(), cumulus, 64);
+  ASSERT_GT(noon.march.pixels, 20);
+  EXPECT_LT(std::abs(noon.march.meanBias), 0.03 + 3.0 * noon.meanStandardError);
+  EXPECT_LT(noon.march.noiseCorrected, 0.08);
+}
+
 }  // namespace
 }  // namespace firmament

@@ -39,7 +39,7 @@ TEST(CloudPhase, DualLobeIsNormalised) {
   for (int i = 0; i <= n; ++i) {
     const double nu = -1.0 + 2.0 * i / n;
     const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-    sum += w * shared::cloudPhase(0.8, -0.3, 0.3, nu);
+    sum += w * shared::cloudPhase(0.8, -0.3, 0.3, 0.0, nu);
   }
   EXPECT_NEAR(2.0 * shared::kPi * sum * (2.0 / n) / 3.0, 1.0, 1e-4);
 }
