@@ -59,6 +59,13 @@ struct TemporalBlock {
 };
 static_assert(sizeof(TemporalBlock) == 11 * 16);
 
+struct NeighbourhoodPush {
+  gpu::TileDispatch tiles;  // the march's grid
+  int32_t offset[2];
+  int32_t k;
+  int32_t pad;
+};
+
 struct ResolvePush {
   gpu::TileDispatch tiles;  // the image
   int32_t gridWidth;
@@ -110,9 +117,14 @@ CloudPass::CloudPass(gpu::Context& context)
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
+      neighbourhood_(context, {"clouds/temporal_neighbourhood",
+                               {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                                gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                               sizeof(NeighbourhoodPush)}),
       resolve_(context, {"clouds/temporal_resolve",
                          {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
-                          gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                          gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer,
+                          gpu::BindingType::StorageBuffer},
                          sizeof(ResolvePush)}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
       counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters"),
@@ -377,7 +389,17 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     const double sunMove = std::acos(std::clamp(glm::dot(glm::normalize(view.sunDirection), glm::normalize(p.sunDirection)), -1.0, 1.0));
     put(t.motion, windOffset - history_.windOffset, std::clamp(sunMove / (0.25 * 3.14159265358979323846 / 180.0), 0.0, 1.0));
     temporalBlock_.upload(&t, sizeof(t));
-    commands.bind(resolve_, {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_});
+    // The fresh neighbourhoods once per grid pixel, then the image (both timed as the resolve).
+    const VkDeviceSize records = VkDeviceSize(coarseWidth) * coarseHeight * 3 * 4 * sizeof(float);
+    if (!neighbourhoodRecords_ || neighbourhoodRecords_.size() < records)
+      neighbourhoodRecords_ = gpu::Buffer(context_, records, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud neighbourhoods");
+    // Bindings 3 and 4 are unused by the neighbourhood pass (its layout mirrors the resolve's numbering).
+    commands.bind(neighbourhood_, {coarseFrame_, depth_, neighbourhoodRecords_, historyFrame, skyFrame, temporalBlock_});
+    NeighbourhoodPush neighbourhoodPush{marchTiles, {offset[0], offset[1]}, k, 0};
+    commands.pushConstants(neighbourhoodPush);
+    commands.dispatchTiles(marchTiles, "clouds/temporal_resolve");
+    commands.barrier();
+    commands.bind(resolve_, {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_, neighbourhoodRecords_});
     ResolvePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), k, 1, {offset[0], offset[1]}, m.temporalClamp ? 1 : 0, 0};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/temporal_resolve");

@@ -84,7 +84,8 @@ class CloudPass {
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
-  gpu::ComputePipeline resolve_;   // clouds/temporal_resolve (temporal reprojection)
+  gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)
+  gpu::ComputePipeline resolve_;        // clouds/temporal_resolve (step 2)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
@@ -96,6 +97,7 @@ class CloudPass {
   gpu::Buffer coarseFrame_;  // the march's frame at reduced resolution
   gpu::Buffer depth_;        // the march's depth per pixel of its grid (common to all grids: w x h floats)
   gpu::Buffer temporalBlock_;
+  gpu::Buffer neighbourhoodRecords_;  // 3 vec4 per grid pixel (clouds/temporal_neighbourhood.comp)
   size_t cloudPixels_ = 0;
   // What the previous frame was, for reprojection.
   struct History {
