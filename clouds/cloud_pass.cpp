@@ -152,13 +152,8 @@ bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSett
   return noise_.update(settings.seed, noise, commands);
 }
 
-void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                       const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial,
-                       bool continueSequence) {
-  if (settings.layers.size() > size_t(kMaxLayers))
-    throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
-  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
+std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                                            double aerialDistance_m) {
   const auto layers = sharedCloudLayers(settings, luts.parameters().bottom_radius);
   const CloudMarchSettings& m = settings.march;
   const CloudLightingSettings& l = settings.lighting;
@@ -217,14 +212,12 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     put(b.shadowCentre, centre, m.shadowMapExtent_m);
     put(b.shadowAxisU, u, start);
     put(b.shadowAxisV, v, 2.0 * start);
+    shadowPlacement_ = {centre, u, v, m.shadowMapExtent_m, start};
     b.shadowSize[0] = std::max(m.shadowMapSize, 1);
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
-  const bool volume = m.aerialPerspective == AerialPerspective::Volume;
-  if (volume && (!aerial || aerial->volumes.size() != luts.batchCount() || !(aerial->maxDistance_m > 0.0)))
-    throw std::logic_error("CloudPass: aerial perspective 'volume' needs one volume per spectral batch");
-  put(b.aerial, volume ? aerial->maxDistance_m : 0.0, double(std::max(m.aerialPerspectiveSteps, 1)), 0.0, 0.0);
+  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), 0.0, 0.0);
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;
@@ -241,6 +234,71 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     const auto* bytes = reinterpret_cast<const uint8_t*>(&k);
     settingsKey.assign(bytes, bytes + sizeof(k));
   }
+  return settingsKey;
+}
+
+void CloudPass::allocateShadowImage(const CloudMarchSettings& m) {
+  const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
+  if (!shadowImage_ || shadowImage_.width() != shadowSize)
+    shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
+}
+
+void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                           gpu::CommandList& commands) {
+  const uint32_t shadowSize = shadowImage_.width();
+  // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
+  // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
+  // air march) and the aerial-perspective volume.
+  {
+    const AtmosphereLuts::Batch& lut = luts.batch(0);
+    commands.bind(bakeShadow_, {lut.block,
+                                {lut.transmittance, luts.linearClamp()},
+                                {lut.multipleScattering, luts.linearClamp()},
+                                {*skyIrradiance[0], luts.linearClamp()},
+                                {noise_.shape(), noise_.linearRepeat()},
+                                {noise_.detail(), noise_.linearRepeat()},
+                                {noise_.curl(), noise_.linearRepeat()},
+                                {noise_.blueNoise(), noise_.nearestRepeat()},
+                                skyFrame,
+                                cloudFrames_[current_],
+                                block_,
+                                counters_,
+                                {weatherImage_, noise_.linearRepeat()},
+                                shadowImage_});
+    const uint32_t groups = (shadowSize + 7) / 8;
+    commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
+    commands.barrier();
+  }
+}
+
+void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                                const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                                double aerialDistance_m, gpu::CommandList& commands) {
+  if (!settings.march.beerShadowMap) return;
+  if (settings.layers.size() > size_t(kMaxLayers))
+    throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
+  uploadBlock(settings, view, luts, aerialDistance_m);
+  for (gpu::Buffer& frame : cloudFrames_)  // bound (unused) by the bake
+    if (!frame || frame.size() != skyFrame.size())
+      frame = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+  allocateShadowImage(settings.march);
+  recordBake(luts, skyIrradiance, skyFrame, commands);
+  shadowBaked_ = true;
+}
+
+void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                       const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial,
+                       bool continueSequence) {
+  if (settings.layers.size() > size_t(kMaxLayers))
+    throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
+  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
+  const CloudMarchSettings& m = settings.march;
+  const bool volume = m.aerialPerspective == AerialPerspective::Volume;
+  if (volume && (!aerial || aerial->volumes.size() != luts.batchCount() || !(aerial->maxDistance_m > 0.0)))
+    throw std::logic_error("CloudPass: aerial perspective 'volume' needs one volume per spectral batch");
+  std::vector<uint8_t> settingsKey = uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
+  const auto layers = sharedCloudLayers(settings, luts.parameters().bottom_radius);
   const uint32_t zero[2] = {0, 0};
   counters_.upload(zero, sizeof(zero));
 
@@ -299,32 +357,9 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   gpu::Buffer& marchFrame = divisor > 1 ? coarseFrame_ : cloudFrame;
   // Samples are reported per image pixel: what a frame costs, whatever grid the march ran on.
   cloudPixels_ = size_t(width) * height;
-  const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
-  if (!shadowImage_ || shadowImage_.width() != shadowSize)
-    shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
-  // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
-  // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
-  // air march) and the aerial-perspective volume.
-  if (m.beerShadowMap) {
-    const AtmosphereLuts::Batch& lut = luts.batch(0);
-    commands.bind(bakeShadow_, {lut.block,
-                                {lut.transmittance, luts.linearClamp()},
-                                {lut.multipleScattering, luts.linearClamp()},
-                                {*skyIrradiance[0], luts.linearClamp()},
-                                {noise_.shape(), noise_.linearRepeat()},
-                                {noise_.detail(), noise_.linearRepeat()},
-                                {noise_.curl(), noise_.linearRepeat()},
-                                {noise_.blueNoise(), noise_.nearestRepeat()},
-                                skyFrame,
-                                cloudFrame,
-                                block_,
-                                counters_,
-                                {weatherImage_, noise_.linearRepeat()},
-                                shadowImage_});
-    const uint32_t groups = (shadowSize + 7) / 8;
-    commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
-    commands.barrier();
-  }
+  allocateShadowImage(m);
+  if (m.beerShadowMap && !shadowBaked_) recordBake(luts, skyIrradiance, skyFrame, commands);
+  shadowBaked_ = false;
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
   if (!pipelines_[variant])

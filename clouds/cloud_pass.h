@@ -49,6 +49,21 @@ class CloudPass {
   // record().
   void setWeatherMap(const CloudWeatherMap& map);
 
+  // Records the Beer shadow map's bake (when settings.march.beerShadowMap; nothing otherwise) ahead of
+  // record(), for passes that read the map before the march (the aerial-perspective volume's light
+  // shafts); record() then does not bake again. Same arguments as record(); aerialDistance_m: the
+  // aerial-perspective volume's depth D (0 without one). A barrier follows the bake.
+  void recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, double aerialDistance_m,
+                       gpu::CommandList& commands);
+
+  // Where the Beer shadow map lies (common/cloud_shadow.glsl), as of the last recordShadowMap() or record().
+  struct ShadowPlacement {
+    glm::dvec3 centre{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0};
+    double extent_m = 1.0, start_m = 0.0;
+  };
+  const ShadowPlacement& shadowPlacement() const { return shadowPlacement_; }
+
   // Records the march over `skyFrame` (RGBA32F pixels of the view, row-major), one dispatch per batch of `luts`
   // with skyIrradiance[b] the batch's sky irradiance table. The noise must be prepared and baked
   // (a barrier between) and the sky written before (a barrier between). With
@@ -76,6 +91,13 @@ class CloudPass {
   CloudSampleCounts sampleCounts() const;
 
  private:
+  // Fills and uploads the cloud block; returns the history's key (the block without camera, sun and wind).
+  std::vector<uint8_t> uploadBlock(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                                   double aerialDistance_m);
+  void allocateShadowImage(const CloudMarchSettings& march);
+  void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                  gpu::CommandList& commands);
+
   gpu::Context& context_;
   CloudNoise noise_;
   // clouds/render_clouds (volume), render_clouds_ap_march, render_clouds_ap_off: created on first use
@@ -110,6 +132,8 @@ class CloudPass {
   uint64_t weatherHash_ = 0;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
+  bool shadowBaked_ = false;  // recordShadowMap() ran for the coming record()
+  ShadowPlacement shadowPlacement_;
 };
 
 }  // namespace firmament

@@ -86,6 +86,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (uniformSteps) march.uniformSteps = *uniformSteps;
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
+  if (lightShafts) march.lightShafts = *lightShafts;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
   if (aerialPerspectiveSteps) march.aerialPerspectiveSteps = *aerialPerspectiveSteps;
   if (ambient) march.ambient = *ambient;
@@ -161,6 +162,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));
   s.march.temporalUpdate = int(scene.integer("/clouds/temporal_update"));
   s.march.beerShadowMap = scene.boolean("/clouds/shadow_map");
+  s.march.lightShafts = scene.boolean("/clouds/light_shafts");
   const std::string quality = scene.string("/clouds/quality");
   if (quality == "low") {
     s.march.viewSteps = 32, s.march.lightSteps = 4, light.octaves = std::min(light.octaves, 2);

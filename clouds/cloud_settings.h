@@ -64,6 +64,9 @@ struct CloudMarchSettings {
   // Beer shadow map (common/cloud_shadow.glsl): when on, the light march reads the sun's optical depth
   // through all layers from the map (baked per frame) wherever the sample lies on it.
   bool beerShadowMap = false;
+  // With the Beer shadow map and the aerial-perspective volume: the clouds' shadows in the air (light
+  // shafts; sky/cloud_light_shafts.comp). The scene's /clouds/light_shafts.
+  bool lightShafts = true;
   int shadowMapSize = 256;            // texels per side
   int shadowMapSteps = 128;           // march steps per texel
   double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
@@ -135,6 +138,7 @@ struct CloudOverrides {
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
   std::optional<bool> beerShadowMap;
+  std::optional<bool> lightShafts;
   std::optional<AerialPerspective> aerialPerspective;
   std::optional<int> aerialPerspectiveSteps;
   std::optional<bool> ambient;

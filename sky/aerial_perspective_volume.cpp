@@ -21,8 +21,11 @@ struct AerialBlock {
   int32_t image[4];  // width, height, projection, steps per slice
   int32_t size[4];   // columns, rows, slices, unused
   float steps[4];    // largest altitude change per step (m), its altitude cap (m), unused x2
+  float shadowCentre[4];  // Beer shadow map centre (cloud frame, m); w = extent (m)
+  float shadowAxisU[4];   // w = start distance L (m)
+  float shadowAxisV[4];   // w = 1: cloud shadows on, 0: off
 };
-static_assert(sizeof(AerialBlock) == 8 * 16);
+static_assert(sizeof(AerialBlock) == 11 * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x), out[1] = float(v.y), out[2] = float(v.z), out[3] = float(w);
@@ -34,12 +37,13 @@ AerialPerspectiveVolume::AerialPerspectiveVolume(gpu::Context& context)
     : context_(context),
       pipeline_(context, {"sky/aerial_perspective_volume",
                           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                           gpu::BindingType::SampledImage, gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer},
+                           gpu::BindingType::SampledImage, gpu::BindingType::StorageImage, gpu::BindingType::UniformBuffer,
+                           gpu::BindingType::SampledImage},
                           0}) {}
 
 void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& settings, const glm::dvec3& cameraPosition,
                                      const glm::dvec3& sun, const shared::CameraParameters& camera,
-                                     const AtmosphereLuts& luts, gpu::CommandList& commands) {
+                                     const AtmosphereLuts& luts, gpu::CommandList& commands, const AerialCloudShadow* shadow) {
   if (settings.columns < 2 || settings.rows < 2 || settings.slices < 2 || settings.columns > 1024 ||
       settings.rows > 1024 || settings.slices > 1024)
     throw InputError("aerial-perspective volume: columns, rows and slices must be 2..1024 (got " +
@@ -75,6 +79,13 @@ void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& sett
   block.size[2] = settings.slices;
   block.steps[0] = float(std::max(settings.maxStepRise_m, 0.0));
   block.steps[1] = float(settings.stepRiseCap_m);
+  if (shadow && (!shadow->map || !shadow->sampler)) throw std::logic_error("AerialPerspectiveVolume: a cloud shadow needs its map and sampler");
+  if (shadow) {
+    put(block.shadowCentre, shadow->centre, shadow->extent_m);
+    put(block.shadowAxisU, shadow->u, shadow->start_m);
+    put(block.shadowAxisV, shadow->v, 1.0);
+  }
+  if (!shadowPlaceholder_) shadowPlaceholder_ = gpu::Image(context_, {1, 1, 1, gpu::Format::RGBA32F, false, true, "no cloud shadow"});
   for (size_t b = 0; b < batches; ++b) {
     blocks_[b].upload(&block, sizeof(block));
     const AtmosphereLuts::Batch& batch = luts.batch(b);
@@ -83,7 +94,8 @@ void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& sett
                               {batch.multipleScattering, luts.linearClamp()},
                               {batch.multipleScatteringAnisotropy, luts.linearClamp()},
                               volumes_[b],
-                              blocks_[b]});
+                              blocks_[b],
+                              {shadow ? *shadow->map : shadowPlaceholder_, shadow ? *shadow->sampler : luts.linearClamp()}});
     commands.dispatch(uint32_t((settings.columns + 7) / 8), uint32_t((settings.rows + 7) / 8), 1,
                       "sky/aerial_perspective_volume");
   }

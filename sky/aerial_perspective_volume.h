@@ -32,6 +32,18 @@ struct AerialPerspectiveVolumeSettings {
   double stepRiseCap_m = 10000.0;
 };
 
+// Cloud shadows in the air (light shafts): the Beer shadow map (common/cloud_shadow.glsl) and its
+// placement in the camera's cloud frame. With it, each step's single scattering of sunlight is
+// multiplied by the clouds' transmittance towards the sun, and what that removes is accumulated too
+// (the volume's alpha channels, common/aerial_perspective.glsl) for the sky behind
+// (sky/cloud_light_shafts.comp).
+struct AerialCloudShadow {
+  const gpu::Image* map = nullptr;  // RGBA32F: front depth, mean extinction, total optical depth
+  const gpu::Sampler* sampler = nullptr;  // linear, clamp
+  glm::dvec3 centre{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0};
+  double extent_m = 1.0, start_m = 0.0;
+};
+
 class AerialPerspectiveVolume {
  public:
   explicit AerialPerspectiveVolume(gpu::Context& context);
@@ -40,8 +52,10 @@ class AerialPerspectiveVolume {
   // volume for a camera at cameraPosition (planet-centred, m) with `camera`'s pixel mapping, and the
   // sun direction `sun`. settings.maxDistance_m must be > 0 here (resolved by the caller). The tables
   // must be ready; a reader needs a barrier after.
+  // shadow: cloud shadows in the air (null: none; the alpha channels hold 0).
   void record(const AerialPerspectiveVolumeSettings& settings, const glm::dvec3& cameraPosition, const glm::dvec3& sun,
-              const shared::CameraParameters& camera, const AtmosphereLuts& luts, gpu::CommandList& commands);
+              const shared::CameraParameters& camera, const AtmosphereLuts& luts, gpu::CommandList& commands,
+              const AerialCloudShadow* shadow = nullptr);
 
   // RGBA32F, 3C x R x N (three tiles), one per spectral batch of the last record() (valid after its commands ran).
   std::vector<const gpu::Image*> volumes() const;
@@ -54,6 +68,7 @@ class AerialPerspectiveVolume {
   gpu::ComputePipeline pipeline_;
   std::vector<gpu::Buffer> blocks_;  // one uniform block per batch (the batches' dispatches share a submission)
   std::vector<gpu::Image> volumes_;
+  gpu::Image shadowPlaceholder_;  // 1x1, bound without cloud shadows
   AerialPerspectiveVolumeSettings settings_;
 };
 

@@ -93,6 +93,14 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                "the light march reads the sun's optical depth through all layers from it", true});
       else
         plan.omitted.push_back({"clouds/bake_shadow_map", "/clouds/shadow_map off: the light march alone"});
+      const bool shafts = options.cloudLightShafts ? *options.cloudLightShafts : scene.boolean("/clouds/light_shafts");
+      if (shadowMap && shafts && aerial == AerialPerspective::Volume)
+        plan.passes.push_back({"sky/cloud_light_shafts", "the sky image with the clouds' shadows in the air (light shafts)",
+                               "the aerial-perspective volume shadowed through the Beer shadow map; the sky scaled by what that removed", true});
+      else
+        plan.omitted.push_back({"sky/cloud_light_shafts", !shadowMap ? "light shafts need /clouds/shadow_map"
+                                                          : !shafts  ? "/clouds/light_shafts off"
+                                                                     : "light shafts need /clouds/aerial_perspective volume"});
       plan.passes.push_back({"clouds/render_clouds", "clouds composited over the sky image (cd/m^2)",
                              std::to_string(scene.at("/clouds/layers").size()) +
                                  " layer(s): view march, light march, octave multiple scattering, aerial perspective (" +

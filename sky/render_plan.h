@@ -28,6 +28,8 @@ struct PlanOptions {
   std::optional<int> cloudResolutionDivisor;
   // Replaces the scene's /clouds/shadow_map (SkyRenderOptions::clouds.beerShadowMap).
   std::optional<bool> cloudShadowMap;
+  // Replaces the scene's /clouds/light_shafts (SkyRenderOptions::clouds.lightShafts).
+  std::optional<bool> cloudLightShafts;
   // Replaces the scene's /clouds/temporal_update (SkyRenderOptions::clouds.temporalUpdate).
   std::optional<int> cloudTemporalUpdate;
 };

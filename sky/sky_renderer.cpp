@@ -83,6 +83,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.aerialPerspective = options.clouds.aerialPerspective;
   plan.cloudResolutionDivisor = options.clouds.resolutionDivisor;
   plan.cloudShadowMap = options.clouds.beerShadowMap;
+  plan.cloudLightShafts = options.clouds.lightShafts;
   plan.cloudTemporalUpdate = options.clouds.temporalUpdate;
   return plan;
 }
@@ -264,17 +265,46 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     // The aerial-perspective volume (only when the clouds read it), over the clouds' march limit by
     // default; the barrier before the clouds covers it and the sky frame.
     CloudAerialVolume aerialVolume;
-    if (clouds->march.aerialPerspective == AerialPerspective::Volume) {
-      if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
-      AerialPerspectiveVolumeSettings settings = options.aerialPerspective;
-      if (!(settings.maxDistance_m > 0.0)) settings.maxDistance_m = clouds->march.maxDistance_m;
-      aerial_->record(settings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands);
-      aerialVolume.volumes = aerial_->volumes();
-      aerialVolume.maxDistance_m = settings.maxDistance_m;
-    }
-    commands.barrier();
     std::vector<const gpu::Image*> irradiance;
     for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
+    const CloudMarchSettings& march = clouds->march;
+    const bool volume = march.aerialPerspective == AerialPerspective::Volume;
+    AerialPerspectiveVolumeSettings aerialSettings = options.aerialPerspective;
+    if (!(aerialSettings.maxDistance_m > 0.0)) aerialSettings.maxDistance_m = march.maxDistance_m;
+    // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds.md "Light shafts").
+    const bool shafts = volume && march.beerShadowMap && march.lightShafts;
+    if (march.beerShadowMap)
+      clouds_->recordShadowMap(*clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0, commands);
+    if (volume) {
+      if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
+      AerialCloudShadow shadow;
+      if (shafts) {
+        const CloudPass::ShadowPlacement& p = clouds_->shadowPlacement();
+        shadow = {&clouds_->shadowMap(), &luts_.linearClamp(), p.centre, p.u, p.v, p.extent_m, p.start_m};
+      }
+      aerial_->record(aerialSettings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands,
+                      shafts ? &shadow : nullptr);
+      aerialVolume.volumes = aerial_->volumes();
+      aerialVolume.maxDistance_m = aerialSettings.maxDistance_m;
+    }
+    commands.barrier();
+    if (shafts) {
+      if (!lightShaftsPipeline_)
+        lightShaftsPipeline_ = std::make_unique<gpu::ComputePipeline>(
+            context_, gpu::PipelineDesc{"sky/cloud_light_shafts",
+                                        {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                                         gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                                        sizeof(gpu::TileDispatch) + 4 * sizeof(float)});
+      struct {
+        gpu::TileDispatch tiles;
+        float maxDistance;
+        float pad[3];
+      } push{tiles, float(aerialSettings.maxDistance_m), {0.0f, 0.0f, 0.0f}};
+      commands.bind(*lightShaftsPipeline_, {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
+      commands.pushConstants(push);
+      commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
+      commands.barrier();
+    }
     clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume, options.continueSequence);
   }
   commands.submitAndWait();

@@ -97,6 +97,7 @@ class SkyRenderer {
   std::unique_ptr<gpu::ComputePipeline> skyMarchPipeline_;  // sky/render_sky_march: a march per pixel
   std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
   std::unique_ptr<CloudPass> clouds_;  // created for the first scene with clouds
+  std::unique_ptr<gpu::ComputePipeline> lightShaftsPipeline_;  // sky/cloud_light_shafts
   std::unique_ptr<AerialPerspectiveVolume> aerial_;  // created for the first scene that reads it
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;

@@ -24,4 +24,16 @@ void aerialPerspectiveLookup(sampler3D volume, vec2 pixel, ivec2 image, float d,
   transmittance = 1.0 - z.y * (1.0 - through);
 }
 
+// The luminance (cd/m^2) of the sunlight the clouds' shadows removed from the air between the camera
+// and distance d (the alpha channels of tiles 0 and 1; 0 without cloud shadows). Two trilinear fetches.
+float aerialPerspectiveShadowedLuminance(sampler3D volume, vec2 pixel, ivec2 image, float d, float maxDistance, float miePhase) {
+  ivec3 size = textureSize(volume, 0);
+  int columns = size.x / kAerialTiles;
+  vec2 z = aerialDepthCoordinate(d, size.z, maxDistance);
+  float y = aerialTileY(pixel.y, image.y, size.y);
+  float skylike = textureLod(volume, vec3(aerialTileX(pixel.x, image.x, columns, 0), y, z.x), 0.0).a;
+  float aerosol = textureLod(volume, vec3(aerialTileX(pixel.x, image.x, columns, 1), y, z.x), 0.0).a;
+  return z.y * (skylike + miePhase * aerosol);
+}
+
 #endif  // FIRMAMENT_AERIAL_PERSPECTIVE_SAMPLING_GLSL

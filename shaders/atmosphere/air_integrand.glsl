@@ -57,6 +57,7 @@ struct AirSample {
   vec3 sky_source;
   vec3 sunlike_source;
   vec3 extinction;
+  vec3 sky_single_source;  // the part of sky_source that is single scattering of sunlight (Rayleigh)
 };
 AirSample airSampleAt(AtmosphereParameters atmosphere, sampler2D transmittance_lut, sampler2D multiple_scattering_lut,
                       sampler2D anisotropy_lut, vec3 p, vec3 sun, vec3 dir, float phase_r, float phase_m) {
@@ -68,7 +69,8 @@ AirSample airSampleAt(AtmosphereParameters atmosphere, sampler2D transmittance_l
   MultipleScatteringSource ms = multipleScatteringInto(atmosphere, multiple_scattering_lut, anisotropy_lut, p, r_p,
                                                        mu_s_p, sun, dir);
   AirSample s;
-  s.sky_source = rayleigh * (phase_r * sun_light + ms.rayleigh) + mie * ms.mie;
+  s.sky_single_source = rayleigh * phase_r * sun_light;
+  s.sky_source = s.sky_single_source + rayleigh * ms.rayleigh + mie * ms.mie;
   s.sunlike_source = mie * phase_m * sun_light;
   s.extinction = extinctionAt(atmosphere, r_p);
   return s;

@@ -17,6 +17,7 @@
 //    horizon, and a column frozen at the ground (1-2 km away) would darken clouds 50 km away there.
 #include "atmosphere/air_integrand.glsl"
 #include "common/aerial_perspective.glsl"
+#include "common/cloud_shadow.glsl"
 #include "common/geometry.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -33,10 +34,25 @@ layout(std140, set = 0, binding = 5) uniform AerialBlock {
   ivec4 image;           // width, height, projection, steps per slice
   ivec4 size;            // columns C, rows R, slices N, unused
   vec4 steps;            // largest scaled-altitude change per step (m; 0: no limit), cap of the scaling (m), unused x2
+  vec4 shadow_centre;    // Beer shadow map (common/cloud_shadow.glsl): centre C (cloud frame, m); w = extent (m)
+  vec4 shadow_axis_u;    // xyz: axis u; w = start distance L (m)
+  vec4 shadow_axis_v;    // xyz: axis v; w = 1: cloud shadows in the air (light shafts), 0: none
 } aerial;
+layout(set = 0, binding = 6) uniform sampler2D shadowMap;  // the clouds' Beer shadow map (linear, clamp)
+
+// The clouds' transmittance towards the sun at p (1 off the map or without cloud shadows).
+float cloudSunVisibility(vec3 p, vec3 sun) {
+  vec3 c = cloudShadowCoordinate(p, aerial.shadow_centre.xyz, aerial.shadow_axis_u.xyz, aerial.shadow_axis_v.xyz, sun,
+                                 aerial.shadow_centre.w, aerial.shadow_axis_u.w);
+  if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return 1.0;
+  return exp(-cloudShadowOpticalDepth(textureLod(shadowMap, c.xy, 0.0), c.z));
+}
 
 // Altitude (m) scaled for the step rule: itself up to the cap, an eighth of the rest above it; 0 below
 // the ground (samples there take the ground's air).
+// Rec.709 luminance of linear RGB.
+float rgbLuminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
+
 float scaledAltitude(float h) {
   float cap = aerial.steps.y;
   return clamp(h, 0.0, cap) + max(h - cap, 0.0) / 8.0;
@@ -78,6 +94,10 @@ void main() {
   mat3 skyToRgb = skyRadianceToRgb();
   mat3 sunToRgb = sunRadianceToRgb();
   vec3 sky = vec3(0.0), sunlike = vec3(0.0), throughput = vec3(1.0);
+  // Single scattering of sunlight that the clouds' shadows remove (sky-like: Rayleigh; sun-like: the
+  // aerosols', without their phase), accumulated as the light is.
+  vec3 lostSky = vec3(0.0), lostSunlike = vec3(0.0);
+  bool shafts = aerial.shadow_axis_v.w > 0.5;
   float previous = 0.0;
   for (int k = 0; k < slices; ++k) {
     float depth = aerialSliceDepth(k, slices, maxDistance);
@@ -114,12 +134,25 @@ void main() {
         p *= max(r_p, atmosphere.bottom_radius) / r_p;  // below the ground: the air at the ground
         AirSample air = airSampleAt(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, p,
                                     sun, dir, phase_r, phase_m);
+        if (shafts) {
+          // In a cloud's shadow the sun's single scattering falls with the cloud's transmittance; the
+          // multiply scattered light (Psi_ms, from the whole sky) is left as it is.
+          float shadowed = 1.0 - cloudSunVisibility(p, sun);
+          vec3 lostSkySource = air.sky_single_source * shadowed;
+          vec3 lostSunSource = air.sunlike_source * shadowed;
+          air.sky_source -= lostSkySource;
+          air.sunlike_source -= lostSunSource;
+          vec3 integral = throughput * stepIntegral(air.extinction, dt, exp(-air.extinction * dt));
+          lostSky += lostSkySource * integral;
+          lostSunlike += lostSunSource * integral;
+        }
         accumulateAirStep(air, dt, sky, sunlike, throughput);
       }
     }
     previous = depth;
-    imageStore(volume, ivec3(column, k), vec4(skyToRgb * sky, 1.0));
-    imageStore(volume, ivec3(column.x + columns, column.y, k), vec4(sunToRgb * sunlike, 1.0));
+    // Alpha of tiles 0 and 1: the luminance (cd/m^2) of the light the clouds' shadows removed.
+    imageStore(volume, ivec3(column, k), vec4(skyToRgb * sky, rgbLuminance(skyToRgb * lostSky)));
+    imageStore(volume, ivec3(column.x + columns, column.y, k), vec4(sunToRgb * sunlike, rgbLuminance(sunToRgb * lostSunlike)));
     imageStore(volume, ivec3(column.x + 2 * columns, column.y, k), vec4(throughput, 1.0));
   }
 }
