@@ -235,7 +235,7 @@ void main() {
         // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
         vec3 shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
                                             cloud.shadowCentre.w, cloud.shadowAxisU.w);
-        if (cloud.shadowSize.z != 0 && all(greaterThanEqual(shadow.xy, vec2(0.0))) && all(lessThanEqual(shadow.xy, vec2(1.0)))) {
+        if (cloud.shadowSize.z != 0 && cloudShadowCovers(shadow)) {
           tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
           lightCount += 1u;
         } else {

@@ -28,6 +28,15 @@ SHARED_INLINE vec3 cloudShadowCoordinate(vec3 p, vec3 centre, vec3 u, vec3 v, ve
   return vec3(dot(q, u) / extent + 0.5, dot(q, v) / extent + 0.5, start - dot(q, sun));
 }
 
+// Whether the map knows p's way to the sun: p lies on the square (a, b in [0, 1]) and not sunward of
+// its start plane (depth >= 0). The march from the start plane crosses every layer (it runs 2 L, past
+// the lowest base for any sun above the horizon), so points past its end take tau_max; but a point
+// sunward of the plane — kilometres towards a low sun, where the view reaches — has clouds on its way
+// that no texel marched (taking tau = 0 there made a sunset's far clouds ~6x too bright).
+SHARED_INLINE bool cloudShadowCovers(vec3 coordinate) {
+  return coordinate.x >= 0.0 && coordinate.x <= 1.0 && coordinate.y >= 0.0 && coordinate.y <= 1.0 && coordinate.z >= 0.0;
+}
+
 // tau(p) from a texel (d_f, sigma_bar, tau_max, unused).
 SHARED_INLINE Real cloudShadowOpticalDepth(vec4 bsm, Real depth) {
   return min(bsm.y * max(depth - bsm.x, 0.0), bsm.z);

@@ -40,11 +40,11 @@ layout(std140, set = 0, binding = 5) uniform AerialBlock {
 } aerial;
 layout(set = 0, binding = 6) uniform sampler2D shadowMap;  // the clouds' Beer shadow map (linear, clamp)
 
-// The clouds' transmittance towards the sun at p (1 off the map or without cloud shadows).
+// The clouds' transmittance towards the sun at p (1 where the map does not cover p).
 float cloudSunVisibility(vec3 p, vec3 sun) {
   vec3 c = cloudShadowCoordinate(p, aerial.shadow_centre.xyz, aerial.shadow_axis_u.xyz, aerial.shadow_axis_v.xyz, sun,
                                  aerial.shadow_centre.w, aerial.shadow_axis_u.w);
-  if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return 1.0;
+  if (!cloudShadowCovers(c)) return 1.0;  // off the map, or sunward of it: no shaft drawn
   return exp(-cloudShadowOpticalDepth(textureLod(shadowMap, c.xy, 0.0), c.z));
 }
 
