@@ -91,6 +91,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (aerialPerspectiveSteps) march.aerialPerspectiveSteps = *aerialPerspectiveSteps;
   if (ambient) march.ambient = *ambient;
   if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
+  if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

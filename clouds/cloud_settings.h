@@ -49,6 +49,10 @@ struct CloudMarchSettings {
   // fixed length (the thickest layer's thickness, at most 4 km), too short for a low sun; kept for
   // comparisons (bench clouds).
   bool lightMarchToExit = true;
+  // With lightMarchToExit: lightSteps per layer thickness of the way to the exit, from lightSteps up to
+  // 4 lightSteps (a low sun's long ways get more samples; docs/clouds.md "Lighting"). Off: lightSteps
+  // whatever the length (the fixed-step baseline's and earlier sessions' light march).
+  bool lightStepsPerThickness = true;
   double lightMaxLength_m = 40000.0;
   // Octaves i >= 1 of the multiple-scattering approximation (docs/clouds.md "Multiple scattering"):
   // msZenithDepth: the better of the sun ray (E, tau_sun) and the way down from the layer top (E mu_s,
@@ -143,6 +147,7 @@ struct CloudOverrides {
   std::optional<int> aerialPerspectiveSteps;
   std::optional<bool> ambient;
   std::optional<bool> lightMarchToExit;
+  std::optional<bool> lightStepsPerThickness;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

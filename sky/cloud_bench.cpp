@@ -102,7 +102,10 @@ SequenceRun sequenceOf(SkyRenderer& renderer, const std::string& text, const std
 std::vector<KnobValue> knobValues(bool quick) {
   std::vector<KnobValue> v;
   v.push_back({"default", "64v/6l/3o", {}, [](SkyRenderOptions&) {}});
-  v.push_back({"baseline_fixed_steps", "64v/6l uniform", {}, [](SkyRenderOptions& o) { o.clouds.uniformSteps = true; }});
+  v.push_back({"baseline_fixed_steps", "64v/6l uniform", {}, [](SkyRenderOptions& o) {
+                 o.clouds.uniformSteps = true;
+                 o.clouds.lightStepsPerThickness = false;
+               }});
   // The first milestone's lighting, all of it: fixed-length light march, cone 0.15, plain octaves with
   // a = b = c = 0.5 (the "before" of docs/clouds.md).
   v.push_back({"milestone_1_lighting", "fixed light march, cone, plain octaves 0.5",
@@ -127,6 +130,9 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
+  v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
+  v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }, true});
   for (double cone : {0.0, 0.05, 0.15})
     v.push_back({"light_cone", std::to_string(cone).substr(0, 4), {}, [cone](SkyRenderOptions& o) { o.clouds.lightCone = cone; }});
   for (int n : quick ? std::vector<int>{1, 6} : std::vector<int>{1, 2, 4, 6})
@@ -292,7 +298,10 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
   };
   const std::vector<Setting> settings = {
       {"default", [](SkyRenderOptions&) {}},
-      {"baseline_fixed_steps", [](SkyRenderOptions& o) { o.clouds.uniformSteps = true; }},
+      {"baseline_fixed_steps", [](SkyRenderOptions& o) {
+         o.clouds.uniformSteps = true;
+         o.clouds.lightStepsPerThickness = false;
+       }},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

@@ -156,6 +156,7 @@ void main() {
   bool lightToExit = (cloud.steps.w & 16) != 0;
   bool msZenith = (cloud.steps.w & 32) != 0;
   bool msScattered = (cloud.steps.w & 64) != 0;
+  bool lightScaled = (cloud.steps.w & 128) != 0;
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -242,8 +243,13 @@ void main() {
           // Bit 16: march to where the sun ray leaves the layer (at most lightLength); else the first
           // milestone's fixed length (the thickest layer's thickness, at most 4 km), for comparisons.
           float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
-          tau = opticalDepthToSun(layer, p, sun, lightSteps, marchLength, cone);
-          lightCount += uint(lightSteps);
+          // Bit 128: as many steps per layer thickness of the way as a vertical way gets, up to 4x
+          // (a grazing sun crosses a 1 km layer over ~11 km: 6 steps there left ~2 km between samples).
+          int n = lightScaled && lightToExit ? clamp(int(ceil(float(lightSteps) * marchLength / max(layer.top_radius - layer.bottom_radius, 1.0))),
+                                      lightSteps, 4 * lightSteps)
+                              : lightSteps;
+          tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone);
+          lightCount += uint(n);
         }
       }
       // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple

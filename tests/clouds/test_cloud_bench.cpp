@@ -61,7 +61,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
     EXPECT_EQ(milestone, 1) << scenario;
-    EXPECT_EQ(single, 2) << scenario;
+    EXPECT_EQ(single, 3) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
     // The air in front of the clouds matters (leaving it out is the largest error), and both ways of
     // computing it are far closer to the fine march than leaving it out.
@@ -114,7 +114,13 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
       }
     }
     ASSERT_EQ(samples.size(), 8u) << scenario;
-    EXPECT_GT(samples["baseline_fixed_steps"], samples["default"]) << scenario;
+    // The growing view steps take fewer samples than the fixed-step baseline at noon; at the sunset the
+    // default light march takes up to 4x the baseline's 6 light steps along the long ways (steps per
+    // layer thickness), so it takes more.
+    if (std::string(scenario) == "cumulus_noon")
+      EXPECT_GT(samples["baseline_fixed_steps"], samples["default"]) << scenario;
+    else
+      EXPECT_GT(samples["default"], samples["baseline_fixed_steps"]) << scenario;
     EXPECT_LT(samples["resolution_divisor 2"], 0.4 * samples["default"]) << scenario;
     EXPECT_LT(samples["resolution_divisor 4"], 0.4 * samples["resolution_divisor 2"]) << scenario;
     // Reprojected frames march 1 in 4 and 1 in 16 pixels.
