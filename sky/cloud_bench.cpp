@@ -64,38 +64,57 @@ constexpr double kSequenceYawPerFrameDeg = 0.25;
 constexpr double kSequenceWind_m_s = 10.0;
 constexpr double kSequenceFrameInterval_s = 1.0 / 30.0;
 
-struct SequenceRun {
+// A row's renders: its last frame, the cloud passes' and all per-frame passes' ms of each timed frame,
+// and the mean density samples per pixel (view + light) over them.
+struct TimedRuns {
   RenderResult last;
-  std::vector<double> cloudMs, frameMs;  // the reprojected frames'
-  double samplesPerPixel = 0.0;          // mean over the reprojected frames (view + light)
+  std::vector<double> cloudMs, frameMs;
+  double samplesPerPixel = 0.0;
 };
 
 double cloudPassMs(const RenderResult& r);
 
-SequenceRun sequenceOf(SkyRenderer& renderer, const std::string& text, const std::string& name,
-                       const std::vector<std::string>& overrides, const SkyRenderOptions& options, int update, int frames) {
+// Every per-frame pass (the noise bake is once per seed).
+double frameMs(const RenderResult& r) {
+  double all = 0.0;
+  for (const auto& t : r.timings)
+    if (t.label != "clouds/bake_noise_3d" && t.label != "clouds/bake_curl") all += t.milliseconds;
+  return all;
+}
+
+// The scene `text` with `overrides`, warmed up by one render: with temporalUpdate 1, `repeats` stills;
+// above 1, a sequence of 2 N + 1 frames ending at the view (the constants above) whose reprojected
+// frames are timed.
+TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::string& name,
+                    const std::vector<std::string>& overrides, const SkyRenderOptions& options, int temporalUpdate, int repeats) {
   const Scene scene = Scene::parse(text, name, overrides);
+  TimedRuns run;
+  run.last = renderer.render(scene, options);  // warm-up: tables, noise, JIT
+  const bool sequence = temporalUpdate > 1;
+  const int frames = sequence ? 2 * temporalUpdate + 1 : std::max(repeats, 1);
   const double yaw = scene.number("/camera/yaw_deg");
-  SequenceRun run;
   for (int i = 0; i < frames; ++i) {
-    const int fromEnd = frames - 1 - i;
-    std::vector<std::string> o = overrides;
-    o.push_back("/camera/yaw_deg=" + std::to_string(std::fmod(yaw - kSequenceYawPerFrameDeg * fromEnd, 360.0)));
-    o.push_back("/clouds/wind_m_s=" + std::to_string(kSequenceWind_m_s));
-    o.push_back("/clouds/time_s=" + std::to_string(kSequenceFrameInterval_s * fromEnd));
     SkyRenderOptions frameOptions = options;
-    frameOptions.clouds.temporalUpdate = update;
-    frameOptions.continueSequence = i > 0;
-    run.last = renderer.render(Scene::parse(text, name, o), frameOptions);
-    if (i == 0) continue;
-    if (!run.last.cloudsReprojected) throw std::runtime_error("bench clouds: frame " + std::to_string(i) + " of a sequence was not reprojected");
+    if (sequence) {
+      const int fromEnd = frames - 1 - i;
+      std::vector<std::string> o = overrides;
+      o.push_back("/camera/yaw_deg=" + std::to_string(std::fmod(yaw - kSequenceYawPerFrameDeg * fromEnd, 360.0)));
+      o.push_back("/clouds/wind_m_s=" + std::to_string(kSequenceWind_m_s));
+      o.push_back("/clouds/time_s=" + std::to_string(kSequenceFrameInterval_s * fromEnd));
+      frameOptions.clouds.temporalUpdate = temporalUpdate;
+      frameOptions.continueSequence = i > 0;
+      run.last = renderer.render(Scene::parse(text, name, o), frameOptions);
+      if (i == 0) continue;  // the sequence's first frame marches every pixel
+      if (!run.last.cloudsReprojected)
+        throw std::runtime_error("bench clouds: frame " + std::to_string(i) + " of a sequence was not reprojected");
+    } else {
+      run.last = renderer.render(scene, frameOptions);
+    }
     run.cloudMs.push_back(cloudPassMs(run.last));
-    double all = 0.0;
-    for (const auto& t : run.last.timings)
-      if (t.label != "clouds/bake_noise_3d" && t.label != "clouds/bake_curl") all += t.milliseconds;
-    run.frameMs.push_back(all);
-    run.samplesPerPixel += (run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel) / double(frames - 1);
+    run.frameMs.push_back(frameMs(run.last));
+    run.samplesPerPixel += run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel;
   }
+  run.samplesPerPixel /= double(run.cloudMs.size());
   return run;
 }
 
@@ -223,25 +242,10 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     for (size_t i = 0; i < cloudMask.size(); ++i) cloudMask[i] = airReference.clouds.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
 
     for (const KnobValue& k : knobValues(config.quick)) {
-      const Scene s = k.sceneOverrides.empty() ? scene : Scene::parse(sc.text, "<bench " + sc.name + ">", k.sceneOverrides);
       SkyRenderOptions o = base;
       k.apply(o);
-      RenderResult r = renderer.render(s, o);  // warm-up
-      std::vector<double> ms;
-      double samplesPerPixel = 0.0;
-      if (k.temporalUpdate > 1) {
-        SequenceRun run = sequenceOf(renderer, sc.text, "<bench " + sc.name + ">", k.sceneOverrides, o, k.temporalUpdate,
-                                     2 * k.temporalUpdate + 1);
-        r = std::move(run.last);
-        ms = run.cloudMs;
-        samplesPerPixel = run.samplesPerPixel;
-      } else {
-        for (int i = 0; i < std::max(config.repeats, 1); ++i) {
-          r = renderer.render(s, o);
-          ms.push_back(cloudPassMs(r));
-        }
-        samplesPerPixel = r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel;
-      }
+      TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats);
+      const RenderResult& r = run.last;
       CloudBenchRow row;
       if (k.againstFineAirMarch) {
         const ImageMetrics m = compareImages(r.image, airReference.image, cloudMask);
@@ -256,7 +260,8 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       } else {
         CloudReferenceImage own;
         if (k.ownReference) {
-          const CloudPathTracer rowTracer(medium, CloudSettings::fromScene(s).lighting, first.view.atmosphere,
+          const Scene rowScene = Scene::parse(sc.text, "<bench " + sc.name + ">", k.sceneOverrides);
+          const CloudPathTracer rowTracer(medium, CloudSettings::fromScene(rowScene).lighting, first.view.atmosphere,
                                           first.view.sunDirection, CloudEnvironment{}, rs);
           own = renderCloudReference(rowTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
         }
@@ -275,8 +280,8 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       row.value = k.value;
       row.scenario = sc.name;
       row.precomputeMs = bakeMs;
-      row.frameMs = median(ms);
-      row.samplesPerPixel = samplesPerPixel;
+      row.frameMs = median(run.cloudMs);
+      row.samplesPerPixel = run.samplesPerPixel;
       row.device = context.description();
       rows.push_back(row);
       char line[256];
@@ -313,37 +318,17 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
   std::vector<CloudTimingRow> rows;
   SkyRenderer renderer(context);
   for (const Scenario& sc : scenarios(config.quick)) {
-    const Scene scene = Scene::parse(sc.text, "<bench " + sc.name + ">",
-                                     {"/camera/width=" + std::to_string(width), "/camera/height=" + std::to_string(height)});
+    const std::vector<std::string> sizeOverrides = {"/camera/width=" + std::to_string(width),
+                                                    "/camera/height=" + std::to_string(height)};
     Image defaultImage;
     std::vector<float> cloudPixels;
     for (const Setting& setting : settings) {
       SkyRenderOptions o;
       setting.apply(o);
-      RenderResult r = renderer.render(scene, o);  // warm-up: tables, noise, JIT
-      std::vector<double> cloud, frame;
-      double samplesPerPixel = 0.0;
-      if (setting.temporalUpdate > 1) {
-        // The sequence's first frame marches every pixel; the row is its reprojected frames.
-        SequenceRun run = sequenceOf(renderer, sc.text, "<bench " + sc.name + ">",
-                                     {"/camera/width=" + std::to_string(width), "/camera/height=" + std::to_string(height)}, o,
-                                     setting.temporalUpdate, 2 * setting.temporalUpdate + 1);
-        r = std::move(run.last);
-        cloud = run.cloudMs;
-        frame = run.frameMs;
-        samplesPerPixel = run.samplesPerPixel;
-      } else {
-        for (int i = 0; i < std::max(config.repeats, 1); ++i) {
-          r = renderer.render(scene, o);
-          cloud.push_back(cloudPassMs(r));
-          double all = 0.0;
-          for (const auto& t : r.timings)
-            if (t.label != "clouds/bake_noise_3d" && t.label != "clouds/bake_curl") all += t.milliseconds;  // the noise bake is once per seed
-          frame.push_back(all);
-        }
-        samplesPerPixel = r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel;
-      }
-      CloudTimingRow row{sc.name, setting.name, width, height, median(cloud), median(frame), samplesPerPixel};
+      const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ">", sizeOverrides, o, setting.temporalUpdate,
+                                      config.repeats);
+      const RenderResult& r = run.last;
+      CloudTimingRow row{sc.name, setting.name, width, height, median(run.cloudMs), median(run.frameMs), run.samplesPerPixel};
       row.device = context.description();
       if (defaultImage.pixels.empty()) {  // the first setting is the defaults
         defaultImage = r.image;
