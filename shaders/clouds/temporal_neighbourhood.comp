@@ -13,6 +13,7 @@
 //     depth is uniform, large at the edges of near clouds when the camera moves or the wind blows,
 //     where history of another depth (ghosts) can land; at least the sun-motion weight (motion.w).
 #include "clouds/temporal_block.glsl"
+#include "common/aerial_perspective.glsl"
 #include "common/dispatch.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
@@ -49,13 +50,15 @@ void main() {
   uint index = tiled.y * push.tiles.width + tiled.x;
   CameraParameters camera = cameraFromBlock(frame.camera_forward, frame.camera_right, frame.camera_up, frame.image);
   vec2 point = vec2(c * push.k + push.offset) + 0.5;
-  bool valid, seen, seenNear, seenFar;
-  vec3 dir = cameraRayDirection(camera, point, valid);
+  // A fisheye's grid pixels outside its image circle take the rim's direction (aerialColumnDirection),
+  // so the image pixels inside the circle whose nearest grid pixel lies outside still get a motion vector.
+  bool seen, seenNear, seenFar;
+  vec3 dir = aerialColumnDirection(camera, point);
   vec2 motion = previousPixel(freshDepth.depth[index], dir, seen) - point;
   vec2 spread = previousPixel(nearDepth, dir, seenNear) - previousPixel(farDepth, dir, seenFar);
   float weight = seenNear && seenFar ? clamp(length(spread), 0.0, 1.0) : 1.0;
   uint record = 3u * index;
   neighbourhood.records[record] = lo;
   neighbourhood.records[record + 1u] = hi;
-  neighbourhood.records[record + 2u] = vec4(motion, max(weight, frame.motion.w), valid && seen ? 1.0 : 0.0);
+  neighbourhood.records[record + 2u] = vec4(motion, max(weight, frame.motion.w), seen ? 1.0 : 0.0);
 }
