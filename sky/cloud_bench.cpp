@@ -13,6 +13,7 @@
 #include "core/log.h"
 #include "core/scene.h"
 #include "core/statistics.h"
+#include "core/svg_xy_plot.h"
 #include "sky/atmosphere_bench.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
@@ -418,6 +419,45 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
                   r.scenario.c_str(), r.knob.c_str(), r.value.c_str(), r.against.c_str(), r.frameMs, r.relRmse, r.relRmseNoiseCorrected,
                   r.referenceNoise, r.meanBias, r.psnrDb, r.maxRelErr, r.samplesPerPixel);
     md += line;
+  }
+  // Plots: per scenario, the error against the path tracer over the frame's cloud-pass time, one series
+  // per knob (the rows compared with the all-order path tracer of the scenario's own scene: not the
+  // single-scattering, aerial-perspective or phase rows, which have other references).
+  std::vector<std::string> scenarioNames;
+  for (const auto& r : rows)
+    if (std::find(scenarioNames.begin(), scenarioNames.end(), r.scenario) == scenarioNames.end()) scenarioNames.push_back(r.scenario);
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  std::vector<std::string> plots;
+  for (const std::string& scenario : scenarioNames) {
+    XyPlot plot;
+    plot.title = "bench clouds: " + scenario;
+    plot.xLabel = "frame_ms (cloud passes at the bench's size, median)";
+    plot.yLabel = "rel_rmse of the clouds' luminance vs the path tracer";
+    plot.logX = plot.logY = true;
+    double noise = 0.0;
+    for (const auto& r : rows) {
+      if (r.scenario != scenario || r.against != "path_tracer" || r.knob == "phase") continue;
+      noise = r.referenceNoise;
+      auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const XyPlotSeries& x) { return x.name == r.knob; });
+      if (it == plot.series.end()) {
+        plot.series.push_back({r.knob, kColours[plot.series.size() % 10], {}, {}, {}, true});
+        it = plot.series.end() - 1;
+      }
+      it->x.push_back(r.frameMs);
+      it->y.push_back(r.relRmse);
+      it->labels.push_back(r.value);
+    }
+    if (plot.series.empty()) continue;
+    plot.lines.push_back({"reference noise (a perfect fast path's rel_rmse)", noise, "#888888"});
+    const std::string name = "clouds_plot_" + scenario + ".svg";
+    writeTextFileAtomically(config.outDir / name, renderXySvg(plot));
+    plots.push_back(name);
+  }
+  if (!plots.empty()) {
+    md += "\nPlots (error against the cloud passes' time, per knob): ";
+    for (size_t i = 0; i < plots.size(); ++i) md += (i ? ", [" : "[") + plots[i] + "](" + plots[i] + ")";
+    md += "\n";
   }
   if (!rows.empty()) md += "\nDevice: " + rows.front().device + "\n";
   writeTextFileAtomically(config.outDir / "clouds_results.csv", csv);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -78,6 +79,13 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
                     "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device");
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
+  // One error-against-time plot per scenario.
+  for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
+    std::ifstream svg(config.outDir / (std::string("clouds_plot_") + scenario + ".svg"));
+    const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("<svg"), std::string::npos) << scenario;
+    EXPECT_NE(text.find("baseline_fixed_steps"), std::string::npos) << scenario;
+  }
 }
 
 // The frame-time table (clouds_timing.csv): every scenario and setting, times > 0, and the samples
