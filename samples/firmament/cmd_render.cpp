@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "astro/time.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/scene.h"
@@ -105,6 +106,8 @@ int runRender(const Args& args) {
     o.push_back("/camera/pitch_deg=" + std::to_string(pitch));
     o.push_back("/camera/height_above_ground_m=" + std::to_string(scene.number("/camera/height_above_ground_m") + climbRate * t));
     if (scene.hasSection("clouds")) o.push_back("/clouds/time_s=" + std::to_string(scene.number("/clouds/time_s") + t));
+    // The sun follows the clock when the scene takes it from time and location (a time-lapse).
+    if (!scene.hasSection("sun")) o.push_back("/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc(scene.string("/time/utc")), t)));
     return args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o) : Scene::load(scenePath, o);
   };
   auto framePath = [&](int i) {
@@ -183,7 +186,7 @@ const CommandRegistration reg{{"render",
                                  "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
                                 {"frames", "N", "render a sequence of N frames (OUT_0000.exr ...), each continuing the last "
                                                 "(clouds: temporal reprojection, /clouds/temporal_update)"},
-                                {"frame-interval", "S", "seconds between frames: the clouds' clock advances by it (default 1/30)"},
+                                {"frame-interval", "S", "seconds between frames: the clouds' clock and, without a sun section, /time/utc (the sun) advance by it (default 1/30)"},
                                 {"yaw-rate", "DEG/S", "camera turn rate in a sequence (clockwise from above)"},
                                 {"pitch-rate", "DEG/S", "camera pitch rate in a sequence"},
                                 {"climb-rate", "M/S", "camera climb rate in a sequence"},

@@ -11,6 +11,8 @@
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/exr_io.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/support/test_paths.h"
@@ -115,6 +117,16 @@ TEST(Cli, RenderFramesWritesASequence) {
     for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "seq.exr"));
+  // Without a sun section the sun follows the clock: a 10-minute time-lapse moves it (~1.7 deg here).
+  CommandRun lapse = firmament("render " + scene + " --frames 2 --frame-interval 600 -o " + (dir / "lapse.exr").string());
+  ASSERT_EQ(lapse.exitCode, 0) << lapse.output;
+  double zenith[2] = {0.0, 0.0};
+  for (int i = 0; i < 2; ++i) {
+    std::ifstream stats(dir / ("lapse_000" + std::to_string(i) + ".json"));
+    zenith[i] = nlohmann::json::parse(stats).at("sun").at("zenith_deg").get<double>();
+  }
+  EXPECT_GT(std::abs(zenith[1] - zenith[0]), 0.5) << zenith[0] << " " << zenith[1];
+  EXPECT_LT(std::abs(zenith[1] - zenith[0]), 5.0) << zenith[0] << " " << zenith[1];
   for (const std::string& bad : {std::string("--frames 0"), std::string("--yaw-rate 5"), std::string("--frames 40 --pitch-rate 200")}) {
     CommandRun b = firmament("render " + scene + " " + bad + " -o " + (dir / "bad.exr").string());
     EXPECT_EQ(b.exitCode, 2) << bad << ": " << b.output;
