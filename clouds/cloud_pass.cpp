@@ -71,10 +71,8 @@ struct ResolvePush {
   int32_t gridWidth;
   int32_t gridHeight;
   int32_t k;
-  int32_t historyOn;
-  int32_t offset[2];
   int32_t clampHistory;
-  int32_t pad;
+  int32_t offset[2];
 };
 
 // The order in which a k x k block's pixels are marched over k^2 frames: the Bayer matrix's (each
@@ -249,26 +247,24 @@ void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const g
   // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
   // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
   // air march) and the aerial-perspective volume.
-  {
-    const AtmosphereLuts::Batch& lut = luts.batch(0);
-    commands.bind(bakeShadow_, {lut.block,
-                                {lut.transmittance, luts.linearClamp()},
-                                {lut.multipleScattering, luts.linearClamp()},
-                                {*skyIrradiance[0], luts.linearClamp()},
-                                {noise_.shape(), noise_.linearRepeat()},
-                                {noise_.detail(), noise_.linearRepeat()},
-                                {noise_.curl(), noise_.linearRepeat()},
-                                {noise_.blueNoise(), noise_.nearestRepeat()},
-                                skyFrame,
-                                cloudFrames_[current_],
-                                block_,
-                                counters_,
-                                {weatherImage_, noise_.linearRepeat()},
-                                shadowImage_});
-    const uint32_t groups = (shadowSize + 7) / 8;
-    commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
-    commands.barrier();
-  }
+  const AtmosphereLuts::Batch& lut = luts.batch(0);
+  commands.bind(bakeShadow_, {lut.block,
+                              {lut.transmittance, luts.linearClamp()},
+                              {lut.multipleScattering, luts.linearClamp()},
+                              {*skyIrradiance[0], luts.linearClamp()},
+                              {noise_.shape(), noise_.linearRepeat()},
+                              {noise_.detail(), noise_.linearRepeat()},
+                              {noise_.curl(), noise_.linearRepeat()},
+                              {noise_.blueNoise(), noise_.nearestRepeat()},
+                              skyFrame,
+                              cloudFrames_[current_],
+                              block_,
+                              counters_,
+                              {weatherImage_, noise_.linearRepeat()},
+                              shadowImage_});
+  const uint32_t groups = (shadowSize + 7) / 8;
+  commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
+  commands.barrier();
 }
 
 void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
@@ -422,7 +418,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     // The clamp everywhere in proportion to the sun's move, fully from 0.25 degrees per frame (a
     // time-lapse; the day's course moves it ~1e-4 degrees per frame at 30 frames per second).
     const double sunMove = std::acos(std::clamp(glm::dot(glm::normalize(view.sunDirection), glm::normalize(p.sunDirection)), -1.0, 1.0));
-    put(t.motion, windOffset - history_.windOffset, std::clamp(sunMove / (0.25 * 3.14159265358979323846 / 180.0), 0.0, 1.0));
+    put(t.motion, windOffset - history_.windOffset, std::clamp(sunMove / (0.25 * shared::kPi / 180.0), 0.0, 1.0));
     temporalBlock_.upload(&t, sizeof(t));
     // The fresh neighbourhoods once per grid pixel, then the image (both timed as the resolve).
     const VkDeviceSize records = VkDeviceSize(coarseWidth) * coarseHeight * 3 * 4 * sizeof(float);
@@ -435,7 +431,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     commands.dispatchTiles(marchTiles, "clouds/temporal_resolve");
     commands.barrier();
     commands.bind(resolve_, {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_, neighbourhoodRecords_});
-    ResolvePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), k, 1, {offset[0], offset[1]}, m.temporalClamp ? 1 : 0, 0};
+    ResolvePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), k, m.temporalClamp ? 1 : 0, {offset[0], offset[1]}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/temporal_resolve");
     ++temporalFrame_;

@@ -60,6 +60,12 @@ struct Axis {
 
 }  // namespace
 
+const char* plotColour(size_t index) {
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  return kColours[index % 10];
+}
+
 std::string renderXySvg(const XyPlot& p) {
   const double left = 80, right = 200, top = 40, bottom = 55;
   const double w = p.width - left - right, h = p.height - top - bottom;

@@ -3,6 +3,7 @@
 // time in the benchmark reports. Self-contained text output; no dependencies. (weather/svg_plot.h is
 // the time-series plot with two y axes; this one has one y axis, per-series x values, log axes,
 // point labels and reference lines.)
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct XyPlot {
   std::vector<XyPlotLine> lines;
   int width = 900, height = 560;
 };
+
+// A palette of ten distinguishable series colours (Tableau 10), repeated past the tenth.
+const char* plotColour(size_t index);
 
 // The SVG document. Axes span the data (and the reference lines), padded; non-finite values are
 // skipped.

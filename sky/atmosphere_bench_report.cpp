@@ -37,8 +37,6 @@ std::string csvField(const std::string& s) {
   return out + "\"";
 }
 
-const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                          "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
 // The error that remains once the reference's own noise is taken out: E[(a − b̂)²] = (a − b)² + SE²
 // for an unbiased reference b̂, so mean((a − b)²) ≈ measured − mean(SE²) (floored at 0).
@@ -76,7 +74,7 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
         if (knob.tables != tables) continue;
         XyPlotSeries s;
         s.name = knob.name;
-        s.colour = kColours[colour++ % 10];
+        s.colour = plotColour(colour++);
         for (const auto& r : result.rows)
           if (r.knob == knob.name && r.scenario == scenario.name) {
             s.x.push_back(tables ? r.precomputeMs : r.frameMs);

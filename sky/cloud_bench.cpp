@@ -426,8 +426,6 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
   std::vector<std::string> scenarioNames;
   for (const auto& r : rows)
     if (std::find(scenarioNames.begin(), scenarioNames.end(), r.scenario) == scenarioNames.end()) scenarioNames.push_back(r.scenario);
-  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
   std::vector<std::string> plots;
   for (const std::string& scenario : scenarioNames) {
     XyPlot plot;
@@ -441,7 +439,7 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
       noise = r.referenceNoise;
       auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const XyPlotSeries& x) { return x.name == r.knob; });
       if (it == plot.series.end()) {
-        plot.series.push_back({r.knob, kColours[plot.series.size() % 10], {}, {}, {}, true});
+        plot.series.push_back({r.knob, plotColour(plot.series.size()), {}, {}, {}, true});
         it = plot.series.end() - 1;
       }
       it->x.push_back(r.frameMs);

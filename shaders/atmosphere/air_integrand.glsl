@@ -76,14 +76,28 @@ AirSample airSampleAt(AtmosphereParameters atmosphere, sampler2D transmittance_l
   return s;
 }
 
-// One step of length dt with the sample's coefficients held constant (Hillaire 2016): adds the step's
-// light, attenuated by the throughput so far, and multiplies the throughput by the step's transmittance.
+// One step of length dt through extinction sigma held constant: its transmittance e^(-sigma dt) and
+// the integral of the transmittance over it (stepIntegral), the weights of every source on that step.
+struct AirStepWeights {
+  vec3 transmittance;
+  vec3 integral;
+};
+AirStepWeights airStepWeights(vec3 extinction, float dt) {
+  AirStepWeights w;
+  w.transmittance = exp(-extinction * dt);
+  w.integral = stepIntegral(extinction, dt, w.transmittance);
+  return w;
+}
+
+// One step with the sample's coefficients held constant (Hillaire 2016): adds the step's light,
+// attenuated by the throughput so far, and multiplies the throughput by the step's transmittance.
+void accumulateAirStep(AirSample s, AirStepWeights w, inout vec3 sky, inout vec3 sunlike, inout vec3 throughput) {
+  sky += throughput * s.sky_source * w.integral;
+  sunlike += throughput * s.sunlike_source * w.integral;
+  throughput *= w.transmittance;
+}
 void accumulateAirStep(AirSample s, float dt, inout vec3 sky, inout vec3 sunlike, inout vec3 throughput) {
-  vec3 step_transmittance = exp(-s.extinction * dt);
-  vec3 integral = stepIntegral(s.extinction, dt, step_transmittance);
-  sky += throughput * s.sky_source * integral;
-  sunlike += throughput * s.sunlike_source * integral;
-  throughput *= step_transmittance;
+  accumulateAirStep(s, airStepWeights(s.extinction, dt), sky, sunlike, throughput);
 }
 
 #endif  // FIRMAMENT_AIR_INTEGRAND_GLSL

@@ -21,7 +21,7 @@
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(std430, set = 0, binding = 0) readonly buffer FreshClouds { vec4 pixels[]; } fresh;  // rgb: L, a: T (the grid)
-layout(std430, set = 0, binding = 1) readonly buffer FreshDepth { float depth[]; } freshDepth;  // m (the grid)
+// Binding 1 is the grid's depth, read by clouds/temporal_neighbourhood.comp (the two passes share a numbering).
 layout(std430, set = 0, binding = 2) readonly buffer History { vec4 pixels[]; } history;  // the previous frame's
 layout(std430, set = 0, binding = 3) writeonly buffer CloudFrame { vec4 pixels[]; } cloudFrame;  // this frame's
 layout(std430, set = 0, binding = 4) buffer SkyFrame { vec4 pixels[]; } skyFrame;  // read, composited, written
@@ -33,10 +33,8 @@ layout(push_constant) uniform Push {
   int gridWidth;       // the march's grid
   int gridHeight;
   int k;               // the grid is k times coarser
-  int historyOn;       // 0: no usable history (interpolate the fresh samples)
-  ivec2 offset;        // this frame's pixel of each k x k block
   int clampHistory;    // 1: clamp the history to the fresh neighbourhood
-  int pad;
+  ivec2 offset;        // this frame's pixel of each k x k block
 } push;
 
 vec4 freshAt(ivec2 c) {
@@ -49,20 +47,13 @@ vec4 historyAt(ivec2 p) {
   return history.pixels[p.y * frame.previous_image.x + p.x];
 }
 
-// False outside a fisheye's image circle (cameraRayDirection's `valid`, without its trigonometry).
-bool inImageCircle(vec2 pixel) {
-  if (frame.image.z != kProjectionFisheye) return true;
-  float w = float(frame.image.x), h = float(frame.image.y);
-  vec2 xy = vec2(2.0 * pixel.x / w - 1.0, (1.0 - 2.0 * pixel.y / h) * (h / w));
-  return length(xy) * 0.5 * frame.camera_forward.w <= kPi;
-}
-
 void main() {
   uvec2 tiled;
   if (!tilePixel(push.tiles, tiled)) return;
   ivec2 q = ivec2(tiled);
   uint index = tiled.y * push.tiles.width + tiled.x;
-  if (!inImageCircle(vec2(q) + 0.5)) {  // outside a fisheye's circle: no cloud, the sky as it is (as the march does)
+  CameraParameters camera = cameraFromBlock(frame.camera_forward, frame.camera_right, frame.camera_up, frame.image);
+  if (!cameraSeesPixel(camera, vec2(q) + 0.5)) {  // outside a fisheye's circle: no cloud, the sky as it is (as the march does)
     cloudFrame.pixels[index] = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
@@ -70,33 +61,32 @@ void main() {
   vec2 at = vec2(q - push.offset) / float(push.k);
   ivec2 nearest = ivec2(floor(at + 0.5));
   vec4 value;
+  bool found = false;
   if (q == nearest * push.k + push.offset && all(lessThan(nearest, ivec2(push.gridWidth, push.gridHeight)))) {
     value = freshAt(nearest);
+    found = true;
   } else {
-    bool reprojected = false;
-    if (push.historyOn != 0) {
-      ivec2 cn = clamp(nearest, ivec2(0), ivec2(push.gridWidth - 1, push.gridHeight - 1));
-      uint record = 3u * uint(cn.y * push.gridWidth + cn.x);
-      vec4 reprojection = neighbourhood.records[record + 2u];  // motion x, y; clamp weight; seen
-      vec2 p = vec2(q) + 0.5 + reprojection.xy;
-      vec2 size = vec2(frame.previous_image.xy);
-      if (frame.previous_image.z == kProjectionEquirectangular) p.x -= size.x * floor(p.x / size.x);  // across the seam
-      if (reprojection.w > 0.0 && all(greaterThanEqual(p, vec2(0.0))) && all(lessThanEqual(p, size))) {
-        vec2 h = p - 0.5;
-        ivec2 i0 = ivec2(floor(h));
-        vec2 g = h - vec2(i0);
-        vec4 past = mix(mix(historyAt(i0), historyAt(i0 + ivec2(1, 0)), g.x), mix(historyAt(i0 + ivec2(0, 1)), historyAt(i0 + ivec2(1, 1)), g.x), g.y);
-        if (push.clampHistory != 0)
-          past = mix(past, clamp(past, neighbourhood.records[record], neighbourhood.records[record + 1u]), reprojection.z);
-        value = past;
-        reprojected = true;
-      }
+    // The nearest grid pixel's record: motion vector, clamp weight, whether the previous frame saw it.
+    ivec2 cn = clamp(nearest, ivec2(0), ivec2(push.gridWidth - 1, push.gridHeight - 1));
+    uint record = 3u * uint(cn.y * push.gridWidth + cn.x);
+    vec4 reprojection = neighbourhood.records[record + 2u];
+    vec2 p = vec2(q) + 0.5 + reprojection.xy;
+    vec2 size = vec2(frame.previous_image.xy);
+    if (frame.previous_image.z == kProjectionEquirectangular) p.x -= size.x * floor(p.x / size.x);  // across the seam
+    if (reprojection.w > 0.0 && all(greaterThanEqual(p, vec2(0.0))) && all(lessThanEqual(p, size))) {
+      vec2 h = p - 0.5;
+      ivec2 i0 = ivec2(floor(h));
+      vec2 g = h - vec2(i0);
+      value = mix(mix(historyAt(i0), historyAt(i0 + ivec2(1, 0)), g.x), mix(historyAt(i0 + ivec2(0, 1)), historyAt(i0 + ivec2(1, 1)), g.x), g.y);
+      if (push.clampHistory != 0)
+        value = mix(value, clamp(value, neighbourhood.records[record], neighbourhood.records[record + 1u]), reprojection.z);
+      found = true;
     }
-    if (!reprojected) {
-      ivec2 cell = ivec2(floor(at));
-      vec2 f = at - vec2(cell);
-      value = mix(mix(freshAt(cell), freshAt(cell + ivec2(1, 0)), f.x), mix(freshAt(cell + ivec2(0, 1)), freshAt(cell + ivec2(1, 1)), f.x), f.y);
-    }
+  }
+  if (!found) {  // no history here: the fresh samples, interpolated
+    ivec2 cell = ivec2(floor(at));
+    vec2 f = at - vec2(cell);
+    value = mix(mix(freshAt(cell), freshAt(cell + ivec2(1, 0)), f.x), mix(freshAt(cell + ivec2(0, 1)), freshAt(cell + ivec2(1, 1)), f.x), f.y);
   }
   cloudFrame.pixels[index] = value;
   vec4 sky = skyFrame.pixels[index];

@@ -50,16 +50,10 @@ SHARED_INLINE vec2 aerialColumnPixel(int i, int j, int columns, int rows, int wi
 SHARED_INLINE vec3 aerialColumnDirection(CameraParameters camera, vec2 pixel) {
   vec2 point = pixel;
   if (camera.projection == kProjectionFisheye) {
-    Real w = Real(camera.width);
-    Real h = Real(camera.height);
-    Real x = 2.0 * pixel.x / w - 1.0;
-    Real y = (1.0 - 2.0 * pixel.y / h) * (h / w);
-    Real radius = sqrt(x * x + y * y);
+    vec2 plane = cameraImagePlane(camera, pixel);
+    Real radius = length(plane);
     Real rim = 2.0 * kPi / max(camera.fov, 1e-6);  // theta = radius fov / 2 reaches pi here
-    if (radius > rim) {
-      Real s = rim / radius * (1.0 - 1e-6);
-      point = vec2(0.5 * w * (1.0 + s * x), 0.5 * h * (1.0 - s * y * (w / h)));
-    }
+    if (radius > rim) point = cameraPixelOfImagePlane(camera, plane * (rim / radius * (1.0 - 1e-6)));
   }
   bool valid;
   return cameraRayDirection(camera, point, valid);

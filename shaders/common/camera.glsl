@@ -32,8 +32,30 @@ SHARED_INLINE void cameraBasis(Real yaw, Real pitch, Real roll, OUT(vec3) forwar
   up = cos(roll) * level_up - sin(roll) * level_right;
 }
 
+// Normalised image-plane coordinates of image point `pixel` (perspective and fisheye): x in [-1, 1]
+// across the width, y up, scaled by the aspect ratio.
+SHARED_INLINE vec2 cameraImagePlane(CameraParameters camera, vec2 pixel) {
+  Real w = Real(camera.width);
+  Real h = Real(camera.height);
+  return vec2(2.0 * pixel.x / w - 1.0, (1.0 - 2.0 * pixel.y / h) * (h / w));
+}
+
+// The image point (pixel units) of image-plane coordinates xy: the inverse of cameraImagePlane.
+SHARED_INLINE vec2 cameraPixelOfImagePlane(CameraParameters camera, vec2 xy) {
+  Real w = Real(camera.width);
+  Real h = Real(camera.height);
+  return vec2(0.5 * (xy.x + 1.0) * w, 0.5 * (1.0 - xy.y * (w / h)) * h);
+}
+
+// Whether image point `pixel` has a ray: false outside a fisheye's image circle (the angle from the
+// axis, |xy| fov / 2, past pi), true for the other projections.
+SHARED_INLINE bool cameraSeesPixel(CameraParameters camera, vec2 pixel) {
+  if (camera.projection != kProjectionFisheye) return true;
+  return length(cameraImagePlane(camera, pixel)) * 0.5 * camera.fov <= kPi;
+}
+
 // Direction through the point `pixel` (pixel units, (0.5, 0.5) = centre of the top-left pixel).
-// `valid` is false outside a fisheye's image circle.
+// `valid` is false outside a fisheye's image circle (cameraSeesPixel).
 SHARED_INLINE vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(bool) valid) {
   valid = true;
   Real w = Real(camera.width);
@@ -44,9 +66,9 @@ SHARED_INLINE vec3 cameraRayDirection(CameraParameters camera, vec2 pixel, OUT(b
     Real latitude = (0.5 - pixel.y / h) * kPi;
     return vec3(cos(latitude) * sin(longitude), cos(latitude) * cos(longitude), sin(latitude));
   }
-  // Normalised image-plane coordinates: x in [-1, 1] across the width, y scaled by the aspect ratio.
-  Real x = 2.0 * pixel.x / w - 1.0;
-  Real y = (1.0 - 2.0 * pixel.y / h) * (h / w);
+  vec2 plane = cameraImagePlane(camera, pixel);
+  Real x = plane.x;
+  Real y = plane.y;
   if (camera.projection == kProjectionFisheye) {
     // Equidistant fisheye: the angle from the axis grows linearly with the distance from the centre.
     Real radius = sqrt(x * x + y * y);
@@ -104,7 +126,7 @@ SHARED_INLINE vec2 cameraPixelOfDirection(CameraParameters camera, vec3 dir, OUT
     x = a / (f * tan_half);
     y = b / (f * tan_half);
   }
-  return vec2(0.5 * (x + 1.0) * w, 0.5 * (1.0 - y * (w / h)) * h);
+  return cameraPixelOfImagePlane(camera, vec2(x, y));
 }
 
 SHARED_END

@@ -134,6 +134,7 @@ void main() {
         p *= max(r_p, atmosphere.bottom_radius) / r_p;  // below the ground: the air at the ground
         AirSample air = airSampleAt(atmosphere, transmittanceLut, multipleScatteringLut, multipleScatteringAnisotropy, p,
                                     sun, dir, phase_r, phase_m);
+        AirStepWeights weights = airStepWeights(air.extinction, dt);
         if (shafts) {
           // In a cloud's shadow the sun's single scattering falls with the cloud's transmittance; the
           // multiply scattered light (Psi_ms, from the whole sky) is left as it is.
@@ -142,11 +143,10 @@ void main() {
           vec3 lostSunSource = air.sunlike_source * shadowed;
           air.sky_source -= lostSkySource;
           air.sunlike_source -= lostSunSource;
-          vec3 integral = throughput * stepIntegral(air.extinction, dt, exp(-air.extinction * dt));
-          lostSky += lostSkySource * integral;
-          lostSunlike += lostSunSource * integral;
+          lostSky += throughput * lostSkySource * weights.integral;
+          lostSunlike += throughput * lostSunSource * weights.integral;
         }
-        accumulateAirStep(air, dt, sky, sunlike, throughput);
+        accumulateAirStep(air, weights, sky, sunlike, throughput);
       }
     }
     previous = depth;

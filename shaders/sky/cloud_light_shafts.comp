@@ -21,15 +21,8 @@
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler3D aerialVolume;  // linear, clamp
 layout(std430, set = 0, binding = 2) buffer SkyFrame { vec4 pixels[]; } skyFrame;  // read, scaled, written
-layout(std140, set = 0, binding = 3) uniform FrameBlock {  // sky/render_sky.glsl's
-  vec4 camera_position;
-  vec4 camera_forward;
-  vec4 camera_right;
-  vec4 camera_up;
-  vec4 sun_direction;
-  ivec4 image;
-  ivec4 options;
-} frame;
+#define SKY_FRAME_BLOCK_BINDING 3
+#include "sky/frame_block.glsl"
 layout(push_constant) uniform Push {
   TileDispatch tiles;
   float maxDistance;  // the volume's D (m)

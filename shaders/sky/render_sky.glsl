@@ -18,15 +18,8 @@ layout(set = 0, binding = 2) uniform sampler2D multipleScatteringLut;
 // The frame: one vec4 per pixel, row-major (a storage buffer: on lavapipe a storage-image store costs
 // ~4x a buffer store, bench/output_write.cpp).
 layout(std430, set = 0, binding = 3) buffer OutputFrame { vec4 pixels[]; } outputFrame;
-layout(std140, set = 0, binding = 4) uniform FrameBlock {
-  vec4 camera_position;  // planet-centred, m (the ground point's ENU axes)
-  vec4 camera_forward;   // xyz; w = horizontal fov (rad)
-  vec4 camera_right;     // xyz; w = yaw (rad)
-  vec4 camera_up;        // xyz
-  vec4 sun_direction;    // xyz, unit
-  ivec4 image;           // width, height, projection, view march steps
-  ivec4 options;         // x: 1 when the sky-view LUT is read (informational: SKY_FROM_LUT decides)
-} frame;
+#define SKY_FRAME_BLOCK_BINDING 4
+#include "sky/frame_block.glsl"
 layout(set = 0, binding = 5) uniform sampler2D skyViewLut;
 layout(set = 0, binding = 6) uniform sampler2D sunRadianceLut;  // see atmosphere/transmittance_lut.comp
 layout(set = 0, binding = 7) uniform sampler2D skyIrradianceLut;  // see atmosphere/fms_sky_irradiance.comp

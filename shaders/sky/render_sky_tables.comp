@@ -23,14 +23,8 @@ layout(set = 0, binding = 2) uniform sampler3D scatteringTable;
 layout(set = 0, binding = 3) uniform sampler3D singleMieTable;
 layout(set = 0, binding = 4) uniform sampler2D irradianceTable;
 layout(std430, set = 0, binding = 5) writeonly buffer OutputFrame { vec4 pixels[]; } outputFrame;  // row-major
-layout(std140, set = 0, binding = 6) uniform FrameBlock {
-  vec4 camera_position;  // planet-centred, m (the ground point's ENU axes)
-  vec4 camera_forward;   // xyz; w = horizontal fov (rad)
-  vec4 camera_right;     // xyz; w = yaw (rad)
-  vec4 camera_up;        // xyz
-  vec4 sun_direction;    // xyz, unit
-  ivec4 image;           // width, height, projection, (unused here: view march steps)
-} frame;
+#define SKY_FRAME_BLOCK_BINDING 6
+#include "sky/frame_block.glsl"
 layout(push_constant) uniform Push { TileDispatch tiles; ivec4 table_size; } push;
 
 // The sun's disc at the top of the atmosphere: E_sun I(1)/E times the shared limb darkening

@@ -8,8 +8,6 @@
 
 #include "common/camera.glsl"
 #include "core/error.h"
-#include "core/exr_io.h"
-#include <cstdlib>
 #include "core/image_metrics.h"
 #include "sky/render_plan.h"
 #include "tests/clouds/cloud_test_support.h"
@@ -101,10 +99,6 @@ SequenceError runSequence(int update, int frames, double yawStepDeg, double wind
   for (size_t i = 0; i < last.clouds.pixelCount(); ++i) {
     const float t = last.clouds.pixels[4 * i + 3];
     EXPECT_TRUE(t >= 0.0f && t <= 1.0f) << i;
-  }
-  if (std::getenv("TEMPORAL_DUMP")) {
-    writeExr(std::string(std::getenv("TEMPORAL_DUMP")) + "_seq.exr", last.image);
-    writeExr(std::string(std::getenv("TEMPORAL_DUMP")) + "_still.exr", still.image);
   }
   const ImageMetrics m = compareImages(last.image, still.image);
   SequenceError e{m.luminance.relativeRmse, m.luminance.relativeMeanBias,
