@@ -21,7 +21,7 @@ struct CloudBlock {
   float phaseLight[4];     // second phase lobe's Draine alpha, unused x2, light march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
-  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, unused
+  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
   float weatherRegion[4];  // width, height (m), skew east, north (m/m)
   float weatherPlanet[4];  // ground radius (m)
   float shadowCentre[4];   // centre (cloud frame, m), extent (m)
@@ -173,7 +173,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
                (m.msScatteredOnly ? 64 : 0) | (m.lightStepsPerThickness ? 128 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
   const double thickest = cloudThickestLayer(settings);
-  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
+  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   // a, b, c are per layer (below); x, y, z unused.
   put(b.phaseLight, l.alpha, 0.0, 0.0, m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));

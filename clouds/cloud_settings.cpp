@@ -79,6 +79,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (viewSteps) march.viewSteps = *viewSteps;
   if (lightSteps) march.lightSteps = *lightSteps;
   if (coarseFactor) march.coarseFactor = *coarseFactor;
+  if (emptySpaceMargin) march.emptySpaceMargin = *emptySpaceMargin;
   if (jitter) march.jitter = *jitter;
   if (resolutionDivisor) march.resolutionDivisor = *resolutionDivisor;
   if (temporalUpdate) march.temporalUpdate = *temporalUpdate;

@@ -153,6 +153,11 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
   v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }, true});
+  // Empty-space skipping: the old test (skip wherever the coarse sample is outside), and no skipping.
+  v.push_back({"empty_space_margin", "0 (sessions 1-4)", {}, [](SkyRenderOptions& o) { o.clouds.emptySpaceMargin = 0.0; }});
+  v.push_back({"empty_space_margin", "0 (sessions 1-4), single scattering", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.emptySpaceMargin = 0.0; }, true});
+  v.push_back({"empty_space_margin", "no skipping (coarse factor 1)", {}, [](SkyRenderOptions& o) { o.clouds.coarseFactor = 1; }});
   for (double cone : {0.0, 0.05, 0.15})
     v.push_back({"light_cone", std::to_string(cone).substr(0, 4), {}, [cone](SkyRenderOptions& o) { o.clouds.lightCone = cone; }});
   for (int n : quick ? std::vector<int>{1, 6} : std::vector<int>{1, 2, 4, 6})

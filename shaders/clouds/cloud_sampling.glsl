@@ -21,7 +21,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y, z unused; w: light march length (m; the largest one with flag 16)
   vec4 phase;            // phase lobes g1, g2, second lobe's weight w (cloudPhase), single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
-  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, unused
+  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, empty-space margin per thickness
   vec4 weatherRegion;    // weather map: width (m), height (m), skew east, skew north (m per m)
   vec4 weatherPlanet;    // planet (ground) radius (m), unused x3
   vec4 shadowCentre;     // Beer shadow map: centre C (cloud frame, m); w = extent (m, square side)
@@ -59,24 +59,30 @@ CloudLayer layerAt(int i) {
   return layer;
 }
 
-// The shape-only density SN_nd at p (0 outside the shell or where the weather map has no cloud); the
-// weather map's column layer, ph and local are returned for the detail.
-float shapeDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
+// The shape-only density SN_nd at p before its clamp (cloudShapeSignedDensity: -1 outside the shell or
+// where the weather map has no cloud, <= 0 outside the shape); the weather map's column layer, ph and
+// local are returned for the detail.
+float shapeSignedDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
   float r = length(p);
   column = layer;
   local = vec3(0.0);
   ph = cloudHeightFraction(layer, r);
-  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+  if (ph <= 0.0 || ph >= 1.0) return -1.0;
   float planet = cloud.weatherPlanet.x;
   vec4 weather = textureLod(weatherMap, cloudWeatherCoordinate(p, planet, cloud.weatherRegion.xy, cloud.weatherRegion.zw), 0.0);
   bool empty;
   column = cloudColumnLayer(layer, weather, planet, empty);
-  if (empty) return 0.0;
+  if (empty) return -1.0;
   ph = cloudHeightFraction(column, r);
-  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+  if (ph <= 0.0 || ph >= 1.0) return -1.0;
   local = cloudLocalPosition(column, p);
   vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(column, local), 0.0);
-  return cloudShapeDensity(column, ph, shape, weather.x);
+  return cloudShapeSignedDensity(column, ph, shape, weather.x);
+}
+
+// The shape-only density SN_nd at p (0 outside the shell or where the weather map has no cloud).
+float shapeDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
+  return max(shapeSignedDensityAt(layer, p, column, ph, local), 0.0);
 }
 
 // The full density d at p.

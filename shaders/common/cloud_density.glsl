@@ -128,15 +128,22 @@ SHARED_INLINE vec3 cloudDetailCoordinate(CloudLayer layer, vec3 local, vec2 curl
 
 // SN_nd (eqs. 11 and 15): the shape-only density in [0, 1], before the detail erosion and DA; 0 outside
 // the shell. weatherCoverage = WM_c in [0, 1] (1 where no weather map drives the layer).
-SHARED_INLINE Real cloudShapeDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage) {
-  if (ph <= 0.0 || ph >= 1.0) return 0.0;
+//
+// cloudShapeSignedDensity is eq. 15 before its clamp: <= 0 outside the cloud, and how far below 0 says
+// how far the point is from the shape's edge (-1 outside the shell or without coverage). The march's
+// empty-space test uses it with a margin (docs/clouds.md, "Empty-space skipping").
+SHARED_INLINE Real cloudShapeSignedDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage) {
+  if (ph <= 0.0 || ph >= 1.0) return -1.0;
   Real coverage = cloudSaturate(layer.coverage * weatherCoverage);
-  if (coverage <= 0.0) return 0.0;  // R(x, 1, 1, 0, 1) is 0/0: no coverage, no cloud
+  if (coverage <= 0.0) return -1.0;  // R(x, 1, 1, 0, 1) is 0/0: no coverage, no cloud
   Real fbm = 0.625 * shape.y + 0.25 * shape.z + 0.125 * shape.w;
   Real shapeSample = cloudSaturate(cloudRemap(shape.x, fbm - 1.0, 1.0, 0.0, 1.0));                   // eq. 11
   Real sa = cloudShapeProfile(layer.kind, ph, layer.coverage, layer.anvil);
   // eq. 15 with the threshold 1 - c: R(x, 1 - c, 1, 0, 1) = (x - 1 + c) / c.
-  return cloudSaturate((shapeSample * sa - 1.0 + coverage) / coverage);
+  return min((shapeSample * sa - 1.0 + coverage) / coverage, 1.0);
+}
+SHARED_INLINE Real cloudShapeDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage) {
+  return max(cloudShapeSignedDensity(layer, ph, shape, weatherCoverage), 0.0);
 }
 
 // d (eqs. 13, 14, 16): the final density, 0 <= d <= shapeDensity * density_scale.
