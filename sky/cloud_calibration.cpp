@@ -48,6 +48,8 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        scene(17, 80, 250, 300, 20, R"({"kind": "stratocumulus", "bottom_m": 1200, "top_m": 2000, "coverage": 0.6, "extinction_scale": 0.3})")},
       {"sc_overhead", "stratocumulus", "stratocumulus 1000-2300 m, coverage 0.75, seed 21; sun 35 deg; looking up 60 deg",
        scene(21, 35, 0, 180, 60, R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2300, "coverage": 0.75, "extinction_scale": 0.3})")},
+      {"sc_backlit", "stratocumulus", "stratocumulus 1300-2300 m, coverage 0.65, seed 31; sun 78 deg; looking towards it, up 18 deg",
+       scene(31, 78, 100, 100, 18, R"({"kind": "stratocumulus", "bottom_m": 1300, "top_m": 2300, "coverage": 0.65, "extinction_scale": 0.3})")},
       {"sc_thin", "stratocumulus", "stratocumulus 1500-2200 m, coverage 0.55, extinction x 0.15, seed 29; sun 50 deg; looking up 40 deg",
        scene(29, 50, 90, 200, 40, R"({"kind": "stratocumulus", "bottom_m": 1500, "top_m": 2200, "coverage": 0.55, "extinction_scale": 0.15})")},
   };
