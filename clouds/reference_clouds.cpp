@@ -82,7 +82,21 @@ CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingS
       environment_(environment),
       settings_(settings),
       skyToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSkyLambdaPower)),
-      sunToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSunLambdaPower)) {}
+      sunToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSunLambdaPower)) {
+  albedo_ = lighting.albedo;
+  if (settings.maxScatteringOrder == 0 && lighting.gForward >= settings.deltaLobeMinG && lighting.backWeight < 1.0) {
+    // δ-HG scaling of the first lobe (Joseph, Wiscombe and Weinman 1976): HG(g) ~ g^2 δ + (1 - g^2)
+    // HG(g / (1 + g)), which keeps its mean cosine g. The δ part, f = (1 - w) g^2 of all scattering,
+    // goes straight on, so it neither attenuates nor turns: sigma_t' = sigma_t (1 - f omega),
+    // omega' = omega (1 - f) / (1 - f omega), and the rest of the phase renormalised by 1 - f.
+    const double g = lighting.gForward, w = lighting.backWeight;
+    deltaFraction_ = (1.0 - w) * g * g;
+    extinctionScale_ = 1.0 - deltaFraction_ * lighting.albedo;
+    albedo_ = extinctionScale_ > 0.0 ? lighting.albedo * (1.0 - deltaFraction_) / extinctionScale_ : 0.0;
+    lighting_.gForward = g / (1.0 + g);
+    lighting_.backWeight = w / (1.0 - deltaFraction_);
+  }
+}
 
 glm::dvec3 CloudPathTracer::sunIrradianceAt(glm::dvec3 p) const {
   const double r = std::max(glm::length(p), atmosphere_.bottom_radius);
@@ -116,14 +130,15 @@ std::vector<CloudPathTracer::Segment> CloudPathTracer::segments(glm::dvec3 origi
 
 // Ratio tracking (Novák et al. 2014): T = Π (1 - sigma_t(x_k) / sigma_max) over tentative collisions
 // x_k drawn with the majorant; unbiased, and never 0/1 noise like a delta-tracking indicator.
-double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random) const {
+double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random,
+                                           double extinctionScale) const {
   double transmittance = 1.0;
   for (const Segment& s : segments(origin, direction, 1e7)) {
     const double majorant = shared::cloudMajorant(medium_.layers()[s.layer]);
     if (!(majorant > 0.0)) continue;
     for (double t = s.start - std::log1p(-random.uniform()) / majorant; t < s.end;
          t -= std::log1p(-random.uniform()) / majorant) {
-      transmittance *= 1.0 - std::min(medium_.extinction(s.layer, origin + direction * t) / majorant, 1.0);
+      transmittance *= 1.0 - std::min(extinctionScale * medium_.extinction(s.layer, origin + direction * t) / majorant, 1.0);
       if (transmittance < 1e-6) return 0.0;  // negligible; (Russian roulette would keep it unbiased)
     }
   }
@@ -133,12 +148,12 @@ double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 directi
 CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec3 direction, uint64_t stream) const {
   PixelResult result;
   reference::Random random(settings_.seed, stream);
-  const double albedo = lighting_.albedo;
+  const double albedo = albedo_;
   double sumY = 0.0, sumY2 = 0.0, sumT = 0.0;
   glm::dvec3 sumRgb(0.0);
   const int n = std::max(settings_.samplesPerPixel, 1);
   for (int sample = 0; sample < n; ++sample) {
-    sumT += cloudTransmittance(origin, direction, random);
+    sumT += cloudTransmittance(origin, direction, random, 1.0);  // the true transmittance, as the fast path's alpha
     glm::dvec3 sunlike(0.0), skylike(0.0);
     glm::dvec3 x = origin, w = direction;
     double weight = 1.0;
@@ -159,7 +174,7 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
           t -= std::log1p(-random.uniform()) / majorant;
           if (t >= s.end) break;
           const glm::dvec3 p = x + w * t;
-          if (random.uniform() * majorant < medium_.extinction(s.layer, p)) {
+          if (random.uniform() * majorant < extinctionScale_ * medium_.extinction(s.layer, p)) {
             x = p;
             collided = true;
             break;
@@ -191,7 +206,7 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
       const glm::dvec3 sunLight = sunIrradianceAt(x);
       if (sunLight.x + sunLight.y + sunLight.z > 0.0) {
         const double phase = shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, lighting_.alpha, nuSun);
-        sunlike += weight * phase * cloudTransmittance(x, sun_, random) * sunLight;
+        sunlike += weight * phase * cloudTransmittance(x, sun_, random, extinctionScale_) * sunLight;
       }
       // New direction from the two-lobe phase function, sampled exactly (sampleCloudPhaseCosine): the
       // pdf equals the phase function, so the weight is unchanged.
