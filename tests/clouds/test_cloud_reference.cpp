@@ -18,6 +18,19 @@ namespace {
 
 class CloudReference : public test::GpuTest {};
 
+// The path tracer's medium for a scene the GPU rendered with `options`: the same noise texels (baked
+// with the same seed and sizes, read back) and the same weather map.
+CloudMedium cloudMediumFor(gpu::Context& context, const Scene& scene, const CloudSettings& settings,
+                           const SkyRenderOptions& options, const SceneView& view) {
+  CloudNoise noise(context);
+  gpu::CommandList commands(context);
+  noise.update(settings.seed, options.cloudNoise, commands);
+  commands.submitAndWait();
+  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
+  return CloudMedium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(), noise.downloadCurl(),
+                     cloudWeatherMapForScene(scene), ground);
+}
+
 TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   // A thinner cumulus (extinction x 0.2: sigma_t <= 0.02 m^-1) keeps the paths short enough for a test.
   Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
@@ -31,15 +44,8 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   RenderResult gpu = test::cloudRenderer().render(scene, o);
 
   CloudSettings settings = CloudSettings::fromScene(scene);
-  // The same textures: bake with the same seed and sizes, read back.
-  CloudNoise noise(context());
-  gpu::CommandList commands(context());
-  noise.update(settings.seed, o.cloudNoise, commands);
-  commands.submitAndWait();
   const SceneView& view = gpu.view;
-  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
-  CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
-                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+  const CloudMedium medium = cloudMediumFor(context(), scene, settings, o, view);
   CloudReferenceSettings rs;
   rs.samplesPerPixel = 48;
   CloudPathTracer tracer(medium, settings.lighting, view.atmosphere, view.sunDirection, CloudEnvironment{}, rs);
@@ -101,14 +107,8 @@ SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scen
   o.clouds.lightMarchToExit = false;
   const RenderResult fixedLength = test::cloudRenderer().render(scene, o);
   const CloudSettings settings = CloudSettings::fromScene(scene);
-  CloudNoise noise(context);
-  gpu::CommandList commands(context);
-  noise.update(settings.seed, o.cloudNoise, commands);
-  commands.submitAndWait();
   const SceneView& view = gpu.view;
-  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
-  CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
-                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+  const CloudMedium medium = cloudMediumFor(context, scene, settings, o, view);
   CloudReferenceSettings rs;
   rs.samplesPerPixel = samplesPerPixel;
   rs.maxScatteringOrder = 1;
@@ -176,14 +176,8 @@ TEST_F(CloudReference, DeltaScaledReferenceAgreesWithTheFullOne) {
   CloudSettings settings = CloudSettings::fromScene(scene);
   settings.lighting.gForward = 0.95;
   settings.lighting.backWeight = 0.4;
-  CloudNoise noise(context());
-  gpu::CommandList commands(context());
-  noise.update(settings.seed, o.cloudNoise, commands);
-  commands.submitAndWait();
   const SceneView& view = gpu.view;
-  const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
-  CloudMedium medium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
-                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
+  const CloudMedium medium = cloudMediumFor(context(), scene, settings, o, view);
   auto reference = [&](double deltaLobeMinG, int spp, double& fraction) {
     CloudReferenceSettings rs;
     rs.samplesPerPixel = spp;
