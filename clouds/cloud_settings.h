@@ -43,7 +43,7 @@ struct CloudMarchSettings {
   // (cloudShapeSignedDensity). 0: skip wherever the sample is outside (sessions 1-4; at a sunset it lost
   // thin fringes, single scattering -16 %). 0.4: the margin is 0.025 at the nearest spans, 0.2 at the
   // farthest; bench clouds measured the same images for 0.05 fixed, 0.4, 0.8 and 1.6, and as with no
-  // skipping at all, for +0.1 % samples (docs/clouds.md, "Empty-space skipping").
+  // skipping at all, for +0.4 to +1 % samples (docs/clouds.md, "Empty-space skipping").
   double emptySpaceMargin = 0.4;
   double earlyExitTransmittance = 0.01;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn

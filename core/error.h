@@ -1,6 +1,8 @@
 #pragma once
 // Error kinds and the exit codes the command-line tool maps them to (docs/cli.md):
 // 0 ok, 2 bad input (the user can fix it), 3 runtime or device failure.
+#include <cstdio>
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -22,5 +24,21 @@ class RuntimeError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Runs a command's body with the tool's exit codes: a bad argument, scene or file (InputError) prints its
+// message and gives kExitBadInput, any other failure kExitRuntime. Used by `firmament` and the bench
+// tools.
+template <class Body>
+int runReportingErrors(Body body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitRuntime;
+  }
+}
 
 }  // namespace firmament

@@ -181,14 +181,5 @@ int main(int argc, char** argv) {
       printCommandHelp(command);
       return kExitOk;
     }
-  try {
-    Args args = parse(command, argc, argv, i + 1);
-    return command.run(args);
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return kExitRuntime;
-  }
+  return runReportingErrors([&] { return command.run(parse(command, argc, argv, i + 1)); });
 }
