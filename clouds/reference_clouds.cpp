@@ -77,6 +77,7 @@ CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingS
                                  const CloudEnvironment& environment, const CloudReferenceSettings& settings)
     : medium_(medium),
       lighting_(lighting),
+      exactLighting_(lighting),
       atmosphere_(atmosphereParametersAt(atmosphere, kDefaultWavelengthsNm)),
       sun_(glm::normalize(sun)),
       environment_(environment),
@@ -95,6 +96,7 @@ CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingS
     albedo_ = extinctionScale_ > 0.0 ? lighting.albedo * (1.0 - deltaFraction_) / extinctionScale_ : 0.0;
     lighting_.gForward = g / (1.0 + g);
     lighting_.backWeight = w / (1.0 - deltaFraction_);
+    aureoleCosine_ = std::cos(std::min(5.0 * (1.0 - g), shared::kPi));
   }
 }
 
@@ -145,6 +147,23 @@ double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 directi
   return transmittance;
 }
 
+bool CloudPathTracer::trackToCollision(glm::dvec3& x, glm::dvec3 w, double tMax, double extinctionScale,
+                                       reference::Random& random) const {
+  for (const Segment& s : segments(x, w, tMax)) {
+    const double majorant = shared::cloudMajorant(medium_.layers()[s.layer]);
+    if (!(majorant > 0.0)) continue;
+    for (double t = s.start - std::log1p(-random.uniform()) / majorant; t < s.end;
+         t -= std::log1p(-random.uniform()) / majorant) {
+      const glm::dvec3 p = x + w * t;
+      if (random.uniform() * majorant < extinctionScale * medium_.extinction(s.layer, p)) {
+        x = p;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec3 direction, uint64_t stream) const {
   PixelResult result;
   reference::Random random(settings_.seed, stream);
@@ -164,25 +183,7 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
         result.capped++;
         break;
       }
-      // Delta tracking through the shells in order, to the first real collision.
-      bool collided = false;
-      for (const Segment& s : segments(x, w, primary ? settings_.maxDistance_m : 1e7)) {
-        const double majorant = shared::cloudMajorant(medium_.layers()[s.layer]);
-        if (!(majorant > 0.0)) continue;
-        double t = s.start;
-        while (true) {
-          t -= std::log1p(-random.uniform()) / majorant;
-          if (t >= s.end) break;
-          const glm::dvec3 p = x + w * t;
-          if (random.uniform() * majorant < extinctionScale_ * medium_.extinction(s.layer, p)) {
-            x = p;
-            collided = true;
-            break;
-          }
-        }
-        if (collided) break;
-      }
-      if (!collided) {
+      if (!trackToCollision(x, w, primary ? settings_.maxDistance_m : 1e7, extinctionScale_, random)) {
         // Left the clouds: the background of the view ray is the sky image (composited with T);
         // scattered paths see the environment.
         if (!primary) {
@@ -205,7 +206,14 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
       const double nuSun = glm::dot(w, sun_);
       const glm::dvec3 sunLight = sunIrradianceAt(x);
       if (sunLight.x + sunLight.y + sunLight.z > 0.0) {
-        const double phase = shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, lighting_.alpha, nuSun);
+        // TMS (CloudReferenceSettings::exactSingleScattering): at the view ray's first event the scene's
+        // phase divided by 1 - f (the scaled medium's scattering coefficient omega' sigma_t' carries 1 - f
+        // of omega sigma_t), so the peak's light towards the camera is kept.
+        const double phase =
+            order == 1 && deltaFraction_ > 0.0 && settings_.exactSingleScattering
+                ? shared::cloudPhase(exactLighting_.gForward, exactLighting_.gBack, exactLighting_.backWeight,
+                                     exactLighting_.alpha, nuSun) / (1.0 - deltaFraction_)
+                : shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, lighting_.alpha, nuSun);
         sunlike += weight * phase * cloudTransmittance(x, sun_, random, extinctionScale_) * sunLight;
       }
       // New direction from the two-lobe phase function, sampled exactly (sampleCloudPhaseCosine): the
@@ -241,6 +249,7 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
   const size_t count = out.image.pixelCount();
   out.luminance.assign(count, 0.0);
   out.luminanceStandardError.assign(count, 0.0);
+  out.inAureole.assign(count, 0);
   std::atomic<size_t> next{0}, done{0};
   std::atomic<long long> events{0}, capped{0};
   auto worker = [&] {
@@ -257,6 +266,7 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
         p[3] = float(r.transmittance);
         out.luminance[i] = r.luminance;
         out.luminanceStandardError[i] = r.luminanceStandardError;
+        out.inAureole[i] = glm::dot(dir, tracer.sunDirection()) > tracer.aureoleCosine() ? 1 : 0;
         events += r.events;
         capped += r.capped;
       }
@@ -286,6 +296,10 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
   CloudReferenceError e;
   for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
     if (!(reference.image.pixels[4 * i + 3] < maxTransmittance)) continue;
+    if (i < reference.inAureole.size() && reference.inAureole[i]) {
+      ++e.aureolePixels;
+      continue;
+    }
     const float* p = test.pixels.data() + size_t(test.channels) * i;
     const double a = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
     const double y = reference.luminance[i], se = reference.luminanceStandardError[i];

@@ -81,7 +81,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Prepared> prepared;
   for (const CalibrationScene& sc : calibrationScenes(config.quick)) {
-    const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">");
+    const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">", {"/clouds/lighting/phase=" + config.phase});
     auto renderer = std::make_unique<SkyRenderer>(context);
     const RenderResult first = renderer->render(scene, options);
     const CloudSettings settings = CloudSettings::fromScene(scene);
@@ -106,7 +106,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     for (const Prepared& p : prepared) {
       if (group != "all" && p.scene.group != group) continue;
       const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
-                                       {"/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+                                       {"/clouds/lighting/phase=" + config.phase,
+                                        "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
                                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
                                         "/clouds/lighting/ms_c=" + number(c)});
       const RenderResult r = p.renderer->render(scene, options);
@@ -192,7 +193,7 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
                    "sc_thin x 0.15), " +
-                   std::to_string(config.octaves) + " octaves; reference: the CPU cloud path tracer (all orders, " +
+                   std::to_string(config.octaves) + " octaves, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
                    " paths/pixel). Fit: Nelder-Mead over (b, a/b, c), minimising the mean squared rel RMSE of the "
                    "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5 with the same multiple-scattering "

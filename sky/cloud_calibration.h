@@ -26,6 +26,9 @@ struct CloudCalibrationConfig {
   int samplesPerPixel = 0;  // 0: 128 (quick 64): the fit needs a quiet reference
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
+  // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
+  // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").
+  std::string phase = "dual_henyey_greenstein";
   std::string environmentNote;
 };
 

@@ -85,6 +85,10 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.threads = args.integer("threads", 0, 0, 1024);
   config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
   config.octaves = args.integer("octaves", 3, 1, 8);
+  config.phase = args.getOr("phase", config.phase);
+  if (config.phase != "dual_henyey_greenstein" && config.phase != "approximate_mie")
+    throw InputError("firmament bench clouds --calibrate: --phase '" + config.phase +
+                     "'; allowed: dual_henyey_greenstein, approximate_mie");
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
@@ -163,7 +167,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--calibrate [--octaves N]] [--device D]",
+    "[--calibrate [--octaves N] [--phase P]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -172,6 +176,7 @@ const CommandRegistration registration{Command{
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
+        {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),
