@@ -45,6 +45,12 @@ struct CloudMarchSettings {
   // farthest; bench clouds measured the same images for 0.05 fixed, 0.4, 0.8 and 1.6, and as with no
   // skipping at all, for +0.4 to +1 % samples (docs/clouds.md, "Empty-space skipping").
   double emptySpaceMargin = 0.4;
+  // δ-scaled transport for a phase with a narrow forward peak (cloudPhaseDeltaFraction > 0: the
+  // approximate Mie phase): the peak's share f of scattering goes straight on, so the sun's light march
+  // and the view ray's in-scattered light see sigma_t (1 - f omega), while the single scattering keeps
+  // the scene's phase (TMS, as the path tracer) and the alpha the true transmittance. Off: every path
+  // attenuated by the full sigma_t, which darkened the approximate Mie clouds (docs/clouds.md "Phase").
+  bool deltaScaling = true;
   double earlyExitTransmittance = 0.01;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
   // tan of the light cone's half-angle (Schneider 2015's cone sampling). 0 by default: the cone's
@@ -118,6 +124,11 @@ struct CloudLightingSettings {
   double ambientBottomVisibility = 0.5;
 };
 
+// The share f = (1 - backWeight) g^2 of all scattering that δ-HG scaling (Joseph, Wiscombe and Weinman
+// 1976) sends straight on when the first lobe is at least minG forward; 0 otherwise. The path tracer
+// (CloudReferenceSettings::deltaLobeMinG) and the march (CloudMarchSettings::deltaScaling) share it.
+double cloudPhaseDeltaFraction(const CloudLightingSettings& lighting, double minG = 0.95);
+
 struct CloudSettings {
   std::vector<CloudLayerSettings> layers;
   uint32_t seed = 1;
@@ -143,6 +154,7 @@ struct CloudOverrides {
   std::optional<int> lightSteps;
   std::optional<int> coarseFactor;
   std::optional<double> emptySpaceMargin;
+  std::optional<bool> deltaScaling;
   std::optional<bool> jitter;
   std::optional<int> resolutionDivisor;
   std::optional<int> temporalUpdate;
@@ -169,11 +181,12 @@ double cloudTypeExtinction(int kind);
 // The octave parameters of a cloud type, fitted to the path tracer by `firmament bench clouds
 // --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"): cumulus and stratocumulus on
 // their own calibration scenes; cumulonimbus takes cumulus's, stratus stratocumulus's, cirrus the fit
-// over all scenes (no calibration scenes of their own yet).
+// over all scenes (no calibration scenes of their own yet). Per phase model: c scales the phase's
+// lobes and the approximate Mie's transport is δ-scaled, so each phase has its own fit (`--phase`).
 struct CloudMultipleScattering {
   double a, b, c;
 };
-CloudMultipleScattering cloudTypeMultipleScattering(int kind);
+CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);
 int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown
 const char* cloudKindName(int kind);
 

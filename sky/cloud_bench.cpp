@@ -170,6 +170,10 @@ std::vector<KnobValue> knobValues(bool quick) {
     KnobValue k{"phase", "approximate mie 20 um", {"/clouds/lighting/phase=approximate_mie"}, [](SkyRenderOptions&) {}};
     k.ownReference = true;
     v.push_back(k);
+    KnobValue unscaled{"phase", "approximate mie 20 um, march not δ-scaled", {"/clouds/lighting/phase=approximate_mie"},
+                       [](SkyRenderOptions& o) { o.clouds.deltaScaling = false; }};
+    unscaled.ownReference = true;
+    v.push_back(unscaled);
   }
   // Temporal reprojection: the last frame of a moving sequence (1 in N pixels marched per frame).
   for (int n : {4, 16}) {

@@ -148,6 +148,9 @@ void main() {
   bool ambientOn = (cloud.steps.w & 4) != 0;
   float lightLength = cloud.phaseLight.w;
   float albedo = cloud.phase.w;
+  // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
+  // so light paths see sigma_t' = (1 - f omega) sigma_t; 1 without a peak.
+  float transportScale = 1.0 - cloud.phaseLight.y * albedo;
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
   int coarse = max(int(cloud.march.z + 0.5), 1);
@@ -171,7 +174,8 @@ void main() {
   float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
 
-  float transmittance = 1.0;
+  float transmittance = 1.0;       // the true one: the alpha, opacity and depth
+  float lightTransmittance = 1.0;  // the δ-scaled one the in-scattered light sees (= transmittance without a peak)
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
   vec3 skylike = vec3(0.0);  // cloud light with the sky's spectrum
   float depthSum = 0.0, depthWeight = 0.0;
@@ -179,7 +183,7 @@ void main() {
   // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
   // D >= 1 km that stays below ~8 N for G >= 10, hence 8 N.
   int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
-  for (int s = 0; s < count && transmittance > earlyExit && budget > 0; ++s) {
+  for (int s = 0; s < count && lightTransmittance > earlyExit && budget > 0; ++s) {
     CloudLayer layer = layerAt(segmentLayer[s]);
     if (segmentLayer[s] != phaseLayer) {
       // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
@@ -198,7 +202,7 @@ void main() {
     float t = segments[s].x;
     float end = segments[s].y;
     int emptyRun = coarse;  // start in coarse mode
-    while (t < end && transmittance > earlyExit && budget > 0) {
+    while (t < end && lightTransmittance > earlyExit && budget > 0) {
       --budget;
       float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
       if (emptyRun >= coarse && coarse > 1) {
@@ -256,6 +260,7 @@ void main() {
           tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone);
           lightCount += uint(n);
         }
+        tau *= transportScale;
       }
       // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
       // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
@@ -276,7 +281,7 @@ void main() {
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
         int upSteps = max(lightSteps / 2, 2);
-        tauUp = opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+        tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
         lightCount += uint(upSteps);
       }
       float octaveSum = phaseOctave[0] * exp(-tau);
@@ -299,9 +304,13 @@ void main() {
         skySource = 0.5 * (vSky * skyIrradiance / kPi + vGround * reflectance * groundSky);
         sunSource += 0.5 * vGround * reflectance * groundSun;
       }
-      float integral = cloudStepIntegral(sigmaT, h);
-      sunlike += transmittance * sigmaS * sunSource * integral;
-      skylike += transmittance * sigmaS * skySource * integral;
+      // sigma_s = omega sigma_t with the scene's phase at the first octave (TMS: the scaled medium's
+      // omega' sigma_t' p' with the truncated phase p' replaced by p / (1 - f)).
+      float sigmaTLight = transportScale * sigmaT;
+      float integral = cloudStepIntegral(sigmaTLight, h);
+      sunlike += lightTransmittance * sigmaS * sunSource * integral;
+      skylike += lightTransmittance * sigmaS * skySource * integral;
+      lightTransmittance *= exp(-sigmaTLight * h);
       float stepT = exp(-sigmaT * h);
       float opacity = transmittance * (1.0 - stepT);
       depthSum += opacity * (t + 0.5 * h);

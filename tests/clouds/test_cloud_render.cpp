@@ -276,11 +276,16 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_EQ(typed.layers[1].msB, cu.b);
   EXPECT_EQ(typed.layers[1].msC, cu.c);
   EXPECT_NE(sc.c, cu.c);
-  for (int kind = 0; kind <= shared::kCloudCirrus; ++kind) {
-    const CloudMultipleScattering m = cloudTypeMultipleScattering(kind);
-    EXPECT_LE(m.a, m.b) << kind;  // the energy bound of the octaves
-    EXPECT_LE(m.b, 1.0) << kind;
-  }
+  for (CloudPhaseModel phase : {CloudPhaseModel::DualHenyeyGreenstein, CloudPhaseModel::ApproximateMie})
+    for (int kind = 0; kind <= shared::kCloudCirrus; ++kind) {
+      const CloudMultipleScattering m = cloudTypeMultipleScattering(kind, phase);
+      EXPECT_LE(m.a, m.b) << kind;  // the energy bound of the octaves
+      EXPECT_LE(m.b, 1.0) << kind;
+    }
+  // The approximate Mie phase takes its own fit.
+  const CloudSettings mie = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/phase=approximate_mie"}, twoLayers));
+  EXPECT_EQ(mie.layers[1].msA, cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).a);
+  EXPECT_NE(mie.layers[1].msA, cu.a);
   const CloudSettings given = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_c=0.7"}, twoLayers));
   EXPECT_EQ(given.layers[0].msC, 0.7);
   EXPECT_EQ(given.layers[1].msC, 0.7);
