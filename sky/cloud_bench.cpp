@@ -170,7 +170,7 @@ std::vector<KnobValue> knobValues(bool quick) {
     KnobValue k{"phase", "approximate mie 20 um", {"/clouds/lighting/phase=approximate_mie"}, [](SkyRenderOptions&) {}};
     k.ownReference = true;
     v.push_back(k);
-    KnobValue unscaled{"phase", "approximate mie 20 um, march not δ-scaled", {"/clouds/lighting/phase=approximate_mie"},
+    KnobValue unscaled{"phase", "approximate mie 20 um; march not delta-scaled", {"/clouds/lighting/phase=approximate_mie"},
                        [](SkyRenderOptions& o) { o.clouds.deltaScaling = false; }};
     unscaled.ownReference = true;
     v.push_back(unscaled);
