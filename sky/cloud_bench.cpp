@@ -414,7 +414,9 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
                    "rows are the last frame of a sequence of 2 N + 1 frames at 30 frames per second ending at the view (the "
                    "camera turning 7.5 deg/s, the wind 10 m/s), marching 1 in N pixels per frame after the first; their "
                    "frame ms and samples are the reprojected frames' (median, mean). The phase row uses the approximate "
-                   "Mie phase (20 um droplets) on both sides: its path tracer renders with that phase.\n\n";
+                   "Mie phase (20 um droplets) on both sides: its path tracer renders with that phase, delta-scaled with TMS, and "
+                   "leaves out the pixels within its aureole cone around the sun (1.5 deg); the second phase row turns the "
+                   "march's delta-scaling off.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   md += "| scenario | knob | value | against | frame ms | rel RMSE | corrected | noise | bias | PSNR dB | max rel err | samples/pixel |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
