@@ -25,33 +25,25 @@ double cloudTypeExtinction(int kind) {
 }
 
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase) {
-  if (phase == CloudPhaseModel::ApproximateMie) {
-    // `firmament bench clouds --calibrate --phase approximate_mie` (same scenes and settings, the δ-scaled
-    // march of session 6; docs/clouds.md "Calibration").
-    constexpr CloudMultipleScattering cumulus{0.387, 0.641, 0.592};
-    constexpr CloudMultipleScattering stratocumulus{0.391, 0.798, 0.072};
-    constexpr CloudMultipleScattering all{0.335, 0.571, 0.341};
-    switch (kind) {
-      case shared::kCloudCumulus:
-      case shared::kCloudCumulonimbus: return cumulus;
-      case shared::kCloudStratocumulus:
-      case shared::kCloudStratus: return stratocumulus;
-      default: return all;
-    }
-  }
+  // One fit per calibration group: cumulus (also cumulonimbus), stratocumulus (also stratus), all
+  // scenes (cirrus).
+  struct Fits {
+    CloudMultipleScattering cumulus, stratocumulus, all;
+  };
   // `firmament bench clouds --calibrate --out out/calibration` (9 scenes at 48x27, 128 paths/pixel,
   // 3 octaves; docs/clouds.md "Calibration" has the per-scene errors). Cumulus from session 2's fit (the
   // session 5 refit, same scenes, moved it by <= 0.011); stratocumulus and the joint fit from session 5,
   // when the backlit deck sc_backlit joined the scenes.
-  constexpr CloudMultipleScattering cumulus{0.272, 0.958, 0.500};
-  constexpr CloudMultipleScattering stratocumulus{0.284, 0.829, 0.001};
-  constexpr CloudMultipleScattering all{0.297, 0.877, 0.114};
+  constexpr Fits dualHenyeyGreenstein{{0.272, 0.958, 0.500}, {0.284, 0.829, 0.001}, {0.297, 0.877, 0.114}};
+  // `... --calibrate --phase approximate_mie` (same scenes and settings, the δ-scaled march of session 6).
+  constexpr Fits approximateMie{{0.387, 0.641, 0.592}, {0.391, 0.798, 0.072}, {0.335, 0.571, 0.341}};
+  const Fits& fits = phase == CloudPhaseModel::ApproximateMie ? approximateMie : dualHenyeyGreenstein;
   switch (kind) {
     case shared::kCloudCumulus:
-    case shared::kCloudCumulonimbus: return cumulus;
+    case shared::kCloudCumulonimbus: return fits.cumulus;
     case shared::kCloudStratocumulus:
-    case shared::kCloudStratus: return stratocumulus;
-    default: return all;
+    case shared::kCloudStratus: return fits.stratocumulus;
+    default: return fits.all;
   }
 }
 
