@@ -104,6 +104,9 @@ SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scen
   o.clouds.jitter = false;
   o.clouds.ambient = false;
   o.clouds.aerialPerspective = AerialPerspective::Off;
+  // The first order is never δ-scaled (scaling folds the peak's forward multiple scattering into the
+  // first order), so neither is the march here; it changes nothing for dual HG.
+  o.clouds.deltaScaling = false;
   const RenderResult gpu = test::cloudRenderer().render(scene, o);
   o.clouds.lightMarchToExit = false;
   const RenderResult fixedLength = test::cloudRenderer().render(scene, o);
