@@ -79,6 +79,12 @@ AerialPerspective aerialPerspectiveFromName(const std::string& name) {
   throw InputError("unknown aerial perspective '" + name + "'; allowed: volume, march, off");
 }
 
+CloudPhaseModel cloudPhaseModelFromName(const std::string& name, const std::string& what) {
+  if (name == "dual_henyey_greenstein") return CloudPhaseModel::DualHenyeyGreenstein;
+  if (name == "approximate_mie") return CloudPhaseModel::ApproximateMie;
+  throw InputError(what + ": '" + name + "'; allowed: dual_henyey_greenstein, approximate_mie");
+}
+
 const char* aerialPerspectiveName(AerialPerspective mode) {
   switch (mode) {
     case AerialPerspective::Volume: return "volume";
@@ -150,13 +156,10 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   light.gBack = scene.number("/clouds/lighting/phase_g_back");
   light.backWeight = scene.number("/clouds/lighting/phase_back_weight");
   light.dropletDiameter_um = scene.number("/clouds/lighting/droplet_diameter_um");
-  const std::string phase = scene.string("/clouds/lighting/phase");
-  if (phase == "approximate_mie") {
-    light.phase = CloudPhaseModel::ApproximateMie;
+  light.phase = cloudPhaseModelFromName(scene.string("/clouds/lighting/phase"), source + ": /clouds/lighting/phase");
+  if (light.phase == CloudPhaseModel::ApproximateMie) {
     const glm::dvec4 lobes = shared::cloudApproximateMie(light.dropletDiameter_um);
     light.gForward = lobes.x, light.gBack = lobes.y, light.backWeight = lobes.z, light.alpha = lobes.w;
-  } else if (phase != "dual_henyey_greenstein") {
-    throw InputError(source + ": /clouds/lighting/phase: '" + phase + "'; allowed: dual_henyey_greenstein, approximate_mie");
   }
   light.albedo = scene.number("/clouds/lighting/albedo");
   light.octaves = int(scene.integer("/clouds/lighting/ms_octaves"));

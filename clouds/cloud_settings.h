@@ -109,6 +109,8 @@ struct CloudMarchSettings {
 // /clouds/lighting/phase): two Henyey-Greenstein lobes (default), or Jendersie and d'Eon 2023's
 // approximate Mie phase for a droplet diameter (/clouds/lighting/droplet_diameter_um).
 enum class CloudPhaseModel { DualHenyeyGreenstein, ApproximateMie };
+// "dual_henyey_greenstein" or "approximate_mie"; otherwise InputError("<what>: '<name>'; allowed: ...").
+CloudPhaseModel cloudPhaseModelFromName(const std::string& name, const std::string& what);
 
 struct CloudLightingSettings {
   CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein;

@@ -85,13 +85,14 @@ CloudPathTracer::CloudPathTracer(const CloudMedium& medium, const CloudLightingS
       skyToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSkyLambdaPower)),
       sunToRgb_(threeWavelengthRadianceToRgb(kDefaultWavelengthsNm, kSunLambdaPower)) {
   albedo_ = lighting.albedo;
-  if (settings.maxScatteringOrder == 0 && cloudPhaseDeltaFraction(lighting, settings.deltaLobeMinG) > 0.0) {
+  const double f = settings.maxScatteringOrder == 0 ? cloudPhaseDeltaFraction(lighting, settings.deltaLobeMinG) : 0.0;
+  if (f > 0.0) {
     // δ-HG scaling of the first lobe (Joseph, Wiscombe and Weinman 1976): HG(g) ~ g^2 δ + (1 - g^2)
     // HG(g / (1 + g)), which keeps its mean cosine g. The δ part, f = (1 - w) g^2 of all scattering,
     // goes straight on, so it neither attenuates nor turns: sigma_t' = sigma_t (1 - f omega),
     // omega' = omega (1 - f) / (1 - f omega), and the rest of the phase renormalised by 1 - f.
     const double g = lighting.gForward, w = lighting.backWeight;
-    deltaFraction_ = cloudPhaseDeltaFraction(lighting, settings.deltaLobeMinG);
+    deltaFraction_ = f;
     extinctionScale_ = 1.0 - deltaFraction_ * lighting.albedo;
     albedo_ = extinctionScale_ > 0.0 ? lighting.albedo * (1.0 - deltaFraction_) / extinctionScale_ : 0.0;
     lighting_.gForward = g / (1.0 + g);

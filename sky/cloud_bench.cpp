@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
@@ -251,6 +252,9 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     std::vector<float> cloudMask(airReference.clouds.pixelCount());
     for (size_t i = 0; i < cloudMask.size(); ++i) cloudMask[i] = airReference.clouds.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
 
+    // Path tracers of rows that change the shared physics (KnobValue::ownReference), one per distinct
+    // scene overrides: rows that differ only in the march share it.
+    std::map<std::vector<std::string>, CloudReferenceImage> ownReferences;
     for (const KnobValue& k : knobValues(config.quick)) {
       SkyRenderOptions o = base;
       k.apply(o);
@@ -268,14 +272,14 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
           if (std::isfinite(e)) maxRel = std::max(maxRel, double(e));
         row.maxRelErr = maxRel;
       } else {
-        CloudReferenceImage own;
-        if (k.ownReference) {
+        if (k.ownReference && !ownReferences.count(k.sceneOverrides)) {
           const Scene rowScene = Scene::parse(sc.text, "<bench " + sc.name + ">", k.sceneOverrides);
           const CloudPathTracer rowTracer(medium, CloudSettings::fromScene(rowScene).lighting, first.view.atmosphere,
                                           first.view.sunDirection, CloudEnvironment{}, rs);
-          own = renderCloudReference(rowTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
+          ownReferences[k.sceneOverrides] =
+              renderCloudReference(rowTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
         }
-        const CloudReferenceImage& against = k.ownReference ? own : k.singleScattering ? singleRef : ref;
+        const CloudReferenceImage& against = k.ownReference ? ownReferences.at(k.sceneOverrides) : k.singleScattering ? singleRef : ref;
         const ImageMetrics m = compareImages(r.clouds, against.image);
         const CloudReferenceError e = compareWithCloudReference(r.clouds, against);
         row.against = k.singleScattering ? "path_tracer_order_1" : "path_tracer";

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "clouds/cloud_settings.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "gpu/context.h"
@@ -86,9 +87,7 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
   config.octaves = args.integer("octaves", 3, 1, 8);
   config.phase = args.getOr("phase", config.phase);
-  if (config.phase != "dual_henyey_greenstein" && config.phase != "approximate_mie")
-    throw InputError("firmament bench clouds --calibrate: --phase '" + config.phase +
-                     "'; allowed: dual_henyey_greenstein, approximate_mie");
+  cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
