@@ -15,6 +15,7 @@
 #include "core/log.h"
 #include "core/spectrum.h"
 #include "sky/kider_capture.h"
+#include "sky/kider_hemisphere.h"
 #include "sky/scene_view.h"
 #include "sky/sky_renderer.h"
 
@@ -23,6 +24,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180.0;
+// The published code's spectra: 40 samples 360 + 11.75 i nm, i.e. [360, 830) evenly.
+constexpr int kPublishedSpectrumSamples = 40;
 
 std::string number(double v) {
   char text[40];
@@ -116,6 +119,14 @@ double grassAlbedoLuminanceWeighted() {
   return num / den;
 }
 
+std::optional<KiderValidationSettings::AzimuthRefit> kiderAzimuthRefitFromName(const std::string& name) {
+  using Refit = KiderValidationSettings::AzimuthRefit;
+  if (name == "published") return Refit::published;
+  if (name == "log-rings") return Refit::logRings;
+  if (name == "none") return Refit::none;
+  return std::nullopt;
+}
+
 std::vector<std::string> kiderAtmosphereOverrides() {
   return {"/location/height_m=0",
           "/atmosphere/mie/angstrom_alpha=0.8",
@@ -167,15 +178,34 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     c.sunZenithDeg = sun.zenith / kDegree;
     c.sunAzimuthComputedDeg = sun.azimuth / kDegree;
     double sunAzimuth = sun.azimuth;
-    if (settings.refitSunAzimuth) {
-      std::vector<RingSample> ring;
+    c.azimuthRefit = "none";
+    if (settings.azimuthRefit != KiderValidationSettings::AzimuthRefit::none) {
+      // The published fit mirrors sum_i L(360 + 11.75 i nm) over all 40 samples of [360, 830); the
+      // log-ring fit the mean over the compared wavelengths.
+      std::vector<RingSample> integrated, logMean;
       for (const auto& s : capture.samples) {
-        double mean = 0.0;
+        double sum = 0.0, mean = 0.0;
+        for (int i = 0; i < kPublishedSpectrumSamples; ++i)
+          sum += s.radianceAt(settings.firstWavelengthNm + i * settings.wavelengthStepNm) * settings.wavelengthStepNm;
         for (double l : result.wavelengths) mean += s.radianceAt(l);
-        ring.push_back({s.azimuth, s.elevationDeg * kDegree, std::log(std::max(mean / double(result.wavelengths.size()), 1e-12))});
+        mean /= double(result.wavelengths.size());
+        integrated.push_back({s.azimuth, s.elevationDeg * kDegree, sum});
+        logMean.push_back({s.azimuth, s.elevationDeg * kDegree, std::log(std::max(mean, 1e-12))});
       }
-      sunAzimuth = refitSunAzimuthBySymmetry(ring, sun.azimuth, settings.refitHalfRangeDeg * kDegree,
-                                             settings.refitStepDeg * kDegree);
+      const double halfRange = settings.refitHalfRangeDeg * kDegree, step = settings.refitStepDeg * kDegree;
+      std::optional<KiderHemisphere> hemisphere;
+      if (settings.azimuthRefit == KiderValidationSettings::AzimuthRefit::published)
+        hemisphere = KiderHemisphere::fromSamples(integrated);
+      if (hemisphere) {
+        sunAzimuth = refitSunAzimuthByPublishedSymmetry(*hemisphere, sun.azimuth, halfRange, step);
+        c.azimuthRefit = "published";
+      } else {
+        if (settings.azimuthRefit == KiderValidationSettings::AzimuthRefit::published)
+          logWarning("validate kider: " + capture.name +
+                     " is not on the scanner's 81-direction layout; the sun azimuth is re-fitted on log rings");
+        sunAzimuth = refitSunAzimuthBySymmetry(logMean, sun.azimuth, halfRange, step);
+        c.azimuthRefit = "log rings";
+      }
     }
     c.sunAzimuthDeg = sunAzimuth / kDegree;
 

@@ -5,6 +5,7 @@
 // values (docs/validation.md). Nothing is fitted to the captures except the sun azimuth re-fit that
 // the published evaluation does (a correction of the scanner's drift, not of the model).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,12 @@ struct KiderValidationSettings {
   double utcOffsetHours = -4.0;
   // Conventions of the published evaluation.
   bool replaceSampleZero = true;
-  bool refitSunAzimuth = true;
+  // The sun azimuth's re-fit: `published` mirrors the spectrally integrated radiance, interpolated
+  // as the published code does, about the candidate plane (kider_hemisphere.h; captures not on the
+  // scanner's 81-direction layout fall back to `logRings`); `logRings` compares log radiances on the
+  // measured rings only (this project's first method); `none` keeps the computed azimuth.
+  enum class AzimuthRefit { published, logRings, none };
+  AzimuthRefit azimuthRefit = AzimuthRefit::published;
   double refitHalfRangeDeg = 20.0, refitStepDeg = 0.2;
   // Error measure: 31 wavelengths 360 + 11.75 i nm (360 ... 712.5), i.e. the first 31 of 40 evenly
   // spaced samples of [360, 830) as in the published code.
@@ -52,6 +58,9 @@ double grassAlbedo(double wavelengthNm);
 // ∫ ȳ(λ) a(λ) dλ / ∫ ȳ(λ) dλ over 360-830 nm: the single albedo the three-wavelength GPU path gets.
 double grassAlbedoLuminanceWeighted();
 
+// "published", "log-rings" or "none"; nullopt for anything else.
+std::optional<KiderValidationSettings::AzimuthRefit> kiderAzimuthRefitFromName(const std::string& name);
+
 struct KiderDirectionResult {
   int index = 0;
   double fileAzimuthDeg = 0.0, azimuthDeg = 0.0, zenithDeg = 0.0;
@@ -67,6 +76,7 @@ struct KiderCaptureResult {
   double sunZenithDeg = 0.0;             // computed (apparent)
   double sunAzimuthComputedDeg = 0.0;    // computed, clockwise from north
   double sunAzimuthDeg = 0.0;            // used: re-fitted by symmetry (or the computed one)
+  std::string azimuthRefit;              // the re-fit that gave it: "published", "log rings" or "none"
   double rmseSpectral = 0.0;             // 1e-3 W m^-2 sr^-1 nm^-1, all directions x wavelengths
   double relRmseLuminance = 0.0;         // sqrt(mean((Ym - Ymeas)²)) / sqrt(mean(Ymeas²)) over the directions
   double bias = 0.0;                     // mean(model - measured) spectral, 1e-3 W m^-2 sr^-1 nm^-1

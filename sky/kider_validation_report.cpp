@@ -22,10 +22,10 @@ std::string num(double v, const char* format = "%.6g") {
 void writeKiderValidationOutputs(const std::filesystem::path& outDir, const KiderValidationSettings& settings,
                                  const KiderValidationResult& result) {
   std::ostringstream csv;
-  csv << "capture,utc,sun_zenith_deg,sun_azimuth_deg,rmse_spectral,rel_rmse_luminance,bias\n";
+  csv << "capture,utc,sun_zenith_deg,sun_azimuth_deg,rmse_spectral,rel_rmse_luminance,bias,azimuth_refit\n";
   for (const auto& c : result.captures)
     csv << c.capture << ',' << c.utc << ',' << num(c.sunZenithDeg, "%.4f") << ',' << num(c.sunAzimuthDeg, "%.4f") << ','
-        << num(c.rmseSpectral, "%.4f") << ',' << num(c.relRmseLuminance) << ',' << num(c.bias, "%.4f") << '\n';
+        << num(c.rmseSpectral, "%.4f") << ',' << num(c.relRmseLuminance) << ',' << num(c.bias, "%.4f") << ',' << c.azimuthRefit << '\n';
   writeTextFileAtomically(outDir / "results.csv", csv.str());
 
   std::ostringstream dirs;
@@ -104,9 +104,14 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
      << " m (for the sun position); capture names are local time, UTC = local − (" << settings.utcOffsetHours
      << " h).\n"
      << "- Sun: astro ephemeris (ERFA), apparent zenith as computed; azimuth "
-     << (settings.refitSunAzimuth ? "re-fitted by mirror symmetry within ±" + num(settings.refitHalfRangeDeg) +
-                                        "° in " + num(settings.refitStepDeg) + "° steps"
-                                  : std::string("as computed"))
+     << (settings.azimuthRefit == KiderValidationSettings::AzimuthRefit::none
+             ? std::string("as computed")
+             : std::string(settings.azimuthRefit == KiderValidationSettings::AzimuthRefit::published
+                               ? "re-fitted as the published code does (mirror asymmetry of the interpolated, "
+                                 "spectrally integrated radiance)"
+                               : "re-fitted by the mirror asymmetry of log radiances on the measured rings") +
+                   " within ±" + num(settings.refitHalfRangeDeg) + "° in " + num(settings.refitStepDeg) +
+                   "° steps; the method per capture is in results.csv")
      << ".\n"
      << "- File azimuths are counter-clockwise from north: azimuth = (360 − a) mod 360. Sample 0 "
      << (settings.replaceSampleZero ? "replaced by the mean of samples 1 and 31" : "kept") << ".\n"

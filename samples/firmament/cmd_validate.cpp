@@ -30,7 +30,12 @@ int runValidate(const Args& args) {
   settings.utcOffsetHours = args.number("utc-offset", settings.utcOffsetHours);
   settings.latitudeDeg = args.number("lat", settings.latitudeDeg);
   settings.longitudeDeg = args.number("lon", settings.longitudeDeg);
-  settings.refitSunAzimuth = !args.has("no-refit");
+  if (const auto refit = args.get("refit")) {
+    const auto method = kiderAzimuthRefitFromName(*refit);
+    if (!method) throw InputError("--refit '" + *refit + "': expected published, log-rings or none");
+    settings.azimuthRefit = *method;
+  }
+  if (args.has("no-refit")) settings.azimuthRefit = KiderValidationSettings::AzimuthRefit::none;
   settings.gpu = !args.has("no-gpu");
 
   std::error_code ec;
@@ -55,13 +60,15 @@ int runValidate(const Args& args) {
 const CommandRegistration registration{Command{
     "validate",
     "render the measured directions of real captured skies and report the error (docs/validation.md)",
-    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--no-refit] [--utc-offset H] [--lat D --lon D]",
+    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--refit published|log-rings|none] [--utc-offset H] [--lat D --lon D]",
     {
         {"out", "DIR", "output folder (created): results.csv, per_direction.csv, per_wavelength.csv, report.md"},
         {"spp", "N", "reference Monte Carlo paths per direction (default 4096)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"no-gpu", "", "skip the fast GPU path's luminance comparison"},
-        {"no-refit", "", "use the computed sun azimuth (no mirror-symmetry re-fit)"},
+        {"refit", "METHOD",
+         "sun-azimuth re-fit: published (default; the published evaluation's method), log-rings, or none"},
+        {"no-refit", "", "same as --refit none"},
         {"utc-offset", "H", "capture names' local time = UTC + H hours (default -4, EDT)"},
         {"lat", "DEG", "site latitude (default 42.443449, Cornell)"},
         {"lon", "DEG", "site longitude (default -76.481962)"},

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "sky/kider_capture.h"
+#include "sky/kider_hemisphere.h"
 #include "sky/kider_validation.h"
 #include "tests/support/gpu_test.h"
 #include "tests/support/test_paths.h"
@@ -76,6 +77,48 @@ TEST(KiderConventions, SymmetryRefitRecoversAKnownAzimuth) {
   }
 }
 
+// The same sky in linear radiance, as the published re-fit mirrors it.
+std::vector<RingSample> linear(std::vector<RingSample> samples) {
+  for (auto& s : samples) s.value = std::exp(s.value);
+  return samples;
+}
+
+TEST(KiderConventions, PublishedHemisphereInterpolatesTheSamples) {
+  const auto sky = linear(symmetricSky(123.4 * kDegree, 40.0 * kDegree));
+  const auto hemisphere = KiderHemisphere::fromSamples(sky);
+  ASSERT_TRUE(hemisphere.has_value());
+  // Catmull-Rom passes through its nodes: every sample is read back (to rounding of the ring radii,
+  // which the file names give to 4 decimals of a degree).
+  for (const auto& s : sky) EXPECT_NEAR((*hemisphere)(kPi / 2 - s.elevation, s.azimuth), s.value, 1e-3 * s.value);
+  // Between samples it stays within the range of the neighbours' values, roughly: a smooth sky.
+  const double between = (*hemisphere)(45.0 * kDegree, 200.0 * kDegree);
+  EXPECT_TRUE(std::isfinite(between));
+  EXPECT_GT(between, 0.0);
+  // Not the layout: a missing direction, or a stray one.
+  auto missing = sky;
+  missing.pop_back();
+  EXPECT_FALSE(KiderHemisphere::fromSamples(missing).has_value());
+  auto stray = sky;
+  stray[3].azimuth += 1.0 * kDegree;
+  EXPECT_FALSE(KiderHemisphere::fromSamples(stray).has_value());
+}
+
+TEST(KiderConventions, PublishedSymmetryRefitRecoversAKnownAzimuth) {
+  for (double truthDeg : {123.4, 2.0, 300.0}) {
+    const auto hemisphere = KiderHemisphere::fromSamples(linear(symmetricSky(truthDeg * kDegree, 40.0 * kDegree)));
+    ASSERT_TRUE(hemisphere.has_value());
+    for (double offsetDeg : {-11.6, 0.0, 17.2}) {
+      const double fitted = refitSunAzimuthByPublishedSymmetry(*hemisphere, (truthDeg + offsetDeg) * kDegree);
+      // The interpolation is not exactly symmetric between samples, so the minimum may sit a step
+      // or two from the truth.
+      EXPECT_NEAR(std::remainder(fitted / kDegree - truthDeg, 360.0), 0.0, 0.6)
+          << "truth " << truthDeg << ", computed " << truthDeg + offsetDeg;
+    }
+    EXPECT_LT(publishedMirrorAsymmetry(*hemisphere, truthDeg * kDegree),
+              publishedMirrorAsymmetry(*hemisphere, (truthDeg + 5.0) * kDegree));
+  }
+}
+
 std::filesystem::path shippedCapture() {
   return test::sharedDataDir() / "kider2014" / "radiance" / "2013-05-27___11.45.00";
 }
@@ -111,6 +154,7 @@ TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
   const KiderCaptureResult& c = result.captures[0];
   EXPECT_EQ(c.directions.size(), 81u);
   EXPECT_NEAR(c.sunZenithDeg, 26.6, 0.2);
+  EXPECT_EQ(c.azimuthRefit, "published");  // the shipped capture is on the scanner's layout
   EXPECT_LE(c.sunAzimuthDeg, c.sunAzimuthComputedDeg + 1e-9);  // README: the fit lies below the computed one
   EXPECT_GE(c.sunAzimuthDeg, c.sunAzimuthComputedDeg - 20.0 - 1e-9);
   EXPECT_TRUE(std::isfinite(c.rmseSpectral));
