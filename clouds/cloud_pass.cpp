@@ -30,8 +30,9 @@ struct CloudBlock {
   int32_t shadowSize[4];   // texels, steps, enabled, unused
   float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, unused x2
   float layers[kMaxLayers * 5][4];
+  float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
 };
-static_assert(sizeof(CloudBlock) == (18 + kMaxLayers * 5) * 16);
+static_assert(sizeof(CloudBlock) == (18 + kMaxLayers * 6) * 16);
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -189,6 +190,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, std::min(ls.msA, ls.msB));
     put(b.layers[5 * i + 3], c.wind_offset, ls.msB);
     put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), ls.msC);
+    put(b.layerLighting[i], ls.msD, 0.0, 0.0, 0.0);
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);

@@ -34,9 +34,10 @@ CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel ph
   // 3 octaves; docs/clouds.md "Calibration" has the per-scene errors). Cumulus from session 2's fit (the
   // session 5 refit, same scenes, moved it by <= 0.011); stratocumulus and the joint fit from session 5,
   // when the backlit deck sc_backlit joined the scenes.
-  constexpr Fits dualHenyeyGreenstein{{0.272, 0.958, 0.500}, {0.284, 0.829, 0.001}, {0.297, 0.877, 0.114}};
+  // Session 7 (`--out /tmp/cal7_full`): with the Eddington diffusion floor, its weight d fitted too.
+  constexpr Fits dualHenyeyGreenstein{{0.347, 1.000, 0.538, 0.749}, {0.650, 1.000, 0.781, 0.859}, {0.622, 0.947, 0.792, 0.847}};
   // `... --calibrate --phase approximate_mie` (same scenes and settings, the δ-scaled march of session 6).
-  constexpr Fits approximateMie{{0.387, 0.641, 0.592}, {0.391, 0.798, 0.072}, {0.335, 0.571, 0.341}};
+  constexpr Fits approximateMie{{0.387, 0.641, 0.592, 0.0}, {0.391, 0.798, 0.072, 0.0}, {0.335, 0.571, 0.341, 0.0}};
   const Fits& fits = phase == CloudPhaseModel::ApproximateMie ? approximateMie : dualHenyeyGreenstein;
   switch (kind) {
     case shared::kCloudCumulus:
@@ -172,6 +173,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
     l.msA = lighting.contains("ms_a") ? scene.number("/clouds/lighting/ms_a") : type.a;
     l.msB = lighting.contains("ms_b") ? scene.number("/clouds/lighting/ms_b") : type.b;
     l.msC = lighting.contains("ms_c") ? scene.number("/clouds/lighting/ms_c") : type.c;
+    l.msD = lighting.contains("ms_d") ? scene.number("/clouds/lighting/ms_d") : type.d;
     if (l.msA > l.msB)
       throw InputError(source + ": /clouds/lighting/ms_a: " + std::to_string(l.msA) + " exceeds ms_b (" +
                        std::to_string(l.msB) + (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +

@@ -22,7 +22,9 @@ struct CloudLayerSettings {
   double anvil = 1.0;
   // Octave multiple-scattering parameters a <= b, c (common/cloud_lighting.glsl): the scene's
   // /clouds/lighting/ms_a|b|c where given, else the type's calibrated values (cloudTypeMultipleScattering).
-  double msA = 0.5, msB = 0.5, msC = 0.5;
+  // msD: the weight of the Eddington diffusion floor under the octaves i >= 1 (cloudEddingtonSlabSource;
+  // 0: off, 1: the slab's own value), /clouds/lighting/ms_d or the type's.
+  double msA = 0.5, msB = 0.5, msC = 0.5, msD = 0.0;
 };
 
 // How the air between the camera and the clouds is applied (docs/clouds.md "Aerial perspective"):
@@ -186,7 +188,7 @@ double cloudTypeExtinction(int kind);
 // over all scenes (no calibration scenes of their own yet). Per phase model: c scales the phase's
 // lobes and the approximate Mie's transport is δ-scaled, so each phase has its own fit (`--phase`).
 struct CloudMultipleScattering {
-  double a, b, c;
+  double a, b, c, d;
 };
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);
 int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown

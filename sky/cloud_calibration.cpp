@@ -100,7 +100,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   t0 = std::chrono::steady_clock::now();
 
   // The errors of one parameter set on the scenes of a group.
-  auto evaluate = [&](const std::string& group, double a, double b, double c, std::vector<CloudCalibrationSceneError>& out) {
+  auto evaluate = [&](const std::string& group, double a, double b, double c, double d, std::vector<CloudCalibrationSceneError>& out) {
     out.clear();
     double sum = 0.0;
     for (const Prepared& p : prepared) {
@@ -109,7 +109,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
                                        {"/clouds/lighting/phase=" + config.phase,
                                         "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
                                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                                        "/clouds/lighting/ms_c=" + number(c)});
+                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d)});
       const RenderResult r = p.renderer->render(scene, options);
       const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
@@ -118,35 +118,40 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     return out.empty() ? 0.0 : sum / double(out.size());
   };
 
-  // 2. Nelder-Mead over x = (b, a/b, c), each clamped to [0, 1] (a <= b by construction).
+  // 2. Nelder-Mead over x = (b, a/b, c, d / 2), each clamped to [0, 1] (a <= b by construction; the
+  // diffusion floor's weight d in [0, 2], 1 being the Eddington slab's own value).
   for (const std::string group : {"cumulus", "stratocumulus", "all"}) {
     CloudCalibrationFit fit;
     fit.group = group;
-    auto clamp01 = [](std::array<double, 3> x) {
+    constexpr int N = 4;
+    using Point = std::array<double, N>;
+    auto clamp01 = [](Point x) {
       for (double& v : x) v = std::clamp(v, 0.0, 1.0);
       return x;
     };
     std::vector<CloudCalibrationSceneError> scratch;
-    auto f = [&](const std::array<double, 3>& x) {
+    auto f = [&](const Point& x) {
       ++fit.evaluations;
-      return evaluate(group, x[0] * x[1], x[0], x[2], scratch);
+      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], scratch);
     };
-    std::array<std::array<double, 3>, 4> simplex = {{{0.5, 1.0, 0.5}, {0.75, 1.0, 0.5}, {0.5, 0.6, 0.5}, {0.5, 1.0, 0.8}}};
-    std::array<double, 4> value{};
-    for (int i = 0; i < 4; ++i) value[i] = f(simplex[i]);
-    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, fit.start);
+    std::array<Point, N + 1> simplex = {{{0.5, 1.0, 0.5, 0.5}, {0.75, 1.0, 0.5, 0.5}, {0.5, 0.6, 0.5, 0.5},
+                                         {0.5, 1.0, 0.8, 0.5}, {0.5, 1.0, 0.5, 0.25}}};
+    std::array<double, N + 1> value{};
+    for (int i = 0; i <= N; ++i) value[i] = f(simplex[i]);
+    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, fit.start);
     while (fit.evaluations < config.maxEvaluations) {
-      std::array<int, 4> order = {0, 1, 2, 3};
+      std::array<int, N + 1> order{};
+      for (int i = 0; i <= N; ++i) order[i] = i;
       std::sort(order.begin(), order.end(), [&](int i, int j) { return value[i] < value[j]; });
       const auto best = simplex[order[0]];
-      const int worst = order[3];
-      if (value[order[3]] - value[order[0]] < 1e-6 * std::max(value[order[0]], 1e-12)) break;
-      std::array<double, 3> centroid{};
-      for (int k = 0; k < 3; ++k)
-        for (int d = 0; d < 3; ++d) centroid[d] += simplex[order[k]][d] / 3.0;
+      const int worst = order[N];
+      if (value[order[N]] - value[order[0]] < 1e-6 * std::max(value[order[0]], 1e-12)) break;
+      Point centroid{};
+      for (int k = 0; k < N; ++k)
+        for (int d = 0; d < N; ++d) centroid[d] += simplex[order[k]][d] / double(N);
       auto along = [&](double t) {
-        std::array<double, 3> x{};
-        for (int d = 0; d < 3; ++d) x[d] = centroid[d] + t * (simplex[worst][d] - centroid[d]);
+        Point x{};
+        for (int d = 0; d < N; ++d) x[d] = centroid[d] + t * (simplex[worst][d] - centroid[d]);
         return clamp01(x);
       };
       const auto reflected = along(-1.0);
@@ -156,7 +161,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
         const double fe = f(expanded);
         if (fe < fr) simplex[worst] = expanded, value[worst] = fe;
         else simplex[worst] = reflected, value[worst] = fr;
-      } else if (fr < value[order[2]]) {
+      } else if (fr < value[order[N - 1]]) {
         simplex[worst] = reflected, value[worst] = fr;
       } else {
         const auto contracted = along(fr < value[worst] ? -0.5 : 0.5);
@@ -164,9 +169,9 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
         if (fc < std::min(fr, value[worst])) {
           simplex[worst] = contracted, value[worst] = fc;
         } else {  // shrink towards the best
-          for (int k = 1; k < 4; ++k) {
+          for (int k = 1; k <= N; ++k) {
             const int i = order[k];
-            for (int d = 0; d < 3; ++d) simplex[i][d] = best[d] + 0.5 * (simplex[i][d] - best[d]);
+            for (int d = 0; d < N; ++d) simplex[i][d] = best[d] + 0.5 * (simplex[i][d] - best[d]);
             value[i] = f(simplex[i]);
           }
         }
@@ -177,10 +182,11 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.b = x[0];
     fit.a = x[0] * x[1];
     fit.c = x[2];
-    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.fit);
+    fit.d = 2.0 * x[3];
+    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.fit);
     char line[256];
-    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
-                  group.c_str(), fit.a, fit.b, fit.c, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit), fit.evaluations);
+    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
+                  group.c_str(), fit.a, fit.b, fit.c, fit.d, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit), fit.evaluations);
     logInfo(line);
     result.fits.push_back(std::move(fit));
   }
@@ -189,23 +195,23 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 }
 
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
-  std::string csv = "group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
+  std::string csv = "group,a,b,c,d,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
                    "sc_thin x 0.15), " +
                    std::to_string(config.octaves) + " octaves, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
-                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c), minimising the mean squared rel RMSE of the "
-                   "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5 with the same multiple-scattering "
-                   "model. `corrected`: the reference's noise subtracted.\n\n";
+                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2), minimising the mean squared rel RMSE of the "
+                   "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "
+                   "model (d: the Eddington diffusion floor's weight). `corrected`: the reference's noise subtracted.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   char line[512];
   std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
                 result.fitSeconds, result.device.c_str());
   md += line;
-  md += "| group | a | b | c | evaluations | rms rel RMSE at a = b = c = 0.5 | at the fit |\n| --- | --- | --- | --- | --- | --- | --- |\n";
+  md += "| group | a | b | c | d | evaluations | rms rel RMSE at a = b = c = 0.5, d = 1 | at the fit |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& f : result.fits) {
-    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b, f.c,
+    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b, f.c, f.d,
                   f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
     md += line;
   }
@@ -220,8 +226,8 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
                     e.meanBias);
       md += line;
       for (const auto* x : {&s, &e}) {
-        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
-                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x->scene.c_str(), x->relRmse,
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
+                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x == &s ? 1.0 : f.d, x->scene.c_str(), x->relRmse,
                       x->noiseCorrected, x->noiseFloor, x->meanBias, x == &s ? "start" : "fit");
         csv += line;
       }

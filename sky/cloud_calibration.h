@@ -39,7 +39,7 @@ struct CloudCalibrationSceneError {
 
 struct CloudCalibrationFit {
   std::string group;  // "cumulus", "stratocumulus", "all"
-  double a = 0.5, b = 0.5, c = 0.5;
+  double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at the start (a = b = c = 0.5) and at the fit
   std::vector<CloudCalibrationSceneError> start, fit;  // per scene

@@ -30,6 +30,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
   vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps, unused x2
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
+  vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
 } cloud;
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)

@@ -151,6 +151,8 @@ void main() {
   // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
   // so light paths see sigma_t' = (1 - f omega) sigma_t; 1 without a peak.
   float transportScale = 1.0 - cloud.phaseLight.y * albedo;
+  // The phase's mean cosine, for the diffusion floor (its weight is per layer: `diffusion`).
+  float phaseMeanCosine = cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x);
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
   int coarse = max(int(cloud.march.z + 0.5), 1);
@@ -173,6 +175,7 @@ void main() {
   // top can pass (cloudOctaveTransmittanceBound, with a 1e-4 margin for its float rounding).
   float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
+  float diffusion = 0.0;  // that layer's diffusion-floor weight d
 
   float transmittance = 1.0;       // the true one: the alpha, opacity and depth
   float lightTransmittance = 1.0;  // the δ-scaled one the in-scattered light sees (= transmittance without a peak)
@@ -191,6 +194,7 @@ void main() {
       float a = cloud.layers[5 * phaseLayer + 2].w;
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
+      diffusion = cloud.layerLighting[phaseLayer].x;
       for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
                                     cloud.phase.z, cloud.phaseLight.x, nu);
@@ -284,12 +288,27 @@ void main() {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
         lightCount += uint(upSteps);
       }
-      float octaveSum = phaseOctave[0] * exp(-tau);
+      float msSum = 0.0;
       for (int o = 1; o < octaves; ++o) {
         float attenuation = sunAttenuation[o];
         if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp, msScattered));
-        octaveSum += octaveWeight[o] * phaseOctave[o] * attenuation;
+        msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
+      // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
+      // through p, straight up and down, its weight the layer's ms_d; the better of it and the octaves.
+      if (diffusion > 0.0 && octaves > 1 && sunVisible && muS > 0.0) {
+        // Two samples each way: the floor is a smooth function of the depths (linear in them when thick).
+        vec3 up = p / rp;
+        const int floorSteps = 2;
+        if (tauUp < 0.0) {
+          tauUp = transportScale * opticalDepthToSun(layer, p, up, floorSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+          lightCount += uint(floorSteps);
+        }
+        float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0);
+        lightCount += uint(floorSteps);
+        msSum = max(msSum, diffusion * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
+      }
+      float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
       if (ambientOn) {

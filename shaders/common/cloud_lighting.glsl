@@ -41,6 +41,13 @@ SHARED_INLINE Real cloudPhase(Real g1, Real g2, Real w, Real alpha, Real nu) {
   return mix(henyeyGreensteinPhase(g1, nu), drainePhase(g2, alpha, nu), w);
 }
 
+// The mean cosine <nu> of cloudPhase: (1 - w) g1 + w <nu>_D, with Draine's (Draine 2003, eq. 6)
+//     <nu>_D = g (1 + alpha (3 + 2 g^2) / 5) / (1 + alpha (1 + 2 g^2) / 3).
+SHARED_INLINE Real cloudPhaseMeanCosine(Real g1, Real g2, Real w, Real alpha) {
+  Real draine = g2 * (1.0 + alpha * (3.0 + 2.0 * g2 * g2) / 5.0) / (1.0 + alpha * (1.0 + 2.0 * g2 * g2) / 3.0);
+  return mix(g1, draine, w);
+}
+
 // Jendersie and d'Eon 2023, "An Approximate Mie Scattering Function for Fog and Cloud Rendering"
 // (SIGGRAPH 2023 Talks), their fits for droplet diameters 5 <= d <= 50 um (d in um):
 //   g_HG = exp(-0.0990567 / (d - 1.67154)),       g_D = exp(-2.20679 / (d + 3.91029) - 0.428934),
@@ -114,6 +121,36 @@ SHARED_INLINE Real cloudSunExitDistance(CloudLayer layer, vec3 p, vec3 sun, Real
 SHARED_INLINE Real cloudTopEntryWeight(Real muS) {
   Real m = max(muS, 0.0);
   return m * (2.0 + 3.0 * m) / 5.0;
+}
+
+// The diffuse light inside a conservatively scattering slab lit from above, per unit solar irradiance
+// E (normal to the beam) and per steradian: the mean intensity I0 of the Eddington approximation
+// (Shettle and Weinman 1970), at optical depth tau below the top of a slab of optical thickness
+// tauTotal, sun at mu0 = cos(zenith) > 0, phase asymmetry g. Derivation (tau downwards, I = I0 + mu I1,
+// P = 1 + 3 g mu mu', direct beam E e^(-tau/mu0)); the zeroth and first moments of the transfer equation
+// with omega = 1 give
+//   dI1/dtau = 3 E e^(-tau/mu0) / 4pi,   dI0/dtau = -(1 - g) I1 + 3 g mu0 E e^(-tau/mu0) / 4pi,
+// so with A = 3 mu0 E / 4pi: I1 = K - A e^(-tau/mu0) and I0 = M - (1 - g) K tau - A mu0 e^(-tau/mu0).
+// No diffuse light enters at the top (I0 + 2/3 I1 = 0 at 0) or from a black ground below
+// (I0 - 2/3 I1 = 0 at tauTotal):
+//   K = A [(2/3 + mu0) + (2/3 - mu0) e^(-tauTotal/mu0)] / (4/3 + (1 - g) tauTotal)   (K / A ~ transmission)
+//   I0(tau) = A [(mu0 + 2/3) - mu0 e^(-tau/mu0)] - K [2/3 + (1 - g) tau].
+// The light this diffuse field scatters into a direction whose cosine with the downward vertical is
+// muDown is (omega / 4pi) integral of P I = I0 + g muDown I1 (the phase's first moment): seen from below,
+// the base of a deck sends down more than I0 (at the base I1 = 3/2 I0).
+// I0 falls linearly with depth (diffusion) where the exponential octaves fall exponentially: the base of
+// a thick deck under a high sun is lit by it (docs/clouds.md, "Multiple scattering"). It is 0 for a
+// vanishing slab and at most ~2 mu0 E / 4pi at the top of a thick one; clamped at 0 against rounding.
+SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, Real g, Real muDown) {
+  if (mu0 <= 0.0) return 0.0;
+  Real m = max(mu0, 0.02);  // e^(-tau/mu0) is then 0 for any real depth; keeps the division finite
+  Real a = 3.0 * m / (4.0 * kPi);
+  Real s = 1.0 - g;
+  Real k = a * ((2.0 / 3.0 + m) + (2.0 / 3.0 - m) * exp(-tauTotal / m)) / (4.0 / 3.0 + s * tauTotal);
+  Real beam = exp(-tau / m);
+  Real i0 = a * ((m + 2.0 / 3.0) - m * beam) - k * (2.0 / 3.0 + s * tau);
+  Real i1 = k - a * beam;
+  return max(i0 + g * muDown * i1, 0.0) * min(mu0 / m, 1.0);
 }
 
 // Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform

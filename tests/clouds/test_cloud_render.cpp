@@ -258,9 +258,13 @@ TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
                    {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
                InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
-  // ms_a alone is checked against the layer type's calibrated b (cumulus b = 0.958).
-  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=1.0"})), InputError);
-  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=0.9"})));
+  // ms_a alone is checked against the layer type's calibrated b (cirrus, the joint fit: b = 0.947).
+  const std::string cirrus = test::cloudSceneText(R"({"kind": "cirrus", "bottom_m": 7000, "top_m": 9000})");
+  const double cirrusB = cloudTypeMultipleScattering(shared::kCloudCirrus).b;
+  ASSERT_LT(cirrusB, 0.99);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=" + std::to_string(cirrusB + 0.01)}, cirrus)),
+               InputError);
+  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=" + std::to_string(cirrusB - 0.01)}, cirrus)));
 }
 
 // Octave parameters: the type's calibrated values per layer unless the scene gives them (then for all).
@@ -275,12 +279,16 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_EQ(typed.layers[0].msC, sc.c);
   EXPECT_EQ(typed.layers[1].msB, cu.b);
   EXPECT_EQ(typed.layers[1].msC, cu.c);
+  EXPECT_EQ(typed.layers[0].msD, sc.d);
+  EXPECT_EQ(typed.layers[1].msD, cu.d);
   EXPECT_NE(sc.c, cu.c);
   for (CloudPhaseModel phase : {CloudPhaseModel::DualHenyeyGreenstein, CloudPhaseModel::ApproximateMie})
     for (int kind = 0; kind <= shared::kCloudCirrus; ++kind) {
       const CloudMultipleScattering m = cloudTypeMultipleScattering(kind, phase);
       EXPECT_LE(m.a, m.b) << kind;  // the energy bound of the octaves
       EXPECT_LE(m.b, 1.0) << kind;
+      EXPECT_GE(m.d, 0.0) << kind;  // the diffusion floor's weight: 0 (off) to 2 (the schema's range)
+      EXPECT_LE(m.d, 2.0) << kind;
     }
   // The approximate Mie phase takes its own fit.
   const CloudSettings mie = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/phase=approximate_mie"}, twoLayers));
@@ -288,6 +296,8 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_NE(mie.layers[1].msA, cu.a);
   const CloudSettings given = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_c=0.7"}, twoLayers));
   EXPECT_EQ(given.layers[0].msC, 0.7);
+  EXPECT_EQ(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_d=0"}, twoLayers)).layers[1].msD, 0.0);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_d=3"}, twoLayers)), InputError);
   EXPECT_EQ(given.layers[1].msC, 0.7);
   EXPECT_EQ(given.layers[0].msB, sc.b);
 }
