@@ -197,16 +197,22 @@ double mirrorAsymmetry(const std::vector<RingSample>& samples, double sunAzimuth
   return count ? sum / double(count) : 0.0;
 }
 
-double refitSunAzimuthBySymmetry(const std::vector<RingSample>& samples, double computedAzimuth, double halfRange,
-                                 double step) {
-  const int n = int(std::floor(halfRange / step + 1e-9));
-  double best = computedAzimuth, bestAsymmetry = INFINITY;
-  for (int i = -n; i <= n; ++i) {
-    const double azimuth = computedAzimuth + i * step;
-    const double a = mirrorAsymmetry(samples, azimuth);
+double minimiseOnAzimuthGrid(double computedAzimuth, double halfRange, double step,
+                             const std::function<double(double)>& asymmetry) {
+  const int n = int(std::floor(2.0 * halfRange / step + 1e-9));
+  double best = computedAzimuth - halfRange, bestAsymmetry = INFINITY;
+  for (int i = 0; i <= n; ++i) {
+    const double azimuth = computedAzimuth - halfRange + i * step;
+    const double a = asymmetry(azimuth);
     if (a < bestAsymmetry) bestAsymmetry = a, best = azimuth;
   }
   return best;
+}
+
+double refitSunAzimuthBySymmetry(const std::vector<RingSample>& samples, double computedAzimuth, double halfRange,
+                                 double step) {
+  return minimiseOnAzimuthGrid(computedAzimuth, halfRange, step,
+                               [&](double azimuth) { return mirrorAsymmetry(samples, azimuth); });
 }
 
 }  // namespace firmament

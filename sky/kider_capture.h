@@ -6,6 +6,7 @@
 // evaluation (IEEE TVCG 2017) that make results comparable: the azimuth flip, the replacement of
 // sample 0, and the re-fit of the sun's azimuth by mirror symmetry (docs/validation.md).
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -68,8 +69,13 @@ struct RingSample {
 // direction weighs by its relative asymmetry (else the few circumsolar samples decide alone).
 double mirrorAsymmetry(const std::vector<RingSample>& samples, double sunAzimuth);
 
-// The azimuth in [computed - halfRange, computed + halfRange], on a grid of `step`, that minimises
-// mirrorAsymmetry (the first minimum from the low end on ties). Defaults: +-20 deg in 0.2 deg steps.
+// The azimuth in [computed - halfRange, computed + halfRange], on a grid of `step` from the low end,
+// that minimises `asymmetry` (the first minimum on ties, as the published search): the search both
+// re-fits share.
+double minimiseOnAzimuthGrid(double computedAzimuth, double halfRange, double step,
+                             const std::function<double(double)>& asymmetry);
+
+// minimiseOnAzimuthGrid of mirrorAsymmetry. Defaults: +-20 deg in 0.2 deg steps.
 double refitSunAzimuthBySymmetry(const std::vector<RingSample>& samples, double computedAzimuth,
                                  double halfRange = 20.0 * 3.14159265358979323846 / 180.0,
                                  double step = 0.2 * 3.14159265358979323846 / 180.0);

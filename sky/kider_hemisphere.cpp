@@ -92,14 +92,8 @@ double publishedMirrorAsymmetry(const KiderHemisphere& sky, double axisAzimuth) 
 
 double refitSunAzimuthByPublishedSymmetry(const KiderHemisphere& sky, double computedAzimuth, double halfRange,
                                           double step) {
-  const int n = int(std::floor(2.0 * halfRange / step + 1e-9));
-  double best = computedAzimuth - halfRange, bestAsymmetry = INFINITY;
-  for (int i = 0; i <= n; ++i) {
-    const double azimuth = computedAzimuth - halfRange + i * step;
-    const double a = publishedMirrorAsymmetry(sky, azimuth);
-    if (a < bestAsymmetry) bestAsymmetry = a, best = azimuth;
-  }
-  return best;
+  return minimiseOnAzimuthGrid(computedAzimuth, halfRange, step,
+                               [&](double azimuth) { return publishedMirrorAsymmetry(sky, azimuth); });
 }
 
 }  // namespace firmament

@@ -37,8 +37,7 @@ class KiderHemisphere {
 // interpolated. (Linear values: the evaluation mirrors the spectrally integrated radiance.)
 double publishedMirrorAsymmetry(const KiderHemisphere& sky, double axisAzimuth);
 
-// The azimuth in [computed - halfRange, computed + halfRange], on a grid of `step` from the low end,
-// that minimises publishedMirrorAsymmetry (the first minimum on ties, as the published search).
+// minimiseOnAzimuthGrid (kider_capture.h) of publishedMirrorAsymmetry.
 double refitSunAzimuthByPublishedSymmetry(const KiderHemisphere& sky, double computedAzimuth,
                                           double halfRange = 20.0 * 3.14159265358979323846 / 180.0,
                                           double step = 0.2 * 3.14159265358979323846 / 180.0);
