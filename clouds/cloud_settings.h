@@ -182,11 +182,12 @@ struct CloudOverrides {
 // From liquid water content LWC and effective radius r_e, sigma = 3 LWC / (2 rho_w r_e) (Stephens 1978,
 // extinction efficiency 2): cumulus LWC 0.5-1 g/m^3, r_e 10 um -> 0.075-0.15; stratus 0.3 g/m^3 -> 0.045.
 double cloudTypeExtinction(int kind);
-// The octave parameters of a cloud type, fitted to the path tracer by `firmament bench clouds
-// --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"): cumulus and stratocumulus on
-// their own calibration scenes; cumulonimbus takes cumulus's, stratus stratocumulus's, cirrus the fit
-// over all scenes (no calibration scenes of their own yet). Per phase model: c scales the phase's
-// lobes and the approximate Mie's transport is δ-scaled, so each phase has its own fit (`--phase`).
+// The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
+// tracer by `firmament bench clouds --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"):
+// cumulus and stratocumulus on their own calibration scenes; cumulonimbus takes cumulus's, stratus
+// stratocumulus's, cirrus the fit over all scenes (no calibration scenes of their own yet). Per phase
+// model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
+// its own fit (`--phase`; the approximate Mie's has d = 0, the floor not fitted for it yet).
 struct CloudMultipleScattering {
   double a, b, c, d;
 };

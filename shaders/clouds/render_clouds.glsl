@@ -151,8 +151,12 @@ void main() {
   // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
   // so light paths see sigma_t' = (1 - f omega) sigma_t; 1 without a peak.
   float transportScale = 1.0 - cloud.phaseLight.y * albedo;
-  // The phase's mean cosine, for the diffusion floor (its weight is per layer: `diffusion`).
-  float phaseMeanCosine = cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x);
+  // The phase's mean cosine, for the diffusion floor (its weight is per layer: `diffusion`). With
+  // δ-scaling the floor sees the scaled medium, whose phase keeps the rest after the peak's share f went
+  // straight on: g = f + (1 - f) g', so g' = (g - f) / (1 - f) (f = 0: unchanged).
+  float peakShare = cloud.phaseLight.y;
+  float phaseMeanCosine = (cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x) - peakShare) /
+                          max(1.0 - peakShare, 1e-3);
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
   int coarse = max(int(cloud.march.z + 0.5), 1);
