@@ -10,6 +10,7 @@
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
 #include "core/color.h"
+#include "core/error.h"
 #include "core/image_metrics.h"
 #include "core/log.h"
 #include "core/scene.h"
@@ -39,6 +40,18 @@ std::vector<Scenario> scenarios(bool quick) {
            "camera": {"height_above_ground_m": 2, "yaw_deg": 270, "pitch_deg": 25, "fov_deg": 70, )" + size + R"(},
            "clouds": {"layers": [{"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2000, "coverage": 0.7, "extinction_scale": 0.3}]}})"},
   };
+}
+
+// The scenarios a run covers (CloudBenchConfig::scenario: one of them; InputError for another name).
+std::vector<Scenario> selectedScenarios(const CloudBenchConfig& config) {
+  std::vector<Scenario> kept;
+  std::string names;
+  for (const Scenario& sc : scenarios(config.quick)) {
+    if (config.scenario.empty() || sc.name == config.scenario) kept.push_back(sc);
+    names += (names.empty() ? "" : ", ") + sc.name;
+  }
+  if (kept.empty()) throw InputError("--scenario " + config.scenario + ": no such cloud scenario (" + names + ")");
+  return kept;
 }
 
 struct KnobValue {
@@ -212,11 +225,17 @@ double cloudPassMs(const RenderResult& r) {
 
 }  // namespace
 
+std::vector<std::string> cloudBenchScenarioNames() {
+  std::vector<std::string> names;
+  for (const Scenario& sc : scenarios(false)) names.push_back(sc.name);
+  return names;
+}
+
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config) {
   std::vector<CloudBenchRow> rows;
   SkyRenderer renderer(context);
-  const int spp = config.quick ? 16 : 64;
-  for (const Scenario& sc : scenarios(config.quick)) {
+  const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : config.quick ? 16 : 64;
+  for (const Scenario& sc : selectedScenarios(config)) {
     const Scene scene = Scene::parse(sc.text, "<bench " + sc.name + ">");
     SkyRenderOptions base;
     base.clouds.ambient = false;
@@ -331,7 +350,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
   const int width = config.quick ? 320 : 640, height = config.quick ? 180 : 360;
   std::vector<CloudTimingRow> rows;
   SkyRenderer renderer(context);
-  for (const Scenario& sc : scenarios(config.quick)) {
+  for (const Scenario& sc : selectedScenarios(config)) {
     const std::vector<std::string> sizeOverrides = {"/camera/width=" + std::to_string(width),
                                                     "/camera/height=" + std::to_string(height)};
     Image defaultImage;
@@ -403,7 +422,7 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
       "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,rel_rmse_noise_corrected,"
       "ref_noise_rel_rmse,mean_bias,against,device\n";
   std::string md = "# Cloud march: error against run time\n\nReference: the CPU cloud path tracer (all orders, " +
-                   std::string(config.quick ? "16" : "64") +
+                   std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : config.quick ? 16 : 64) +
                    " paths/pixel) over the same medium; sunlight only (no ambient, no aerial perspective) on both "
                    "sides; extinction x 0.3. Error of the clouds' luminance over the cloud pixels (reference "
                    "transmittance < 0.95); `noise` is the reference's own Monte Carlo noise as a rel RMSE (what a "

@@ -21,8 +21,13 @@ struct CloudBenchConfig {
   bool quick = false;
   int repeats = 3;    // frame timing: median of this many after a warm-up
   int threads = 0;    // path tracer threads (0: all cores)
+  int samplesPerPixel = 0;  // paths per reference pixel (0: 64, quick 16); more makes `corrected` robust
+  std::string scenario;     // only this scenario (empty: all; cloudBenchScenarioNames)
   std::string environmentNote;
 };
+
+// "cumulus_noon", "stratocumulus_sunset".
+std::vector<std::string> cloudBenchScenarioNames();
 
 struct CloudBenchRow {
   std::string knob, value, scenario;

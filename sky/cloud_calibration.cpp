@@ -75,6 +75,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   SkyRenderOptions options;
   options.clouds.ambient = false;
   options.clouds.aerialPerspective = AerialPerspective::Off;
+  if (config.lightSteps > 0) options.clouds.lightSteps = config.lightSteps;
   const int spp = config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128);
 
   // 1. The references (all orders), once.
@@ -199,7 +200,9 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
                    "sc_thin x 0.15), " +
-                   std::to_string(config.octaves) + " octaves, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
+                   std::to_string(config.octaves) + " octaves, " +
+                   (config.lightSteps > 0 ? std::to_string(config.lightSteps) : std::string("the default's")) +
+                   " light steps, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
                    " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2), minimising the mean squared rel RMSE of the "
                    "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "

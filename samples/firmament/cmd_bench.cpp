@@ -1,5 +1,6 @@
 // `firmament bench atmosphere|clouds|weather|all --out DIR [--quick]`: error-against-run-time sweeps
 // (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -86,6 +87,7 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.threads = args.integer("threads", 0, 0, 1024);
   config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
   config.octaves = args.integer("octaves", 3, 1, 8);
+  config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.phase = args.getOr("phase", config.phase);
   cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");  // refused before any work
   gpu::ContextOptions contextOptions;
@@ -108,6 +110,16 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.outDir = out;
   config.repeats = args.integer("repeats", 3, 1, 100);
   config.threads = args.integer("threads", 0, 0, 1024);
+  config.samplesPerPixel = args.integer("reference-spp", 0, 1, 1 << 20);
+  config.scenario = args.getOr("scenario", "");
+  if (!config.scenario.empty()) {
+    const auto names = cloudBenchScenarioNames();
+    if (std::find(names.begin(), names.end(), config.scenario) == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      throw InputError("--scenario " + config.scenario + ": no such cloud scenario (" + list + ")");  // before any work
+    }
+  }
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
@@ -166,15 +178,17 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--calibrate [--octaves N] [--phase P]] [--device D]",
+    "[--calibrate [--octaves N] [--light-steps N] [--phase P]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
-        {"scenario", "NAME", "only this scenario (noon, sunset, twilight, altitude_10km, limb_100km)"},
+        {"scenario", "NAME", "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
+                               "cumulus_noon, stratocumulus_sunset)"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
+        {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},

@@ -74,6 +74,29 @@ TEST(Cli, BadScenesExitTwoWithAClearMessage) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));  // nothing written on bad input
 }
 
+// The bench's own options: a wrong scenario or sample count is refused (exit 2, naming the option and
+// what is allowed) before any reference is rendered, and nothing is written into the output folder.
+TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
+  auto dir = test::scratchDir("cli_bench_bad");
+  struct Case {
+    std::string arguments;
+    std::vector<std::string> fragments;
+  };
+  const std::vector<Case> cases = {
+      {"bench clouds --scenario noon", {"--scenario noon", "cumulus_noon", "stratocumulus_sunset"}},
+      {"bench clouds --reference-spp 0", {"--reference-spp", "[1, "}},
+      {"bench clouds --calibrate --light-steps 0", {"--light-steps", "[1, 64]"}},
+      {"bench clouds --calibrate --phase mie", {"--phase", "mie"}},
+  };
+  for (const auto& c : cases) {
+    const auto out = dir / "out";
+    CommandRun r = firmament(c.arguments + " --out " + out.string());
+    EXPECT_EQ(r.exitCode, 2) << c.arguments << ": " << r.output;
+    for (const auto& f : c.fragments) EXPECT_NE(r.output.find(f), std::string::npos) << c.arguments << ": " << r.output;
+    EXPECT_TRUE(!std::filesystem::exists(out) || std::filesystem::is_empty(out)) << c.arguments;
+  }
+}
+
 TEST(Cli, RenderWritesExrPngAndStats) {
   auto dir = test::scratchDir("cli_render");
   auto scene = test::sourceDir() / "scenes" / "default.json";
