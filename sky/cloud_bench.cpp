@@ -10,6 +10,7 @@
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
 #include "core/color.h"
+#include "core/exr_io.h"
 #include "core/error.h"
 #include "core/image_metrics.h"
 #include "core/log.h"
@@ -223,6 +224,26 @@ double cloudPassMs(const RenderResult& r) {
   return ms;
 }
 
+// The default row's images beside the reference's (CloudBenchConfig::images).
+void writeScenarioImages(const std::filesystem::path& folder, const std::string& scenario, const Image& fast,
+                         const CloudReferenceImage& reference) {
+  std::filesystem::create_directories(folder);
+  writeExr(folder / (scenario + "_reference.exr"), reference.image);
+  writeExr(folder / (scenario + "_default.exr"), fast);
+  writeErrorHeatmapPng(folder / (scenario + "_default_error.png"), fast, reference.image, 0.2);
+  std::string csv = "x,y,reference_luminance,reference_standard_error,default_luminance,reference_transmittance\n";
+  char line[200];
+  for (int y = 0; y < fast.height; ++y)
+    for (int x = 0; x < fast.width; ++x) {
+      const size_t i = size_t(y) * size_t(fast.width) + size_t(x);
+      const float* p = fast.pixels.data() + size_t(fast.channels) * i;
+      std::snprintf(line, sizeof(line), "%d,%d,%.6g,%.6g,%.6g,%.4f\n", x, y, reference.luminance[i], reference.luminanceStandardError[i],
+                    0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2], reference.image.pixels[4 * i + 3]);
+      csv += line;
+    }
+  writeTextFileAtomically(folder / (scenario + "_pixels.csv"), csv);
+}
+
 }  // namespace
 
 std::vector<std::string> cloudBenchScenarioNames() {
@@ -308,6 +329,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
         row.meanBias = e.meanBias;
         row.psnrDb = m.psnrDb;
         row.maxRelErr = maxRelativeLuminanceError(r.clouds, against.image);
+        if (config.images && k.knob == "default") writeScenarioImages(config.outDir / "images", sc.name, r.clouds, against);
       }
       row.knob = k.knob;
       row.value = k.value;

@@ -23,6 +23,10 @@ struct CloudBenchConfig {
   int threads = 0;    // path tracer threads (0: all cores)
   int samplesPerPixel = 0;  // paths per reference pixel (0: 64, quick 16); more makes `corrected` robust
   std::string scenario;     // only this scenario (empty: all; cloudBenchScenarioNames)
+  // DIR/images/<scenario>_{reference,default}.exr (rgb: the clouds' light in cd/m^2, a: transmittance),
+  // <scenario>_default_error.png (relative luminance error heat map, 0..20 %) and <scenario>_pixels.csv
+  // (per cloud pixel: reference luminance, its standard error, the default's luminance).
+  bool images = false;
   std::string environmentNote;
 };
 

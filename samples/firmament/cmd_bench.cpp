@@ -112,6 +112,7 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.threads = args.integer("threads", 0, 0, 1024);
   config.samplesPerPixel = args.integer("reference-spp", 0, 1, 1 << 20);
   config.scenario = args.getOr("scenario", "");
+  config.images = args.has("images");
   if (!config.scenario.empty()) {
     const auto names = cloudBenchScenarioNames();
     if (std::find(names.begin(), names.end(), config.scenario) == names.end()) {
@@ -178,7 +179,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--calibrate [--octaves N] [--light-steps N] [--phase P]] [--device D]",
+    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -190,6 +191,7 @@ const CommandRegistration registration{Command{
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
+        {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),

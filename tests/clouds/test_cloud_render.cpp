@@ -302,5 +302,24 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_EQ(given.layers[0].msB, sc.b);
 }
 
+// The quality presets change the march's steps; only `low` drops an octave. The octave parameters are
+// fitted for 3 octaves, and a 4th adds about +48 % at noon (docs/clouds.md, bench "octaves" rows), so
+// `high` keeps the scene's count.
+TEST(CloudSettingsTest, QualityPresetsKeepTheFittedOctaves) {
+  const CloudSettings standard = CloudSettings::fromScene(test::cloudScene({}));
+  const CloudSettings low = CloudSettings::fromScene(test::cloudScene({"/clouds/quality=\"low\""}));
+  const CloudSettings high = CloudSettings::fromScene(test::cloudScene({"/clouds/quality=\"high\""}));
+  EXPECT_EQ(standard.lighting.octaves, 3);
+  EXPECT_EQ(standard.march.viewSteps, 64);
+  EXPECT_EQ(standard.march.lightSteps, 6);
+  EXPECT_EQ(low.march.viewSteps, 32);
+  EXPECT_EQ(low.march.lightSteps, 4);
+  EXPECT_EQ(low.lighting.octaves, 2);
+  EXPECT_EQ(high.march.viewSteps, 128);
+  EXPECT_EQ(high.march.lightSteps, 8);
+  EXPECT_EQ(high.lighting.octaves, standard.lighting.octaves);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/quality=\"ultra\""})), InputError);
+}
+
 }  // namespace
 }  // namespace firmament
