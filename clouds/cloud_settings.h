@@ -187,7 +187,7 @@ double cloudTypeExtinction(int kind);
 // cumulus and stratocumulus on their own calibration scenes; cumulonimbus takes cumulus's, stratus
 // stratocumulus's, cirrus the fit over all scenes (no calibration scenes of their own yet). Per phase
 // model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
-// its own fit (`--phase`; the approximate Mie's has d = 0, the floor not fitted for it yet).
+// its own fit (`--phase`; the approximate Mie's d fitted in session 8).
 struct CloudMultipleScattering {
   double a, b, c, d;
 };
