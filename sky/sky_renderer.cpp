@@ -178,9 +178,11 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
   frame.options[0] = useSkyView ? 1 : 0;
   frameBlock_.upload(&frame, sizeof(frame));
-  if (!skyView_ || int(skyView_.width()) != options.skyViewWidth || int(skyView_.height()) != options.skyViewHeight)
+  if (!skyView_ || int(skyView_.width()) != options.skyViewWidth || int(skyView_.height()) != options.skyViewHeight) {
     skyView_ = gpu::Image(context_, {uint32_t(options.skyViewWidth), uint32_t(options.skyViewHeight), 1,
                                      gpu::Format::RGBA32F, true, true, "sky-view LUT"});
+    skyViewKey_.clear();
+  }
 
   // The frame is a storage buffer of RGBA32F pixels, row-major, not a storage image: on lavapipe an
   // image store costs ~4x a buffer store (bench/output_write.cpp, docs/gpu.md), and it is read back as is.
@@ -189,7 +191,21 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   gpu::CommandList commands(context_);
   const size_t batches = luts_.batchCount();
+  // The sky-view table is a function of the tables, the camera's altitude, the sun's zenith angle and
+  // the steps only (azimuths are measured from the sun): a sequence's frame keeps the previous frame's
+  // when those are unchanged (the camera turns under a fixed sun), bit for bit the same table. A still
+  // computes it, so its frame time is a whole frame's.
+  std::string skyViewKey;
   if (useSkyView) {
+    char inputs[160];  // the floats the pass is given, exactly (%a)
+    std::snprintf(inputs, sizeof(inputs), "|%a|%a|%d|%dx%d", double(float(view.cameraRadius)), double(float(view.sunDirection.z)),
+                  options.viewSteps, options.skyViewWidth, options.skyViewHeight);
+    skyViewKey = luts_.key() + inputs;
+  }
+  if (recorded || tables.source == AtmosphereLuts::Source::Computed) skyViewKey_.clear();  // inputs recomputed
+  result.skyViewReused = options.continueSequence && useSkyView && !skyViewKey_.empty() && skyViewKey == skyViewKey_;
+  if (useSkyView && !result.skyViewReused) {
+    skyViewKey_ = skyViewKey;
     // One sky-view pass per spectral batch, each adding its Rec.709 contribution.
     for (size_t b = 0; b < batches; ++b) {
       const AtmosphereLuts::Batch& batch = luts_.batch(b);

@@ -53,7 +53,8 @@ struct SkyRenderOptions {
   std::shared_ptr<const CloudWeatherMap> cloudWeather;
   // This frame continues the sequence of this renderer's previous render() (the same scene with the
   // camera, its orientation, the time or the sun moved): the clouds may reproject that frame
-  // (/clouds/temporal_update, docs/clouds.md "Temporal reprojection"). False: a still, every pixel marched.
+  // (/clouds/temporal_update, docs/clouds.md "Temporal reprojection"), and the sky-view table is kept
+  // when its inputs are unchanged. False: a still, every pixel marched, every table of the frame computed.
   bool continueSequence = false;
 };
 
@@ -68,6 +69,7 @@ struct RenderResult {
   double frameMilliseconds = 0.0;        // GPU time of the per-frame passes
   double precomputeMilliseconds = 0.0;   // GPU time of the tables (0 when cached)
   bool tablesReused = false;     // from memory or the disk cache
+  bool skyViewReused = false;    // a sequence's frame kept the previous frame's sky-view table (same inputs)
   std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
   int spectralSamples = 3;               // the wavelengths used (kSpectralSamplesAuto resolved)
@@ -101,6 +103,9 @@ class SkyRenderer {
   std::unique_ptr<AerialPerspectiveVolume> aerial_;  // created for the first scene that reads it
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
+  // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:
+  // nothing). The table is in the sun's frame, so a camera that only turns keeps it.
+  std::string skyViewKey_;
 };
 
 // Writes <out>.exr, <out>.png (preview with the scene's exposure) and <out>.json (stats), each

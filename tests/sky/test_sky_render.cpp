@@ -77,6 +77,40 @@ TEST_F(SkyRenderTest, TablesAreReusedWhileTheAtmosphereIsUnchanged) {
   EXPECT_FALSE(changed.tablesReused);
 }
 
+// In a sequence the sky-view table is kept while the camera only turns (it is in the sun's frame), and
+// the frame is bit for bit what a renderer that computes it anew gives; a new sun angle or altitude
+// recomputes it, and a still always does.
+TEST_F(SkyRenderTest, SkyViewTableIsKeptWhileTheCameraOnlyTurns) {
+  auto frame = [](SkyRenderer& renderer, const std::vector<std::string>& extra, bool continueSequence) {
+    std::vector<std::string> overrides = {"/atmosphere/ground_albedo=0.23", "/sun/zenith_deg=50", "/camera/width=48",
+                                          "/camera/height=32"};
+    overrides.insert(overrides.end(), extra.begin(), extra.end());  // the later override of a field wins
+    SkyRenderOptions options;
+    options.continueSequence = continueSequence;
+    return renderer.render(Scene::parse("{}", "<test>", overrides), options);
+  };
+  auto hasSkyViewPass = [](const RenderResult& r) {
+    for (const auto& t : r.timings)
+      if (t.label == "sky/sky_view_lut") return true;
+    return false;
+  };
+  SkyRenderer& sequence = renderer();
+  const RenderResult first = frame(sequence, {"/camera/yaw_deg=0"}, false);
+  EXPECT_FALSE(first.skyViewReused);
+  EXPECT_TRUE(hasSkyViewPass(first));
+  const RenderResult turned = frame(sequence, {"/camera/yaw_deg=40", "/camera/pitch_deg=20"}, true);
+  EXPECT_TRUE(turned.skyViewReused);
+  EXPECT_FALSE(hasSkyViewPass(turned));
+  SkyRenderer fresh(context());
+  const RenderResult computed = frame(fresh, {"/camera/yaw_deg=40", "/camera/pitch_deg=20"}, true);
+  EXPECT_FALSE(computed.skyViewReused);
+  ASSERT_EQ(computed.image.pixels.size(), turned.image.pixels.size());
+  EXPECT_EQ(computed.image.pixels, turned.image.pixels);
+  EXPECT_FALSE(frame(sequence, {"/camera/yaw_deg=40"}, false).skyViewReused);  // a still
+  EXPECT_FALSE(frame(sequence, {"/sun/zenith_deg=51"}, true).skyViewReused);
+  EXPECT_FALSE(frame(sequence, {"/camera/height_above_ground_m=100"}, true).skyViewReused);
+}
+
 TEST_F(SkyRenderTest, EmptyAtmosphereShowsOnlySunAndGround) {
   RenderResult r = render({"/atmosphere/rayleigh_scattering_um4=0", "/atmosphere/mie/angstrom_beta=0",
                            "/atmosphere/ozone/column_dobson=0", "/sun/zenith_deg=30", "/camera/pitch_deg=60"});
