@@ -153,6 +153,7 @@ std::vector<KnobValue> knobValues(bool quick) {
                }});
   v.push_back({"light_march", "milestone 1 (fixed length)", {}, [](SkyRenderOptions& o) { o.clouds.lightMarchToExit = false; }});
   v.push_back({"ms_model", "no way from the top", {}, [](SkyRenderOptions& o) { o.clouds.msZenithDepth = false; }});
+  v.push_back({"ms_model", "no diffusion floor", {"/clouds/lighting/ms_d=0"}, [](SkyRenderOptions&) {}});
   v.push_back({"ms_model", "unscattered part kept", {}, [](SkyRenderOptions& o) { o.clouds.msScatteredOnly = false; }});
   v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
                  o.clouds.msZenithDepth = false;
@@ -231,17 +232,32 @@ void writeScenarioImages(const std::filesystem::path& folder, const std::string&
   writeExr(folder / (scenario + "_reference.exr"), reference.image);
   writeExr(folder / (scenario + "_default.exr"), fast);
   writeErrorHeatmapPng(folder / (scenario + "_default_error.png"), fast, reference.image, 0.2);
-  std::string csv = "x,y,reference_luminance,reference_standard_error,default_luminance,reference_transmittance\n";
-  char line[200];
-  for (int y = 0; y < fast.height; ++y)
-    for (int x = 0; x < fast.width; ++x) {
-      const size_t i = size_t(y) * size_t(fast.width) + size_t(x);
-      const float* p = fast.pixels.data() + size_t(fast.channels) * i;
-      std::snprintf(line, sizeof(line), "%d,%d,%.6g,%.6g,%.6g,%.4f\n", x, y, reference.luminance[i], reference.luminanceStandardError[i],
-                    0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2], reference.image.pixels[4 * i + 3]);
+}
+
+// Per pixel: the reference's luminance, its standard error and transmittance, then each row's
+// luminance (the rows compared with the scenario's all-order path tracer), one column per row.
+void writeScenarioPixels(const std::filesystem::path& file, const CloudReferenceImage& reference,
+                         const std::vector<std::pair<std::string, std::vector<float>>>& rowLuminance) {
+  std::string csv = "x,y,reference_luminance,reference_standard_error,reference_transmittance";
+  for (const auto& [name, luminance] : rowLuminance) {
+    std::string column = name;
+    std::replace(column.begin(), column.end(), ',', ';');
+    csv += "," + column;
+  }
+  csv += "\n";
+  char line[64];
+  const int width = reference.image.width;
+  for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
+    std::snprintf(line, sizeof(line), "%d,%d,%.6g,%.6g,%.4f", int(i % size_t(width)), int(i / size_t(width)), reference.luminance[i],
+                  reference.luminanceStandardError[i], reference.image.pixels[4 * i + 3]);
+    csv += line;
+    for (const auto& row : rowLuminance) {
+      std::snprintf(line, sizeof(line), ",%.6g", double(row.second[i]));
       csv += line;
     }
-  writeTextFileAtomically(folder / (scenario + "_pixels.csv"), csv);
+    csv += "\n";
+  }
+  writeTextFileAtomically(file, csv);
 }
 
 }  // namespace
@@ -295,6 +311,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     // Path tracers of rows that change the shared physics (KnobValue::ownReference), one per distinct
     // scene overrides: rows that differ only in the march share it.
     std::map<std::vector<std::string>, CloudReferenceImage> ownReferences;
+    std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
     for (const KnobValue& k : knobValues(config.quick)) {
       SkyRenderOptions o = base;
       k.apply(o);
@@ -330,6 +347,11 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
         row.psnrDb = m.psnrDb;
         row.maxRelErr = maxRelativeLuminanceError(r.clouds, against.image);
         if (config.images && k.knob == "default") writeScenarioImages(config.outDir / "images", sc.name, r.clouds, against);
+        if (config.images && !k.ownReference && !k.singleScattering) {
+          std::vector<float> luminance(r.clouds.pixelCount());
+          for (size_t i = 0; i < luminance.size(); ++i) luminance[i] = float(luminanceRec709(r.clouds.pixels.data() + size_t(r.clouds.channels) * i));
+          rowLuminance.push_back({k.knob + "=" + k.value, std::move(luminance)});
+        }
       }
       row.knob = k.knob;
       row.value = k.value;
@@ -346,6 +368,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
                     row.referenceNoise, row.meanBias, row.samplesPerPixel);
       logInfo(line);
     }
+    if (config.images) writeScenarioPixels(config.outDir / "images" / (sc.name + "_pixels.csv"), ref, rowLuminance);
   }
   return rows;
 }
