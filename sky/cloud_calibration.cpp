@@ -52,6 +52,12 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        scene(31, 78, 100, 100, 18, R"({"kind": "stratocumulus", "bottom_m": 1300, "top_m": 2300, "coverage": 0.65, "extinction_scale": 0.3})")},
       {"sc_thin", "stratocumulus", "stratocumulus 1500-2200 m, coverage 0.55, extinction x 0.15, seed 29; sun 50 deg; looking up 40 deg",
        scene(29, 50, 90, 200, 40, R"({"kind": "stratocumulus", "bottom_m": 1500, "top_m": 2200, "coverage": 0.55, "extinction_scale": 0.15})")},
+      // Session 8: stratus decks (their own group; not in "all", which stays the cumulus and
+      // stratocumulus scenes' joint fit).
+      {"st_low_sun", "stratus", "stratus 400-1200 m, coverage 1, seed 41; sun 65 deg; looking up 25 deg, away from it",
+       scene(41, 65, 60, 250, 25, R"({"kind": "stratus", "bottom_m": 400, "top_m": 1200, "coverage": 1.0, "extinction_scale": 0.3})")},
+      {"st_high_sun", "stratus", "stratus 800-1500 m, coverage 0.95, seed 43; sun 25 deg; looking up 50 deg",
+       scene(43, 25, 300, 100, 50, R"({"kind": "stratus", "bottom_m": 800, "top_m": 1500, "coverage": 0.95, "extinction_scale": 0.3})")},
   };
 }
 
@@ -105,7 +111,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     out.clear();
     double sum = 0.0;
     for (const Prepared& p : prepared) {
-      if (group != "all" && p.scene.group != group) continue;
+      if (group == "all" ? p.scene.group == "stratus" : p.scene.group != group) continue;
       const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
                                        {"/clouds/lighting/phase=" + config.phase,
                                         "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
@@ -121,7 +127,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 
   // 2. Nelder-Mead over x = (b, a/b, c, d / 2), each clamped to [0, 1] (a <= b by construction; the
   // diffusion floor's weight d in [0, 2], 1 being the Eddington slab's own value).
-  for (const std::string group : {"cumulus", "stratocumulus", "all"}) {
+  for (const std::string group : {"cumulus", "stratocumulus", "stratus", "all"}) {
     CloudCalibrationFit fit;
     fit.group = group;
     constexpr int N = 4;

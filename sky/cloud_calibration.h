@@ -39,7 +39,7 @@ struct CloudCalibrationSceneError {
 };
 
 struct CloudCalibrationFit {
-  std::string group;  // "cumulus", "stratocumulus", "all"
+  std::string group;  // "cumulus", "stratocumulus", "stratus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at the start (a = b = c = 0.5) and at the fit
