@@ -184,8 +184,8 @@ struct CloudOverrides {
 double cloudTypeExtinction(int kind);
 // The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
 // tracer by `firmament bench clouds --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"):
-// cumulus and stratocumulus on their own calibration scenes; cumulonimbus takes cumulus's, stratus
-// stratocumulus's, cirrus the fit over all scenes (no calibration scenes of their own yet). Per phase
+// cumulus, stratocumulus and (since session 8, dual HG) stratus on their own calibration scenes;
+// cumulonimbus takes cumulus's, cirrus the joint fit over the cumulus and stratocumulus scenes. Per phase
 // model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
 // its own fit (`--phase`; the approximate Mie's d fitted in session 8).
 struct CloudMultipleScattering {
