@@ -26,6 +26,9 @@ struct CloudCalibrationConfig {
   int samplesPerPixel = 0;  // 0: 128 (quick 64): the fit needs a quiet reference
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int lightSteps = 0;       // light-march samples (0: the default preset's, CloudMarchSettings::lightSteps)
+  // No fit: each group's scenes rendered with the group's shipped constants (cloudTypeMultipleScattering
+  // of its type; "all": the joint fit, the cirrus stand-in), reported as the fit, to compare with a refit.
+  bool evaluateDefaults = false;
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
   // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").

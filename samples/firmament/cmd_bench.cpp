@@ -88,6 +88,7 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.samplesPerPixel = args.integer("reference-spp", 0, 0, 1 << 20);
   config.octaves = args.integer("octaves", 3, 1, 8);
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
+  config.evaluateDefaults = args.has("evaluate-defaults");
   config.phase = args.getOr("phase", config.phase);
   cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");  // refused before any work
   gpu::ContextOptions contextOptions;
@@ -179,7 +180,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P]] [--device D]",
+    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--evaluate-defaults]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -190,6 +191,7 @@ const CommandRegistration registration{Command{
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
+        {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
