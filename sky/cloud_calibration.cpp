@@ -9,6 +9,7 @@
 
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "sky/scene_cloud_medium.h"
@@ -58,6 +59,11 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        scene(41, 65, 60, 250, 25, R"({"kind": "stratus", "bottom_m": 400, "top_m": 1200, "coverage": 1.0, "extinction_scale": 0.3})")},
       {"st_high_sun", "stratus", "stratus 800-1500 m, coverage 0.95, seed 43; sun 25 deg; looking up 50 deg",
        scene(43, 25, 300, 100, 50, R"({"kind": "stratus", "bottom_m": 800, "top_m": 1500, "coverage": 0.95, "extinction_scale": 0.3})")},
+      // Session 8: cumulonimbus towers (their own group, not in "all"; extinction x 0.1 as the bench's).
+      {"cb_side_sun", "cumulonimbus", "cumulonimbus 1200-9000 m, coverage 0.45, extinction x 0.1, seed 51; sun 35 deg; looking up 20 deg, sun to the side",
+       scene(51, 35, 270, 0, 20, R"({"kind": "cumulonimbus", "bottom_m": 1200, "top_m": 9000, "coverage": 0.45, "extinction_scale": 0.1})")},
+      {"cb_low_sun", "cumulonimbus", "cumulonimbus 800-7000 m, coverage 0.55, extinction x 0.1, seed 53; sun 70 deg; looking up 12 deg, away from it",
+       scene(53, 70, 160, 330, 12, R"({"kind": "cumulonimbus", "bottom_m": 800, "top_m": 7000, "coverage": 0.55, "extinction_scale": 0.1})")},
   };
 }
 
@@ -75,6 +81,8 @@ std::string number(double x) {
 
 }  // namespace
 
+std::vector<std::string> cloudCalibrationGroups() { return {"cumulus", "stratocumulus", "stratus", "cumulonimbus", "all"}; }
+
 CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config) {
   CloudCalibrationResult result;
   result.device = context.description();
@@ -87,7 +95,14 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   // 1. The references (all orders), once.
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Prepared> prepared;
+  const std::vector<std::string> groups = cloudCalibrationGroups();
+  if (!config.group.empty() && std::find(groups.begin(), groups.end(), config.group) == groups.end())
+    throw InputError("--group " + config.group + ": no such calibration group (cumulus, stratocumulus, stratus, cumulonimbus, all)");
+  auto inGroup = [](const std::string& sceneGroup, const std::string& group) {
+    return group == "all" ? sceneGroup == "cumulus" || sceneGroup == "stratocumulus" : sceneGroup == group;
+  };
   for (const CalibrationScene& sc : calibrationScenes(config.quick)) {
+    if (!config.group.empty() && !inGroup(sc.group, config.group)) continue;
     const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">", {"/clouds/lighting/phase=" + config.phase});
     auto renderer = std::make_unique<SkyRenderer>(context);
     const RenderResult first = renderer->render(scene, options);
@@ -111,7 +126,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     out.clear();
     double sum = 0.0;
     for (const Prepared& p : prepared) {
-      if (group == "all" ? p.scene.group == "stratus" : p.scene.group != group) continue;
+      if (!inGroup(p.scene.group, group)) continue;
       std::vector<std::string> overrides = {"/clouds/lighting/phase=" + config.phase,
                                              "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves)};
       for (const std::string& o : {"/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
@@ -128,7 +143,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 
   // 2. Nelder-Mead over x = (b, a/b, c, d / 2), each clamped to [0, 1] (a <= b by construction; the
   // diffusion floor's weight d in [0, 2], 1 being the Eddington slab's own value).
-  for (const std::string group : {"cumulus", "stratocumulus", "stratus", "all"}) {
+  for (const std::string& group : groups) {
+    if (!config.group.empty() && group != config.group) continue;
     CloudCalibrationFit fit;
     fit.group = group;
     constexpr int N = 4;
@@ -142,16 +158,12 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       ++fit.evaluations;
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], scratch);
     };
+    // The group's shipped constants: its type's, or for "all" the joint fit (the cirrus stand-in).
+    const CloudPhaseModel phase = cloudPhaseModelFromName(config.phase, "--phase");
+    const CloudMultipleScattering shipped =
+        cloudTypeMultipleScattering(group == "all" ? shared::kCloudCirrus : cloudKindFromName(group), phase);
     if (config.evaluateDefaults) {
-      // The group's shipped constants: its type's (the first scene's layer), or for "all" the joint fit
-      // (the cirrus stand-in), rendered as overrides so the numbers are those constants' on every scene.
-      const CloudPhaseModel phase = cloudPhaseModelFromName(config.phase, "--phase");
-      CloudMultipleScattering shipped = cloudTypeMultipleScattering(shared::kCloudCirrus, phase);
-      for (const CalibrationScene& sc : calibrationScenes(config.quick))
-        if (group != "all" && sc.group == group) {
-          shipped = cloudTypeMultipleScattering(cloudKindFromName(group), phase);
-          break;
-        }
+      // Rendered as overrides, so the numbers are those constants' on every scene of the group.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d;
       fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, fit.start);
       fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.fit);
@@ -162,8 +174,16 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       result.fits.push_back(std::move(fit));
       continue;
     }
-    std::array<Point, N + 1> simplex = {{{0.5, 1.0, 0.5, 0.5}, {0.75, 1.0, 0.5, 0.5}, {0.5, 0.6, 0.5, 0.5},
-                                         {0.5, 1.0, 0.8, 0.5}, {0.5, 1.0, 0.5, 0.25}}};
+    // The simplex starts at the shipped constants (since session 8): the objective is flat across quite
+    // different (a, b, c, d), and from a fixed start the 90 evaluations could end on a point worse than
+    // the shipped one (docs/clouds.md, "Calibration"); from there a fit can only improve on it.
+    const Point start = clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d});
+    std::array<Point, N + 1> simplex;
+    simplex[0] = start;
+    for (int i = 0; i < N; ++i) {
+      simplex[i + 1] = start;
+      simplex[i + 1][i] += start[i] + 0.25 <= 1.0 ? 0.25 : -0.25;
+    }
     std::array<double, N + 1> value{};
     for (int i = 0; i <= N; ++i) value[i] = f(simplex[i]);
     fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, fit.start);

@@ -6,10 +6,11 @@
 // Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3 as the benchmark
 // (two scenes x 0.15).
 //
-// The fit: per group of scenes (one cloud type, and all scenes together), Nelder-Mead (Nelder and Mead
-// 1965) over x = (b, a / b, c) in [0, 1]^3 (so a <= b holds by construction), minimising the mean over
-// the group's scenes of the squared relative RMSE of the clouds' luminance (cloud pixels; the
-// reference's own noise adds the same constant to every candidate, so it does not move the minimum).
+// The fit: per group of scenes (cloudCalibrationGroups), Nelder-Mead (Nelder and Mead 1965) over
+// x = (b, a / b, c, d / 2) in [0, 1]^4 (so a <= b holds by construction), started at the group's shipped
+// constants, minimising the mean over the group's scenes of the squared relative RMSE of the clouds'
+// luminance (cloud pixels; the reference's own noise adds the same constant to every candidate, so it
+// does not move the minimum).
 // docs/clouds.md, "Calibration", lists the scenes and the result.
 #include <filesystem>
 #include <string>
@@ -29,6 +30,7 @@ struct CloudCalibrationConfig {
   // No fit: each group's scenes rendered with the group's shipped constants (cloudTypeMultipleScattering
   // of its type; "all": the joint fit, the cirrus stand-in), reported as the fit, to compare with a refit.
   bool evaluateDefaults = false;
+  std::string group;  // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
   // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").
@@ -42,7 +44,7 @@ struct CloudCalibrationSceneError {
 };
 
 struct CloudCalibrationFit {
-  std::string group;  // "cumulus", "stratocumulus", "stratus", "all" (the cumulus and stratocumulus scenes)
+  std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at the start (a = b = c = 0.5) and at the fit
@@ -54,6 +56,10 @@ struct CloudCalibrationResult {
   std::string device;
   double referenceSeconds = 0.0, fitSeconds = 0.0;
 };
+
+// The groups a fit is made for: "cumulus", "stratocumulus", "stratus", "cumulonimbus" (each its own
+// scenes) and "all" (the cumulus and stratocumulus scenes together: the cirrus stand-in).
+std::vector<std::string> cloudCalibrationGroups();
 
 CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config);
 // clouds_calibration.csv (group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,

@@ -89,6 +89,10 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.octaves = args.integer("octaves", 3, 1, 8);
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.evaluateDefaults = args.has("evaluate-defaults");
+  config.group = args.getOr("group", "");
+  const std::vector<std::string> groups = cloudCalibrationGroups();
+  if (!config.group.empty() && std::find(groups.begin(), groups.end(), config.group) == groups.end())  // refused before any work
+    throw InputError("--group " + config.group + ": no such calibration group (cumulus, stratocumulus, stratus, cumulonimbus, all)");
   config.phase = args.getOr("phase", config.phase);
   cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");  // refused before any work
   gpu::ContextOptions contextOptions;
@@ -180,7 +184,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--evaluate-defaults]] [--device D]",
+    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -192,6 +196,7 @@ const CommandRegistration registration{Command{
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
+        {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "

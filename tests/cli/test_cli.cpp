@@ -87,6 +87,7 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --reference-spp 0", {"--reference-spp", "[1, "}},
       {"bench clouds --calibrate --light-steps 0", {"--light-steps", "[1, 64]"}},
       {"bench clouds --calibrate --phase mie", {"--phase", "mie"}},
+      {"bench clouds --calibrate --group nimbus", {"--group nimbus", "cumulonimbus", "stratus"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
