@@ -80,7 +80,12 @@ std::vector<Scenario> selectedScenarios(const CloudBenchConfig& config) {
     if (config.scenario.empty() || sc.name == config.scenario) kept.push_back(sc);
     names += (names.empty() ? "" : ", ") + sc.name;
   }
-  if (kept.empty()) throw InputError("--scenario " + config.scenario + ": no such cloud scenario (" + names + ")");
+  if (kept.empty()) {
+    for (const Scenario& sc : scenarios(false))
+      if (sc.name == config.scenario)
+        throw InputError("--scenario " + config.scenario + ": not in --quick (its references take minutes); with --quick: " + names);
+    throw InputError("--scenario " + config.scenario + ": no such cloud scenario (" + names + ")");
+  }
   return kept;
 }
 

@@ -127,12 +127,11 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     double sum = 0.0;
     for (const Prepared& p : prepared) {
       if (!inGroup(p.scene.group, group)) continue;
-      std::vector<std::string> overrides = {"/clouds/lighting/phase=" + config.phase,
-                                             "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves)};
-      for (const std::string& o : {"/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                                     "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d)})
-          overrides.push_back(o);
-      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">", overrides);
+      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
+                                       {"/clouds/lighting/phase=" + config.phase,
+                                        "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+                                        "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
+                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d)});
       const RenderResult r = p.renderer->render(scene, options);
       const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
@@ -246,13 +245,13 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::string csv = "group,a,b,c,d,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
-                   "sc_thin x 0.15), " +
+                   "sc_thin x 0.15, the cumulonimbus x 0.1), " +
                    std::to_string(config.octaves) + " octaves, " +
                    (config.lightSteps > 0 ? std::to_string(config.lightSteps) : std::string("the default's")) +
                    " light steps, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
-                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2), minimising the mean squared rel RMSE of the "
-                   "clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "
+                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2) from the group's shipped constants, minimising the "
+                   "mean squared rel RMSE of the clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "
                    "model (d: the Eddington diffusion floor's weight). `corrected`: the reference's noise subtracted.\n\n";
   if (config.evaluateDefaults)
     md += "**No fit (`--evaluate-defaults`)**: the columns `a b c d` and `at the fit` are each group's shipped constants "
