@@ -249,11 +249,12 @@ std::vector<KnobValue> knobValues(bool quick) {
                    o.clouds.aerialPerspectiveSteps = n;
                  }, false, true});
   // The rows the scenarios without the full sweep run: the defaults against the baseline, the march's
-  // own error (single scattering, steps), the floor, and the sequence.
+  // own error (single scattering, steps), the floor, the sequence, and the approximate Mie phase.
   const std::vector<std::pair<std::string, std::string>> everywhere = {
       {"default", "64v/6l/3o"},    {"baseline_fixed_steps", "64v/6l uniform"}, {"single_scattering", "1 octave vs order 1"},
       {"view_steps", "32"},        {"view_steps", "128"},                     {"light_steps", "4"},
-      {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"}};
+      {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
+      {"phase", "approximate mie 20 um"}};
   for (KnobValue& k : v)
     for (const auto& [knob, value] : everywhere)
       if (k.knob == knob && k.value == value) k.everyScenario = true;
