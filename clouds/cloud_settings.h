@@ -184,7 +184,7 @@ struct CloudOverrides {
 double cloudTypeExtinction(int kind);
 // The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
 // tracer by `firmament bench clouds --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"):
-// cumulus, stratocumulus and (since session 8) stratus on their own calibration scenes;
+// cumulus, stratocumulus and (since session 8, dual HG) stratus on their own calibration scenes;
 // cumulonimbus takes cumulus's, cirrus the joint fit over the cumulus and stratocumulus scenes. Per phase
 // model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
 // its own fit (`--phase`; the approximate Mie's d fitted in session 8).
