@@ -540,7 +540,8 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& r : rows) {
     char line[512];
-    std::snprintf(line, sizeof(line), "%s,%s,%s,%.3f,%.3f,%.6g,%.4g,%.6g,%.2f,%.6g,%.6g,%.6g,%s,\"%s\"\n", r.knob.c_str(),
+    // The value is quoted (RFC 4180): some name settings with commas ("1 octave, no cone, 16 light").
+    std::snprintf(line, sizeof(line), "%s,\"%s\",%s,%.3f,%.3f,%.6g,%.4g,%.6g,%.2f,%.6g,%.6g,%.6g,%s,\"%s\"\n", r.knob.c_str(),
                   r.value.c_str(), r.scenario.c_str(), r.precomputeMs, r.frameMs, r.relRmse, r.psnrDb, r.maxRelErr,
                   r.samplesPerPixel, r.relRmseNoiseCorrected, r.referenceNoise, r.meanBias, r.against.c_str(), r.device.c_str());
     csv += line;
