@@ -22,7 +22,7 @@ struct CloudBenchConfig {
   int repeats = 3;    // frame timing: median of this many after a warm-up
   int threads = 0;    // path tracer threads (0: all cores)
   int samplesPerPixel = 0;  // paths per reference pixel (0: 64, quick 16); more makes `corrected` robust
-  std::string scenario;     // only this scenario (empty: all; cloudBenchScenarioNames)
+  std::string scenario;     // only this scenario (empty: all; checkCloudBenchConfig)
   // DIR/images/<scenario>_{reference,default}.exr (rgb: the clouds' light in cd/m^2, a: transmittance),
   // <scenario>_default_error.png (relative luminance error heat map, 0..20 %) and <scenario>_pixels.csv
   // (per pixel: the reference's luminance, standard error and transmittance, then the luminance of
@@ -31,8 +31,10 @@ struct CloudBenchConfig {
   std::string environmentNote;
 };
 
-// "cumulus_noon", "stratocumulus_sunset".
-std::vector<std::string> cloudBenchScenarioNames();
+// InputError unless config.scenario is empty or names a scenario of this run (cumulus_noon,
+// stratocumulus_sunset; without --quick also overcast, cumulonimbus, inside_cloud, horizon). Run by
+// runCloudBench and runCloudTiming; the CLI calls it first, to refuse bad input before any work.
+void checkCloudBenchConfig(const CloudBenchConfig& config);
 
 struct CloudBenchRow {
   std::string knob, value, scenario;

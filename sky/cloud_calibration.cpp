@@ -81,9 +81,22 @@ std::string number(double x) {
 
 }  // namespace
 
-std::vector<std::string> cloudCalibrationGroups() { return {"cumulus", "stratocumulus", "stratus", "cumulonimbus", "all"}; }
+namespace {
+const std::vector<std::string> kGroups = {"cumulus", "stratocumulus", "stratus", "cumulonimbus", "all"};
+}  // namespace
+
+void checkCloudCalibrationConfig(const CloudCalibrationConfig& config) {
+  if (!config.group.empty() && std::find(kGroups.begin(), kGroups.end(), config.group) == kGroups.end()) {
+    std::string names;
+    for (const std::string& g : kGroups) names += (names.empty() ? "" : ", ") + g;
+    throw InputError("--group " + config.group + ": no such calibration group (" + names + ")");
+  }
+  cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");
+}
 
 CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config) {
+  checkCloudCalibrationConfig(config);
+  const CloudPhaseModel phase = cloudPhaseModelFromName(config.phase, "--phase");
   CloudCalibrationResult result;
   result.device = context.description();
   SkyRenderOptions options;
@@ -95,9 +108,6 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   // 1. The references (all orders), once.
   auto t0 = std::chrono::steady_clock::now();
   std::vector<Prepared> prepared;
-  const std::vector<std::string> groups = cloudCalibrationGroups();
-  if (!config.group.empty() && std::find(groups.begin(), groups.end(), config.group) == groups.end())
-    throw InputError("--group " + config.group + ": no such calibration group (cumulus, stratocumulus, stratus, cumulonimbus, all)");
   auto inGroup = [](const std::string& sceneGroup, const std::string& group) {
     return group == "all" ? sceneGroup == "cumulus" || sceneGroup == "stratocumulus" : sceneGroup == group;
   };
@@ -142,7 +152,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 
   // 2. Nelder-Mead over x = (b, a/b, c, d / 2), each clamped to [0, 1] (a <= b by construction; the
   // diffusion floor's weight d in [0, 2], 1 being the Eddington slab's own value).
-  for (const std::string& group : groups) {
+  for (const std::string& group : kGroups) {
     if (!config.group.empty() && group != config.group) continue;
     CloudCalibrationFit fit;
     fit.group = group;
@@ -158,7 +168,6 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], scratch);
     };
     // The group's shipped constants: its type's, or for "all" the joint fit (the cirrus stand-in).
-    const CloudPhaseModel phase = cloudPhaseModelFromName(config.phase, "--phase");
     const CloudMultipleScattering shipped =
         cloudTypeMultipleScattering(group == "all" ? shared::kCloudCirrus : cloudKindFromName(group), phase);
     if (config.evaluateDefaults) {

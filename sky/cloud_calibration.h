@@ -4,9 +4,9 @@
 // calibration scenes kept separate from the benchmark's scenarios (other seeds, coverages, layer
 // heights and sun angles), so the benchmark reports the fitted defaults on scenes the fit never saw.
 // Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3 as the benchmark
-// (two scenes x 0.15).
+// (two thin scenes x 0.15, the cumulonimbus towers x 0.1).
 //
-// The fit: per group of scenes (cloudCalibrationGroups), Nelder-Mead (Nelder and Mead 1965) over
+// The fit: per group of scenes (checkCloudCalibrationConfig lists them), Nelder-Mead (Nelder and Mead 1965) over
 // x = (b, a / b, c, d / 2) in [0, 1]^4 (so a <= b holds by construction), started at the group's shipped
 // constants, minimising the mean over the group's scenes of the squared relative RMSE of the clouds'
 // luminance (cloud pixels; the reference's own noise adds the same constant to every candidate, so it
@@ -47,7 +47,7 @@ struct CloudCalibrationFit {
   std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   int evaluations = 0;
-  double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at the start (a = b = c = 0.5) and at the fit
+  double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
   std::vector<CloudCalibrationSceneError> start, fit;  // per scene
 };
 
@@ -57,12 +57,13 @@ struct CloudCalibrationResult {
   double referenceSeconds = 0.0, fitSeconds = 0.0;
 };
 
-// The groups a fit is made for: "cumulus", "stratocumulus", "stratus", "cumulonimbus" (each its own
-// scenes) and "all" (the cumulus and stratocumulus scenes together: the cirrus stand-in).
-std::vector<std::string> cloudCalibrationGroups();
+// InputError for a group that is not one of cumulus, stratocumulus, stratus, cumulonimbus (each its own
+// scenes) and all (the cumulus and stratocumulus scenes together: the cirrus stand-in), or for an
+// unknown phase. Run by runCloudCalibration; the CLI calls it first, to refuse bad input before any work.
+void checkCloudCalibrationConfig(const CloudCalibrationConfig& config);
 
 CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCalibrationConfig& config);
-// clouds_calibration.csv (group,a,b,c,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,
+// clouds_calibration.csv (group,a,b,c,d,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,
 // at) and clouds_calibration.md in config.outDir.
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result);
 

@@ -1,6 +1,5 @@
 // `firmament bench atmosphere|clouds|weather|all --out DIR [--quick]`: error-against-run-time sweeps
 // (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "clouds/cloud_settings.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "gpu/context.h"
@@ -90,11 +88,8 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.evaluateDefaults = args.has("evaluate-defaults");
   config.group = args.getOr("group", "");
-  const std::vector<std::string> groups = cloudCalibrationGroups();
-  if (!config.group.empty() && std::find(groups.begin(), groups.end(), config.group) == groups.end())  // refused before any work
-    throw InputError("--group " + config.group + ": no such calibration group (cumulus, stratocumulus, stratus, cumulonimbus, all)");
   config.phase = args.getOr("phase", config.phase);
-  cloudPhaseModelFromName(config.phase, "firmament bench clouds --calibrate --phase");  // refused before any work
+  checkCloudCalibrationConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
@@ -118,14 +113,7 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.samplesPerPixel = args.integer("reference-spp", 0, 1, 1 << 20);
   config.scenario = args.getOr("scenario", "");
   config.images = args.has("images");
-  if (!config.scenario.empty()) {
-    const auto names = cloudBenchScenarioNames();
-    if (std::find(names.begin(), names.end(), config.scenario) == names.end()) {
-      std::string list;
-      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-      throw InputError("--scenario " + config.scenario + ": no such cloud scenario (" + list + ")");  // before any work
-    }
-  }
+  checkCloudBenchConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
