@@ -106,8 +106,10 @@ TEST_F(SkyRenderTest, SkyViewTableIsKeptWhileTheCameraOnlyTurns) {
   EXPECT_FALSE(computed.skyViewReused);
   ASSERT_EQ(computed.image.pixels.size(), turned.image.pixels.size());
   EXPECT_EQ(computed.image.pixels, turned.image.pixels);
+  // Each change follows a frame that differs from it in that input alone.
   EXPECT_FALSE(frame(sequence, {"/camera/yaw_deg=40"}, false).skyViewReused);  // a still
   EXPECT_FALSE(frame(sequence, {"/sun/zenith_deg=51"}, true).skyViewReused);
+  frame(sequence, {}, false);
   EXPECT_FALSE(frame(sequence, {"/camera/height_above_ground_m=100"}, true).skyViewReused);
 }
 
