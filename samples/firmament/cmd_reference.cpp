@@ -51,6 +51,7 @@ int runReference(const Args& args) {
   std::filesystem::path out =
       args.getOr("output", "out/" + std::filesystem::path(scenePath).stem().string() + "_reference.exr");
   if (out.extension() != ".exr") throw InputError("-o " + out.string() + ": the output must end in .exr");
+  refuseOverwritingInput(out, scenePath);
   Scene scene = Scene::load(scenePath, overrides);  // InputError (exit 2) on a bad scene or override
   const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::error_code ec;

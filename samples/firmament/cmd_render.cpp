@@ -117,6 +117,9 @@ int runRender(const Args& args) {
     return std::filesystem::path(out).replace_extension("").concat(suffix);
   };
   for (int i = 1; i < frames; ++i) frameScene(i);  // bad rates fail before anything is written
+  // No output may replace the scene file (OUT.json is the stats beside OUT.exr).
+  if (!args.positionals.empty())
+    for (int i = 0; i < frames; ++i) refuseOverwritingInput(framePath(i), scenePath);
 
   // Phases: device, then render (tables + frame) and write per frame. The bar appears only past one second.
   auto progress = std::make_unique<Progress>("render", 1 + 2 * frames);

@@ -1,6 +1,7 @@
 #pragma once
 // Subcommands of the `firmament` tool. Each cmd_*.cpp registers one with a static Command object;
 // main.cpp dispatches by name, maps exceptions to exit codes and prints help.
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -55,5 +56,9 @@ const std::map<std::string, Command>& commands();
 // Options every scene-taking command shares.
 OptionSpec setOption();     // --set /json/pointer=value (repeatable)
 OptionSpec deviceOption();  // --device NAME|INDEX
+
+// InputError when `output` (OUT.exr) or a file written beside it (OUT.png, OUT.json) is the input file
+// `input`: a render's stats JSON must not overwrite SCENE.json when -o names SCENE.exr beside it.
+void refuseOverwritingInput(const std::filesystem::path& output, const std::filesystem::path& input);
 
 }  // namespace firmament::cli

@@ -106,6 +106,16 @@ const std::map<std::string, Command>& commands() { return registry(); }
 OptionSpec setOption() {
   return {"set", "/PATH=VALUE", "override a scene field by JSON pointer, e.g. --set /camera/fov_deg=60", true};
 }
+void refuseOverwritingInput(const std::filesystem::path& output, const std::filesystem::path& input) {
+  for (const char* extension : {".exr", ".png", ".json"}) {
+    const std::filesystem::path written = std::filesystem::path(output).replace_extension(extension);
+    std::error_code error;  // equivalent() fails (false) where either does not exist yet
+    if (written.filename() == input.filename() && std::filesystem::equivalent(written, input, error))
+      throw InputError("-o " + output.string() + ": would overwrite the input " + input.string() + " with " + written.string() +
+                       " (written are OUT.exr, OUT.png and OUT.json); name another output");
+  }
+}
+
 OptionSpec deviceOption() {
   return {"device", "NAME|INDEX", "Vulkan device by index or part of its name (default: a GPU if any, else lavapipe)"};
 }

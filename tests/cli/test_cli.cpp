@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -72,6 +73,32 @@ TEST(Cli, BadScenesExitTwoWithAClearMessage) {
   EXPECT_EQ(badSet.exitCode, 2);
   EXPECT_NE(badSet.output.find("/camera/fov_deg"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));  // nothing written on bad input
+}
+
+// -o SCENE.exr beside SCENE.json would write the render's stats over the scene itself: refused (exit 2,
+// naming both files) for render, a sequence's frames and reference; the scene is left as it was.
+TEST(Cli, OutputsNeverOverwriteTheScene) {
+  auto dir = test::scratchDir("cli_overwrite_scene");
+  const std::string text = R"({"camera": {"width": 8, "height": 6}})";
+  const auto scene = writeScene(dir, "sky.json", text);
+  const auto frame = writeScene(dir, "seq_0001.json", text);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + scene.string() + " -o " + (dir / "sky.exr").string(), "sky.json"},
+      {"render " + frame.string() + " --frames 2 -o " + (dir / "seq.exr").string(), "seq_0001.json"},
+      {"reference " + scene.string() + " --spp 1 -o " + (dir / "sky.exr").string(), "sky.json"},
+  };
+  for (const auto& [arguments, victim] : cases) {
+    CommandRun r = firmament(arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.output;
+    EXPECT_NE(r.output.find("would overwrite the input"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(victim), std::string::npos) << r.output;
+  }
+  for (const auto& path : {scene, frame}) {
+    std::ifstream in(path);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), text) << path;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "sky.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "seq_0000.exr"));
 }
 
 // The bench's own options: a wrong scenario or sample count is refused (exit 2, naming the option and
