@@ -120,6 +120,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (ambient) march.ambient = *ambient;
   if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
   if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
+  if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

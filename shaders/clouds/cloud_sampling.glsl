@@ -17,7 +17,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only)
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only, 128 light steps per thickness, 256 light through the other layers)
   vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y: δ-scaled share f (CloudMarchSettings::deltaScaling); z unused; w: light march length (m; the largest one with flag 16)
   vec4 phase;            // phase lobes g1, g2, second lobe's weight w (cloudPhase), single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
@@ -115,6 +115,41 @@ float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_
     vec2 k = kernel[(j - 1) % 6] * cone * mid;
     tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y) * (next - previous);
     previous = next;
+  }
+  return tau;
+}
+
+// Optical depth along the unit direction `dir` from p over the stretch [t0, t1] (distances along it)
+// of `layer`: n equal steps, sampled at their midpoints.
+float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, int n) {
+  float h = (stretch.y - stretch.x) / float(n);
+  float sum = 0.0;
+  for (int j = 0; j < n; ++j) sum += densityAt(layer, p + dir * (stretch.x + (float(j) + 0.5) * h));
+  return layer.extinction * h * sum;
+}
+
+// Optical depth of every layer but `own` along the sun ray from p (radius r, mu_s = cos of the sun's
+// zenith at p), up to maxLength: a deck above shadows the one below (docs/clouds.md "Light through
+// other layers"). Each stretch the ray spends in another shell gets lightSteps / 2 equal steps per
+// layer thickness of its length, 2 to 2 lightSteps: those layers are farther from p than its own, so
+// their shadow on p is smoother. `count` adds the density evaluations.
+float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 sun, int lightSteps, float maxLength,
+                                     inout uint count) {
+  float tau = 0.0;
+  for (int i = 0; i < cloud.image.w; ++i) {
+    if (i == own) continue;
+    CloudLayer other = layerAt(i);
+    vec2 first, second;
+    cloudShellSegments(r, muS, other.bottom_radius, other.top_radius, maxLength, first, second);
+    float thickness = max(other.top_radius - other.bottom_radius, 1.0);
+    for (int k = 0; k < 2; ++k) {
+      vec2 stretch = k == 0 ? first : second;
+      float length_m = stretch.y - stretch.x;
+      if (!(length_m > 0.0)) continue;
+      int n = clamp(int(ceil(float(lightSteps) * length_m / thickness)), 2, 4 * lightSteps);
+      tau += opticalDepthOnStretch(other, p, sun, stretch, n);
+      count += uint(n);
+    }
   }
   return tau;
 }

@@ -167,6 +167,7 @@ void main() {
   bool msZenith = (cloud.steps.w & 32) != 0;
   bool msScattered = (cloud.steps.w & 64) != 0;
   bool lightScaled = (cloud.steps.w & 128) != 0;
+  bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -249,6 +250,7 @@ void main() {
       vec3 sunLight = transmittanceToSun(transmittanceLut, atmosphere, rp, muS) * atmosphere.solar_irradiance;
       bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
       float tau = 0.0;
+      float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       if (sunVisible) {
         // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
         vec3 shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
@@ -267,8 +269,11 @@ void main() {
                               : lightSteps;
           tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone);
           lightCount += uint(n);
+          // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lightCount);
         }
-        tau *= transportScale;
+        tauOther *= transportScale;
+        tau = transportScale * tau + tauOther;
       }
       // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
       // scattering"): with flag 32 it takes the better of two ways in, along the sun ray (irradiance E,
@@ -295,7 +300,8 @@ void main() {
       float msSum = 0.0;
       for (int o = 1; o < octaves; ++o) {
         float attenuation = sunAttenuation[o];
-        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp, msScattered));
+        // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
+        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
@@ -310,7 +316,11 @@ void main() {
         }
         float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0);
         lightCount += uint(floorSteps);
-        msSum = max(msSum, diffusion * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
+        // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
+        // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
+        // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
+        float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
+        msSum = max(msSum, diffusion * fluxThroughOthers * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
       }
       float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
