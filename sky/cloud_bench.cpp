@@ -68,6 +68,13 @@ std::vector<Scenario> scenarios(bool quick) {
        R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 60, "azimuth_deg": 90},
            "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 3, "fov_deg": 70, )" + size + R"(},
            "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.5, "extinction_scale": 0.3}]}})", false},
+      // Not in the issue's list: a scene with two layers, where the sun ray from the lower one crosses
+      // the upper one (CloudMarchSettings::lightThroughOtherLayers).
+      {"two_layers", "cumulus 1500-2700 m, coverage 0.5, under stratocumulus 4000-4800 m, coverage 0.55, both extinction x 0.3; sun 35 deg from the zenith; looking up 25 deg",
+       R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 35, "azimuth_deg": 160},
+           "camera": {"height_above_ground_m": 2, "yaw_deg": 200, "pitch_deg": 25, "fov_deg": 70, )" + size + R"(},
+           "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.5, "extinction_scale": 0.3},
+                                 {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.55, "extinction_scale": 0.3}]}})", false},
   };
   list.insert(list.end(), more.begin(), more.end());
   return list;
@@ -203,6 +210,9 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
+  v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
+  v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
   v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
   v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }, true});
@@ -255,7 +265,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"default", "64v/6l/3o"},    {"baseline_fixed_steps", "64v/6l uniform"}, {"single_scattering", "1 octave vs order 1"},
       {"view_steps", "32"},        {"view_steps", "128"},                     {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
-      {"phase", "approximate mie 20 um"}};
+      {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
+      {"single_scattering", "1 octave, own layer only"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
