@@ -121,6 +121,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
   if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
   if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
+  if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

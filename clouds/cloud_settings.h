@@ -178,6 +178,7 @@ struct CloudOverrides {
   std::optional<bool> lightMarchToExit;
   std::optional<bool> lightStepsPerThickness;
   std::optional<bool> lightThroughOtherLayers;
+  std::optional<double> earlyExitTransmittance;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

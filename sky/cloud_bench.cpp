@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -210,6 +211,10 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
+  for (const char* t : {"0.001", "0 (none)"})
+    v.push_back({"early_exit", t, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = std::atof(t); }});
+  v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
@@ -266,7 +271,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"view_steps", "32"},        {"view_steps", "128"},                     {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
-      {"single_scattering", "1 octave, own layer only"}};
+      {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
+      {"single_scattering", "1 octave, no early exit"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)

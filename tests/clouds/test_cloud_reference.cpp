@@ -163,8 +163,8 @@ TEST_F(CloudReference, SingleScatteringAgreesWithFirstOrder) {
 // order within the noon bounds above (measured -3.8 %, noise-corrected 0.081); marching the sample's
 // own layer only leaves the lower deck unshadowed, far too bright (measured +412 %: the check can fail).
 // The upper deck is kept thin (extinction x 0.1): where the sun ray's optical depth reaches ~10 (x 0.2
-// here) the march is ~20 % darker than the first order with one layer as with two (docs/clouds.md
-// "Light through other layers").
+// here) the march's early exit at T = 0.01 cuts ~20 % of the first order, with one layer as with two
+// (docs/clouds.md, "Lighting": light through other layers).
 TEST_F(CloudReference, ADeckAboveShadowsTheLayerBelow) {
   const Scene decks = test::cloudScene(
       {"/clouds/layers/0/extinction_scale=0.2", "/clouds/layers/1/extinction_scale=0.1", "/camera/width=24", "/camera/height=14",
