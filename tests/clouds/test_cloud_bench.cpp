@@ -29,6 +29,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     double apOff = -1.0, apVolume = -1.0, apMarch = -1.0;
     double spp16 = 0.0, spp256 = 0.0;
     double defaultSpp = 0.0, defaultError = 0.0;
+    double ownLayerOnlyError = -1.0, noEarlyExitSpp = 0.0;
     std::map<std::string, std::pair<double, double>> temporal;  // value -> samples, rel RMSE
     for (const auto& r : rows) {
       if (r.scenario != scenario) continue;
@@ -51,6 +52,8 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
       if (r.knob == "view_steps" && r.value == "256") spp256 = r.samplesPerPixel;
       if (r.knob == "default") defaultSpp = r.samplesPerPixel, defaultError = r.relRmse;
       if (r.knob == "temporal_update") temporal[r.value] = {r.samplesPerPixel, r.relRmse};
+      if (r.knob == "light_through_other_layers") ownLayerOnlyError = r.relRmse;
+      if (r.knob == "early_exit" && r.value == "0 (none)") noEarlyExitSpp = r.samplesPerPixel;
     }
     // The last frame of a moving sequence (1 in N pixels marched per frame) against the path tracer:
     // within 0.05 of the still's error (measured at 32x18: noon 0.0000, sunset -0.030 to +0.026).
@@ -62,7 +65,10 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
     EXPECT_EQ(milestone, 1) << scenario;
-    EXPECT_EQ(single, 3) << scenario;
+    EXPECT_EQ(single, 5) << scenario;
+    // One layer: no other layer to cross, so the same image; without the early exit the march goes on.
+    EXPECT_EQ(ownLayerOnlyError, defaultError) << scenario;
+    EXPECT_GT(noEarlyExitSpp, defaultSpp) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
     // The air in front of the clouds matters (leaving it out is the largest error), and both ways of
     // computing it are far closer to the fine march than leaving it out.
