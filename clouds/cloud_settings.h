@@ -191,14 +191,17 @@ struct CloudOverrides {
 double cloudTypeExtinction(int kind);
 // The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
 // tracer by `firmament bench clouds --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"):
-// cumulus, stratocumulus and (since session 8, dual HG) stratus on their own calibration scenes;
-// cumulonimbus takes cumulus's, cirrus the joint fit over the cumulus and stratocumulus scenes. Per phase
+// cumulus, stratocumulus, stratus (since session 8) and cirrus (since session 9) on their own
+// calibration scenes (the approximate Mie phase's stratus takes stratocumulus's, its cirrus the joint
+// fit); cumulonimbus takes cumulus's. Per phase
 // model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
 // its own fit (`--phase`; the approximate Mie's d fitted in session 8).
 struct CloudMultipleScattering {
   double a, b, c, d;
 };
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);
+// The joint fit over the cumulus and stratocumulus calibration scenes (the calibration's group "all").
+CloudMultipleScattering cloudJointMultipleScattering(CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);
 int cloudKindFromName(const std::string& name);  // "cumulus" -> kCloudCumulus; InputError if unknown
 const char* cloudKindName(int kind);
 

@@ -76,6 +76,12 @@ std::vector<Scenario> scenarios(bool quick) {
            "camera": {"height_above_ground_m": 2, "yaw_deg": 200, "pitch_deg": 25, "fov_deg": 70, )" + size + R"(},
            "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.5, "extinction_scale": 0.3},
                                  {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.55, "extinction_scale": 0.3}]}})", false},
+      // Not in the issue's list: the thin high layer at its own extinction (held out from the cirrus
+      // calibration scenes).
+      {"cirrus", "cirrus 8000-10000 m, coverage 0.65, its own extinction; sun 50 deg from the zenith; looking up 30 deg, the sun behind to the right",
+       R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 50, "azimuth_deg": 230},
+           "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 30, "fov_deg": 70, )" + size + R"(},
+           "clouds": {"layers": [{"kind": "cirrus", "bottom_m": 8000, "top_m": 10000, "coverage": 0.65}]}})", false},
   };
   list.insert(list.end(), more.begin(), more.end());
   return list;

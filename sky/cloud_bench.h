@@ -32,7 +32,7 @@ struct CloudBenchConfig {
 };
 
 // InputError unless config.scenario is empty or names a scenario of this run (cumulus_noon,
-// stratocumulus_sunset; without --quick also overcast, cumulonimbus, inside_cloud, horizon, two_layers). Run by
+// stratocumulus_sunset; without --quick also overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus). Run by
 // runCloudBench and runCloudTiming; the CLI calls it first, to refuse bad input before any work.
 void checkCloudBenchConfig(const CloudBenchConfig& config);
 

@@ -64,6 +64,12 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        scene(51, 35, 270, 0, 20, R"({"kind": "cumulonimbus", "bottom_m": 1200, "top_m": 9000, "coverage": 0.45, "extinction_scale": 0.1})")},
       {"cb_low_sun", "cumulonimbus", "cumulonimbus 800-7000 m, coverage 0.55, extinction x 0.1, seed 53; sun 70 deg; looking up 12 deg, away from it",
        scene(53, 70, 160, 330, 12, R"({"kind": "cumulonimbus", "bottom_m": 800, "top_m": 7000, "coverage": 0.55, "extinction_scale": 0.1})")},
+      // Session 9: cirrus (its own group, not in "all"; the type's own extinction, 0.002 m^-1 at density 1:
+      // optically thin, tau up to ~2 across the layer).
+      {"ci_high_sun", "cirrus", "cirrus 7000-9500 m, coverage 0.7, seed 61; sun 30 deg; looking up 50 deg, sun to the side",
+       scene(61, 30, 90, 0, 50, R"({"kind": "cirrus", "bottom_m": 7000, "top_m": 9500, "coverage": 0.7})")},
+      {"ci_low_sun", "cirrus", "cirrus 7500-10000 m, coverage 0.6, seed 63; sun 75 deg; looking 40 deg left of it, up 15 deg",
+       scene(63, 75, 200, 160, 15, R"({"kind": "cirrus", "bottom_m": 7500, "top_m": 10000, "coverage": 0.6})")},
   };
 }
 
@@ -82,7 +88,7 @@ std::string number(double x) {
 }  // namespace
 
 namespace {
-const std::vector<std::string> kGroups = {"cumulus", "stratocumulus", "stratus", "cumulonimbus", "all"};
+const std::vector<std::string> kGroups = {"cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all"};
 }  // namespace
 
 void checkCloudCalibrationConfig(const CloudCalibrationConfig& config) {
@@ -167,9 +173,9 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       ++fit.evaluations;
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], scratch);
     };
-    // The group's shipped constants: its type's, or for "all" the joint fit (the cirrus stand-in).
+    // The group's shipped constants: its type's, or for "all" the joint fit.
     const CloudMultipleScattering shipped =
-        cloudTypeMultipleScattering(group == "all" ? shared::kCloudCirrus : cloudKindFromName(group), phase);
+        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase);
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d;

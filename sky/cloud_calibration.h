@@ -4,7 +4,7 @@
 // calibration scenes kept separate from the benchmark's scenarios (other seeds, coverages, layer
 // heights and sun angles), so the benchmark reports the fitted defaults on scenes the fit never saw.
 // Sunlight only on both sides (no ambient, no aerial perspective), extinction x 0.3 as the benchmark
-// (two thin scenes x 0.15, the cumulonimbus towers x 0.1).
+// (two thin scenes x 0.15, the cumulonimbus towers x 0.1; cirrus at its own extinction).
 //
 // The fit: per group of scenes (checkCloudCalibrationConfig lists them), Nelder-Mead (Nelder and Mead 1965) over
 // x = (b, a / b, c, d / 2) in [0, 1]^4 (so a <= b holds by construction), started at the group's shipped
@@ -28,7 +28,7 @@ struct CloudCalibrationConfig {
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int lightSteps = 0;       // light-march samples (0: the default preset's, CloudMarchSettings::lightSteps)
   // No fit: each group's scenes rendered with the group's shipped constants (cloudTypeMultipleScattering
-  // of its type; "all": the joint fit, the cirrus stand-in), reported as the fit, to compare with a refit.
+  // of its type; "all": the joint fit, cloudJointMultipleScattering), reported as the fit, to compare with a refit.
   bool evaluateDefaults = false;
   std::string group;  // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
@@ -44,7 +44,7 @@ struct CloudCalibrationSceneError {
 };
 
 struct CloudCalibrationFit {
-  std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "all" (the cumulus and stratocumulus scenes)
+  std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
@@ -57,8 +57,8 @@ struct CloudCalibrationResult {
   double referenceSeconds = 0.0, fitSeconds = 0.0;
 };
 
-// InputError for a group that is not one of cumulus, stratocumulus, stratus, cumulonimbus (each its own
-// scenes) and all (the cumulus and stratocumulus scenes together: the cirrus stand-in), or for an
+// InputError for a group that is not one of cumulus, stratocumulus, stratus, cumulonimbus, cirrus (each
+// its own scenes) and all (the cumulus and stratocumulus scenes together: cirrus's constants), or for an
 // unknown phase. Run by runCloudCalibration; the CLI calls it first, to refuse bad input before any work.
 void checkCloudCalibrationConfig(const CloudCalibrationConfig& config);
 

@@ -177,14 +177,14 @@ const CommandRegistration registration{Command{
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
         {"scenario", "NAME", "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
-                               "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon)"},
+                               "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus)"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
-        {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, all)"},
+        {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "

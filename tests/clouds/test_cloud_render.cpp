@@ -258,13 +258,14 @@ TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
                    {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
                InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
-  // ms_a alone is checked against the layer type's calibrated b (cirrus, the joint fit: b = 0.947).
-  const std::string cirrus = test::cloudSceneText(R"({"kind": "cirrus", "bottom_m": 7000, "top_m": 9000})");
-  const double cirrusB = cloudTypeMultipleScattering(shared::kCloudCirrus).b;
-  ASSERT_LT(cirrusB, 0.99);
-  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=" + std::to_string(cirrusB + 0.01)}, cirrus)),
+  // ms_a alone is checked against the layer type's calibrated b for the scene's phase (cumulus with the
+  // approximate Mie phase: b = 0.603; every dual-HG type's b is 1 since session 9).
+  const double cumulusMieB = cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).b;
+  ASSERT_LT(cumulusMieB, 0.99);
+  const std::string mie = "/clouds/lighting/phase=approximate_mie";
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB + 0.01)})),
                InputError);
-  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=" + std::to_string(cirrusB - 0.01)}, cirrus)));
+  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB - 0.01)})));
 }
 
 // Octave parameters: the type's calibrated values per layer unless the scene gives them (then for all).
