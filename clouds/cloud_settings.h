@@ -68,8 +68,8 @@ struct CloudMarchSettings {
   // 4 lightSteps (a low sun's long ways get more samples; docs/clouds.md "Lighting"). Off: lightSteps
   // whatever the length (the fixed-step baseline's and earlier sessions' light march).
   bool lightStepsPerThickness = true;
-  // The light march also crosses the other layers on the sun ray (lightSteps / 2 equal steps per layer
-  // thickness of each crossing, 2 to 2 lightSteps): a deck above shadows the one below, as in the path
+  // The light march also crosses the other layers on the sun ray (lightSteps equal steps per layer
+  // thickness of each crossing, 2 to 4 lightSteps): a deck above shadows the one below, as in the path
   // tracer. Off: each sample sees only its own layer (sessions 1-8). Not used where the Beer shadow map
   // covers the sample (the map has every layer). docs/clouds.md "Light through other layers".
   bool lightThroughOtherLayers = true;
