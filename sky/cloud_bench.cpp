@@ -336,7 +336,11 @@ void writeScenarioPixels(const std::filesystem::path& file, const CloudReference
 
 }  // namespace
 
-void checkCloudBenchConfig(const CloudBenchConfig& config) { selectedScenarios(config); }
+void checkCloudBenchConfig(const CloudBenchConfig& config) {
+  selectedScenarios(config);
+  if (config.timingOnly && (config.images || config.samplesPerPixel > 0))
+    throw InputError("--timing-only: no references are rendered, so --images and --reference-spp do not apply");
+}
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config) {
   std::vector<CloudBenchRow> rows;
@@ -517,8 +521,10 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       "from the defaults is the shafts' effect (no reference has them); "
       "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "
-      "defaults' frame at this size over its cloud pixels (T < 0.95; pixels of the sun's disc, above 1e6 cd/m^2, left out). Errors against the path tracer (at the bench's "
-      "small size): clouds_results.csv.\n\n";
+      "defaults' frame at this size over its cloud pixels (T < 0.95; pixels of the sun's disc, above 1e6 cd/m^2, left out). " +
+      std::string(config.timingOnly ? "Timing only (--timing-only): no errors against the path tracer in this run."
+                                    : "Errors against the path tracer (at the bench's small size): clouds_results.csv.") +
+      "\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   md += "| scenario | setting | size | cloud ms | frame ms | samples/pixel | rel RMSE vs default | bias vs default |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- |\n";

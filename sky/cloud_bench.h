@@ -28,11 +28,15 @@ struct CloudBenchConfig {
   // (per pixel: the reference's luminance, standard error and transmittance, then the luminance of
   // every row compared with the all-order path tracer, a column named knob=value each).
   bool images = false;
+  // Only the frame timing (runCloudTiming, clouds_timing.*): no path-traced references, no error rows.
+  // Not with images or a reference sample count (checkCloudBenchConfig).
+  bool timingOnly = false;
   std::string environmentNote;
 };
 
 // InputError unless config.scenario is empty or names a scenario of this run (cumulus_noon,
-// stratocumulus_sunset; without --quick also overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus). Run by
+// stratocumulus_sunset; without --quick also overcast, cumulonimbus, inside_cloud, horizon, two_layers,
+// cirrus), and for timingOnly with images or samplesPerPixel (those are the error rows'). Run by
 // runCloudBench and runCloudTiming; the CLI calls it first, to refuse bad input before any work.
 void checkCloudBenchConfig(const CloudBenchConfig& config);
 

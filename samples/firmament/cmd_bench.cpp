@@ -79,6 +79,7 @@ int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
 
 // `bench clouds --calibrate`: fit the octave parameters to the path tracer (sky/cloud_calibration.h).
 int calibrateClouds(const Args& args, const std::filesystem::path& out) {
+  if (args.has("timing-only")) throw InputError("--timing-only: not with --calibrate (a calibration times nothing)");
   CloudCalibrationConfig config;
   config.quick = args.has("quick");
   config.outDir = out;
@@ -113,19 +114,26 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.samplesPerPixel = args.integer("reference-spp", 0, 1, 1 << 20);
   config.scenario = args.getOr("scenario", "");
   config.images = args.has("images");
+  config.timingOnly = args.has("timing-only");
   checkCloudBenchConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
   logInfo("bench clouds: device " + context.description() + ", output " + out.string());
   const std::string loadBefore = loadAverage();
-  const std::vector<CloudBenchRow> rows = runCloudBench(context, config);
-  if (!loadBefore.empty())
-    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
-                             " (timings on a shared machine are noisy).";
-  writeCloudBenchOutputs(config, rows);
-  logInfo("wrote " + (out / "clouds_results.csv").string() + " and " + (out / "clouds_report.md").string());
+  auto noteLoad = [&] {
+    if (!loadBefore.empty())
+      config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
+                               " (timings on a shared machine are noisy).";
+  };
+  if (!config.timingOnly) {
+    const std::vector<CloudBenchRow> rows = runCloudBench(context, config);
+    noteLoad();
+    writeCloudBenchOutputs(config, rows);
+    logInfo("wrote " + (out / "clouds_results.csv").string() + " and " + (out / "clouds_report.md").string());
+  }
   const std::vector<CloudTimingRow> timing = runCloudTiming(context, config);
+  if (config.timingOnly) noteLoad();
   writeCloudTimingOutputs(config, timing);
   logInfo("wrote " + (out / "clouds_timing.csv").string() + " and " + (out / "clouds_timing.md").string());
   return kExitOk;
@@ -187,6 +195,7 @@ const CommandRegistration registration{Command{
         {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
+        {"timing-only", "", "clouds only: the frame timing alone (DIR/clouds_timing.*), no references or error rows"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),

@@ -115,6 +115,9 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --calibrate --light-steps 0", {"--light-steps", "[1, 64]"}},
       {"bench clouds --calibrate --phase mie", {"--phase", "mie"}},
       {"bench clouds --calibrate --group nimbus", {"--group nimbus", "cumulonimbus", "stratus"}},
+      {"bench clouds --timing-only --images", {"--timing-only", "--images"}},
+      {"bench clouds --timing-only --reference-spp 64", {"--timing-only", "--reference-spp"}},
+      {"bench clouds --calibrate --timing-only", {"--timing-only", "--calibrate"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
