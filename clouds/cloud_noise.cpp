@@ -12,6 +12,19 @@ struct BakePush {
   int32_t pad;
 };
 
+struct DownsamplePush {
+  int32_t size;  // of the level written
+  int32_t pad[3];
+};
+
+// Levels down to 4^3 (a 128^3 shape texture: 6, a 32^3 detail texture: 4): the coarsest still holds a
+// few cells of the coarsest noise octave.
+uint32_t noiseMipLevels(int size) {
+  uint32_t levels = 1;
+  while ((size >> levels) >= 4) ++levels;
+  return levels;
+}
+
 NoiseVolume download(const gpu::Image& image) {
   NoiseVolume v;
   v.size = int(image.width());
@@ -31,18 +44,21 @@ CloudNoise::CloudNoise(gpu::Context& context)
     : context_(context),
       bake3d_(context, {"clouds/bake_noise_3d", {gpu::BindingType::StorageImage}, sizeof(BakePush)}),
       bakeCurl_(context, {"clouds/bake_curl", {gpu::BindingType::StorageImage}, sizeof(BakePush)}),
-      linearRepeat_(context, gpu::Filter::Linear, gpu::AddressMode::Repeat),
+      downsample3d_(context, {"clouds/downsample_noise_3d", {gpu::BindingType::StorageImage, gpu::BindingType::StorageImage},
+                              sizeof(DownsamplePush)}),
+      linearRepeat_(context, gpu::SamplerDesc{gpu::Filter::Linear, gpu::AddressMode::Repeat, gpu::AddressMode::Repeat,
+                                              gpu::AddressMode::Repeat, true}),
       nearestRepeat_(context, gpu::Filter::Nearest, gpu::AddressMode::Repeat) {}
 
 bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::CommandList& commands) {
   const std::string key = settings.key(seed);
   if (key == key_) return false;
-  auto make = [&](int size, int depth, const char* name) {
-    return gpu::Image(context_, {uint32_t(size), uint32_t(size), uint32_t(depth), gpu::Format::RGBA8, true, true, name});
+  auto make = [&](int size, int depth, const char* name, uint32_t levels) {
+    return gpu::Image(context_, {uint32_t(size), uint32_t(size), uint32_t(depth), gpu::Format::RGBA8, true, true, name, levels});
   };
-  shape_ = make(settings.shapeSize, settings.shapeSize, "cloud shape noise");
-  detail_ = make(settings.detailSize, settings.detailSize, "cloud detail noise");
-  curl_ = make(settings.curlSize, 1, "cloud curl noise");
+  shape_ = make(settings.shapeSize, settings.shapeSize, "cloud shape noise", noiseMipLevels(settings.shapeSize));
+  detail_ = make(settings.detailSize, settings.detailSize, "cloud detail noise", noiseMipLevels(settings.detailSize));
+  curl_ = make(settings.curlSize, 1, "cloud curl noise", 1);
   blueNoise_ = gpu::Image(context_, {uint32_t(settings.blueNoiseSize), uint32_t(settings.blueNoiseSize), 1,
                                      gpu::Format::R32F, false, true, "blue noise"});
   blueNoise_.uploadFloats(blueNoiseMask(settings.blueNoiseSize, seed));
@@ -63,6 +79,16 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
   commands.pushConstants(push);
   const uint32_t c = groups(settings.curlSize, 8);
   commands.dispatch(c, c, 1, "clouds/bake_curl");
+  // The mip chains, level by level (each reads the one before).
+  for (gpu::Image* image : {&shape_, &detail_})
+    for (uint32_t level = 1; level < image->mipLevels(); ++level) {
+      commands.barrier();
+      const int size = std::max(int(image->width() >> level), 1);
+      commands.bind(downsample3d_, {{*image, gpu::MipLevel{level - 1}}, {*image, gpu::MipLevel{level}}});
+      commands.pushConstants(DownsamplePush{size, {0, 0, 0}});
+      const uint32_t g = groups(size, 4);
+      commands.dispatch(g, g, g, "clouds/downsample_noise_3d");
+    }
   key_ = key;
   return true;
 }

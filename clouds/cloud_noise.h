@@ -2,7 +2,9 @@
 // The cloud noise textures, baked on the GPU from a seed by the shared procedural noise
 // (common/cloud_noise.glsl) and cached in memory by (seed, sizes): a scene that keeps its seed reuses
 // them across frames. Formats are RGBA8 unorm (Schneider 2015 uses 8 bits too): 8 MiB for the 128³
-// shape texture. The blue-noise mask is built on the CPU (clouds/blue_noise.h) and uploaded.
+// shape texture. The shape and detail textures carry box-filtered mip chains down to 4^3 for the
+// march's noise LOD (CloudMarchSettings::noiseLodScale). The blue-noise mask is built on the CPU
+// (clouds/blue_noise.h) and uploaded.
 #include <cstdint>
 #include <string>
 
@@ -49,6 +51,7 @@ class CloudNoise {
   gpu::Context& context_;
   gpu::ComputePipeline bake3d_;
   gpu::ComputePipeline bakeCurl_;
+  gpu::ComputePipeline downsample3d_;  // the shape and detail textures' mip chains
   gpu::Image shape_, detail_, curl_, blueNoise_;
   gpu::Sampler linearRepeat_, nearestRepeat_;
   std::string key_;

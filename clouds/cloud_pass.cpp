@@ -28,7 +28,7 @@ struct CloudBlock {
   float shadowAxisU[4];    // axis u, start distance L (m)
   float shadowAxisV[4];    // axis v, march length (m)
   int32_t shadowSize[4];   // texels, steps, enabled, unused
-  float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, unused x2
+  float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
   float layers[kMaxLayers * 5][4];
   float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
 };
@@ -218,7 +218,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
-  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), 0.0, 0.0);
+  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), 0.0);
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;

@@ -138,6 +138,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
   if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
   if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
+  if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

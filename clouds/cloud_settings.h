@@ -95,6 +95,12 @@ struct CloudMarchSettings {
   int shadowMapSteps = 128;           // march steps per texel
   double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
   bool jitter = true;              // blue-noise jitter of the sample positions
+  // Noise LOD by distance (the "LOD mips"): a view sample and its light marches read the shape
+  // and detail textures' mip level log2(s h / texel) (the nearest level, at least 0), h the view step
+  // there (it grows with the distance, common/cloud_march.glsl) and s this scale. 0: level 0 everywhere
+  // (the path tracer's field; sessions 1-8). 1 since session 9: the same errors against the path tracer,
+  // 0.07-0.22 % from level 0 at 640x360, 2-7 % faster on lavapipe (docs/clouds.md "Noise LOD").
+  double noiseLodScale = 1.0;
   // The march runs on a grid this many times coarser in x and y (1, 2 or 4), each of its pixels at the
   // centre of the image pixels it stands for, then is interpolated bilinearly to the image
   // (clouds/upsample_clouds). The scene's /clouds/resolution_divisor.
@@ -179,6 +185,7 @@ struct CloudOverrides {
   std::optional<bool> lightStepsPerThickness;
   std::optional<bool> lightThroughOtherLayers;
   std::optional<double> earlyExitTransmittance;
+  std::optional<double> noiseLodScale;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

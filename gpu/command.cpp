@@ -89,7 +89,7 @@ void CommandList::bind(const ComputePipeline& pipeline, std::initializer_list<Re
       case BindingType::StorageImage:
         if (!resource.image_ || resource.sampler_) throw mismatch(resource.buffer_ ? "a buffer" : "a sampled image");
         if (!resource.image_->desc().storage) throw mismatch("an image without storage usage");
-        imageInfos[binding] = {VK_NULL_HANDLE, resource.image_->view(), VK_IMAGE_LAYOUT_GENERAL};
+        imageInfos[binding] = {VK_NULL_HANDLE, resource.image_->storageView(resource.level_), VK_IMAGE_LAYOUT_GENERAL};
         write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         write.pImageInfo = &imageInfos[binding];
         break;

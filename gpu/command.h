@@ -32,12 +32,19 @@ class Context;
 class Image;
 class Sampler;
 
-// One descriptor: a buffer (storage or uniform, as the pipeline declares), a storage image, or an
-// image with a sampler. Converts implicitly, so bind() reads like the shader's binding list.
+// One mip level of an image, for a storage binding: {image, MipLevel{k}}.
+struct MipLevel {
+  uint32_t level = 0;
+};
+
+// One descriptor: a buffer (storage or uniform, as the pipeline declares), a storage image (level 0,
+// or the level given), or an image with a sampler (every level). Converts implicitly, so bind() reads
+// like the shader's binding list.
 class Resource {
  public:
   Resource(const Buffer& buffer) : buffer_(&buffer) {}  // NOLINT: implicit on purpose
   Resource(const Image& image) : image_(&image) {}     // NOLINT
+  Resource(const Image& image, MipLevel level) : image_(&image), level_(level.level) {}
   Resource(const Image& image, const Sampler& sampler) : image_(&image), sampler_(&sampler) {}
 
  private:
@@ -45,6 +52,7 @@ class Resource {
   const Buffer* buffer_ = nullptr;
   const Image* image_ = nullptr;
   const Sampler* sampler_ = nullptr;
+  uint32_t level_ = 0;
 };
 
 struct PassTiming {

@@ -65,6 +65,12 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
   if (desc.width == 0 || desc.height == 0 || desc.depth == 0)
     throw RuntimeError("gpu::Image " + desc.name + ": zero extent");
   if (!desc.storage && !desc.sampled) throw RuntimeError("gpu::Image " + desc.name + ": neither storage nor sampled");
+  const uint32_t largest = std::max({desc.width, desc.height, desc.depth});
+  uint32_t fullChain = 1;
+  while ((largest >> fullChain) > 0) ++fullChain;
+  if (desc.mipLevels == 0 || desc.mipLevels > fullChain)
+    throw RuntimeError("gpu::Image " + desc.name + ": " + std::to_string(desc.mipLevels) + " mip levels; allowed 1 to " +
+                       std::to_string(fullChain));
   VkFormat format = vulkanFormat(desc.format);
   VkFormatProperties properties;
   vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), format, &properties);
@@ -79,7 +85,7 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
   info.imageType = is3D() ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   info.format = format;
   info.extent = {desc.width, desc.height, desc.depth};
-  info.mipLevels = 1;
+  info.mipLevels = desc.mipLevels;
   info.arrayLayers = 1;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -101,8 +107,16 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
     viewInfo.image = image_;
     viewInfo.viewType = is3D() ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
     viewInfo.format = format;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, desc.mipLevels, 0, 1};
     FIRMAMENT_VK(vkCreateImageView(device, &viewInfo, nullptr, &view_));
+    // A storage descriptor reads or writes one level: a view per level.
+    if (desc.mipLevels > 1 && desc.storage)
+      for (uint32_t level = 0; level < desc.mipLevels; ++level) {
+        viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1};
+        VkImageView levelView = VK_NULL_HANDLE;
+        FIRMAMENT_VK(vkCreateImageView(device, &viewInfo, nullptr, &levelView));
+        levelViews_.push_back(levelView);
+      }
 
     // Into GENERAL once; the contents start undefined (upload or a pass fills them).
     context.submitOneShot([&](VkCommandBuffer commands) {
@@ -114,7 +128,7 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
       barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
       barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
       barrier.image = image_;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
       vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
                            nullptr, 0, nullptr, 1, &barrier);
     });
@@ -131,6 +145,8 @@ Image::~Image() { release(); }
 void Image::release() {
   if (!context_) return;
   VkDevice device = context_->device();
+  for (VkImageView levelView : levelViews_) vkDestroyImageView(device, levelView, nullptr);
+  levelViews_.clear();
   if (view_) vkDestroyImageView(device, view_, nullptr);
   if (image_) vkDestroyImage(device, image_, nullptr);
   if (memory_) vkFreeMemory(device, memory_, nullptr);
@@ -149,6 +165,7 @@ Image& Image::operator=(Image&& other) noexcept {
     desc_ = std::move(other.desc_);
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    levelViews_ = std::exchange(other.levelViews_, {});
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
   }
   return *this;
@@ -165,15 +182,15 @@ void transition(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkI
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
   vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
                        nullptr, 0, nullptr, 1, &barrier);
 }
 
-VkBufferImageCopy wholeImageRegion(const ImageDesc& desc) {
+VkBufferImageCopy wholeLevelRegion(glm::uvec3 extent, uint32_t level) {
   VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {desc.width, desc.height, desc.depth};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+  region.imageExtent = {extent.x, extent.y, extent.z};
   return region;  // buffer rows tightly packed (rowLength 0)
 }
 }  // namespace
@@ -185,7 +202,7 @@ void Image::upload(const void* data, size_t bytes) {
                        std::to_string(byteSize()));
   Buffer staging(*context_, bytes, BufferUsage::Storage, MemoryLocation::Host);
   std::memcpy(staging.mapped(), data, bytes);
-  VkBufferImageCopy region = wholeImageRegion(desc_);
+  VkBufferImageCopy region = wholeLevelRegion(levelExtent(0), 0);
   context_->submitOneShot([&](VkCommandBuffer commands) {
     transition(commands, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     vkCmdCopyBufferToImage(commands, staging.handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
@@ -193,13 +210,27 @@ void Image::upload(const void* data, size_t bytes) {
   });
 }
 
-void Image::download(void* data, size_t bytes) const {
+VkImageView Image::storageView(uint32_t level) const {
+  if (level >= desc_.mipLevels)
+    throw RuntimeError("gpu::Image " + desc_.name + ": level " + std::to_string(level) + " of " + std::to_string(desc_.mipLevels));
+  return levelViews_.empty() ? view_ : levelViews_[level];
+}
+
+glm::uvec3 Image::levelExtent(uint32_t level) const {
+  return {std::max(desc_.width >> level, 1u), std::max(desc_.height >> level, 1u), std::max(desc_.depth >> level, 1u)};
+}
+
+void Image::download(void* data, size_t bytes) const { downloadLevel(data, bytes, 0); }
+
+void Image::downloadLevel(void* data, size_t bytes, uint32_t level) const {
   if (!image_) throw RuntimeError("gpu::Image: download from an empty image");
-  if (bytes != byteSize())
-    throw RuntimeError("gpu::Image " + desc_.name + ": download of " + std::to_string(bytes) +
-                       " bytes, image holds " + std::to_string(byteSize()));
+  const glm::uvec3 extent = levelExtent(level);
+  const size_t levelBytes = size_t(extent.x) * extent.y * extent.z * bytesPerTexel(desc_.format);
+  if (level >= desc_.mipLevels || bytes != levelBytes)
+    throw RuntimeError("gpu::Image " + desc_.name + ": download of " + std::to_string(bytes) + " bytes of level " +
+                       std::to_string(level) + ", it holds " + std::to_string(levelBytes));
   Buffer staging(*context_, bytes, BufferUsage::Storage, MemoryLocation::Host);
-  VkBufferImageCopy region = wholeImageRegion(desc_);
+  VkBufferImageCopy region = wholeLevelRegion(extent, level);
   context_->submitOneShot([&](VkCommandBuffer commands) {
     transition(commands, image_, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     vkCmdCopyImageToBuffer(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
@@ -234,21 +265,22 @@ void Image::uploadFloats(std::span<const float> values) {
   }
 }
 
-std::vector<float> Image::downloadFloats() const {
-  std::vector<float> values(texelCount() * channelCount(desc_.format));
+std::vector<float> Image::downloadFloats(uint32_t level) const {
+  const glm::uvec3 extent = levelExtent(level);
+  std::vector<float> values(size_t(extent.x) * extent.y * extent.z * channelCount(desc_.format));
   switch (bytesPerChannel(desc_.format)) {
     case 4:
-      download(values.data(), values.size() * 4);
+      downloadLevel(values.data(), values.size() * 4, level);
       break;
     case 2: {
       std::vector<uint16_t> halves(values.size());
-      download(halves.data(), halves.size() * 2);
+      downloadLevel(halves.data(), halves.size() * 2, level);
       for (size_t i = 0; i < values.size(); ++i) values[i] = glm::unpackHalf1x16(halves[i]);
       break;
     }
     default: {
       std::vector<uint8_t> bytes(values.size());
-      download(bytes.data(), bytes.size());
+      downloadLevel(bytes.data(), bytes.size(), level);
       for (size_t i = 0; i < values.size(); ++i) values[i] = float(bytes[i]) / 255.0f;
       break;
     }

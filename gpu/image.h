@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace firmament::gpu {
 
 class Context;
@@ -35,6 +37,10 @@ struct ImageDesc {
   bool storage = true;  // imageLoad / imageStore
   bool sampled = true;  // texture() through a Sampler
   std::string name;     // shows in validation messages
+  // Levels of the mip chain (level k is max(1, size >> k) per axis). Sampling sees every level; a
+  // storage binding sees one (CommandList::bind with MipLevel). upload/download reach level 0 only
+  // (downloadFloats(level) any).
+  uint32_t mipLevels = 1;
 };
 
 class Image {
@@ -48,7 +54,9 @@ class Image {
   Image& operator=(const Image&) = delete;
 
   VkImage handle() const { return image_; }
-  VkImageView view() const { return view_; }
+  VkImageView view() const { return view_; }  // every mip level
+  VkImageView storageView(uint32_t level) const;  // one level, for a storage binding
+  uint32_t mipLevels() const { return desc_.mipLevels; }
   const ImageDesc& desc() const { return desc_; }
   uint32_t width() const { return desc_.width; }
   uint32_t height() const { return desc_.height; }
@@ -64,15 +72,19 @@ class Image {
   void download(void* data, size_t bytes) const;
   // The same, as floats (channelCount() per texel), converted to and from half or 8-bit unorm.
   void uploadFloats(std::span<const float> values);
-  std::vector<float> downloadFloats() const;
+  std::vector<float> downloadFloats() const { return downloadFloats(0); }
+  std::vector<float> downloadFloats(uint32_t level) const;
 
  private:
   void release();
+  void downloadLevel(void* data, size_t bytes, uint32_t level) const;
+  glm::uvec3 levelExtent(uint32_t level) const;
 
   Context* context_ = nullptr;
   ImageDesc desc_;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> levelViews_;  // one per level when mipLevels > 1
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
 };
 

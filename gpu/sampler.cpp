@@ -21,7 +21,7 @@ Sampler::Sampler(Context& context, const SamplerDesc& desc) : context_(&context)
   info.addressModeU = toVulkan(desc.u);
   info.addressModeV = toVulkan(desc.v);
   info.addressModeW = toVulkan(desc.w);
-  info.maxLod = 0.0f;
+  info.maxLod = desc.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
   info.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
   FIRMAMENT_VK(vkCreateSampler(context.device(), &info, nullptr, &sampler_));
 }

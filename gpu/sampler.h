@@ -1,5 +1,6 @@
 #pragma once
-// A VkSampler for texture() lookups in compute shaders: filter and per-axis wrap, no mipmaps.
+// A VkSampler for texture() lookups in compute shaders: filter, per-axis wrap, and optionally mip
+// levels (the nearest level to textureLod's lod; without, level 0 always).
 #include <vulkan/vulkan.h>
 
 namespace firmament::gpu {
@@ -14,6 +15,7 @@ struct SamplerDesc {
   AddressMode u = AddressMode::Clamp;
   AddressMode v = AddressMode::Clamp;
   AddressMode w = AddressMode::Clamp;
+  bool mipmaps = false;
 };
 
 class Sampler {

@@ -74,6 +74,8 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       plan.passes.push_back({"clouds/bake_noise_3d", "shape 128^3 and detail 32^3 RGBA noise (+ CPU blue noise)",
                              "cloud density, tileable, from the clouds seed", false});
       plan.passes.push_back({"clouds/bake_curl", "curl noise 128^2", "distorts the detail noise", false});
+      plan.passes.push_back({"clouds/downsample_noise_3d", "mip chains of the shape and detail noise, down to 4^3",
+                             "the noise LOD by distance (lookups at the view step's footprint)", false});
       const AerialPerspective aerial = options.aerialPerspective
                                            ? *options.aerialPerspective
                                            : aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));

@@ -29,7 +29,7 @@ void main() {
     float sigma = 0.0;
     for (int l = 0; l < cloud.image.w; ++l) {
       CloudLayer layer = layerAt(l);
-      sigma += layer.extinction * densityAt(layer, p);
+      sigma += layer.extinction * densityAt(layer, p, vec2(0.0));
     }
     if (sigma > 0.0) {
       front = min(front, depth - 0.5 * h);

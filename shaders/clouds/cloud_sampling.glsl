@@ -28,7 +28,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
-  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps, unused x2
+  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w unused
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
   vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
 } cloud;
@@ -60,10 +60,21 @@ CloudLayer layerAt(int i) {
   return layer;
 }
 
+// The mip levels (x: shape, y: detail) for a lookup whose footprint is `footprint` metres: log2 of the
+// footprint in texels of each texture, at least 0 (CloudMarchSettings::noiseLodScale; footprint 0:
+// level 0). The sampler takes the nearest level.
+vec2 noiseLod(CloudLayer layer, float footprint) {
+  if (!(footprint > 0.0)) return vec2(0.0);
+  float shapeTexel = layer.shape_period / float(textureSize(shapeNoise, 0).x);
+  float detailTexel = layer.detail_period / float(textureSize(detailNoise, 0).x);
+  return max(log2(vec2(footprint / shapeTexel, footprint / detailTexel)), vec2(0.0));
+}
+
 // The shape-only density SN_nd at p before its clamp (cloudShapeSignedDensity: -1 outside the shell or
 // where the weather map has no cloud, <= 0 outside the shape); the weather map's column layer, ph and
 // local are returned for the detail.
-float shapeSignedDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
+// lod: the mip levels of the shape and detail lookups (x, y; noiseLod; 0: level 0).
+float shapeSignedDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer column, out float ph, out vec3 local) {
   float r = length(p);
   column = layer;
   local = vec3(0.0);
@@ -77,31 +88,31 @@ float shapeSignedDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out 
   ph = cloudHeightFraction(column, r);
   if (ph <= 0.0 || ph >= 1.0) return -1.0;
   local = cloudLocalPosition(column, p);
-  vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(column, local), 0.0);
+  vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(column, local), lod.x);
   return cloudShapeSignedDensity(column, ph, shape, weather.x);
 }
 
 // The shape-only density SN_nd at p (0 outside the shell or where the weather map has no cloud).
-float shapeDensityAt(CloudLayer layer, vec3 p, out CloudLayer column, out float ph, out vec3 local) {
-  return max(shapeSignedDensityAt(layer, p, column, ph, local), 0.0);
+float shapeDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer column, out float ph, out vec3 local) {
+  return max(shapeSignedDensityAt(layer, p, lod, column, ph, local), 0.0);
 }
 
 // The full density d at p.
-float densityAt(CloudLayer layer, vec3 p) {
+float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
   CloudLayer column;
   float ph;
   vec3 local;
-  float base = shapeDensityAt(layer, p, column, ph, local);
+  float base = shapeDensityAt(layer, p, lod, column, ph, local);
   if (base <= 0.0) return 0.0;
   vec2 curl = textureLod(curlNoise, cloudCurlCoordinate(column, local), 0.0).xy;
-  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(column, local, curl, ph), 0.0);
+  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(column, local, curl, ph), lod.y);
   return cloudDensity(column, ph, base, detail);
 }
 
 // Optical depth towards the sun (or any unit direction `sun`) from p through `layer`: `n` samples at the midpoints of steps growing
 // quadratically (boundaries L (j/n)^2), each pushed sideways within a cone of half-angle atan(cone)
 // by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
-float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone) {
+float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone, vec2 lod) {
   const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
                                  vec2(0.95, 0.05), vec2(-0.45, 0.62));
   vec3 t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
@@ -113,7 +124,7 @@ float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_
     float next = length_m * f * f;
     float mid = 0.5 * (previous + next);
     vec2 k = kernel[(j - 1) % 6] * cone * mid;
-    tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y) * (next - previous);
+    tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y, lod) * (next - previous);
     previous = next;
   }
   return tau;
@@ -121,10 +132,10 @@ float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_
 
 // Optical depth along the unit direction `dir` from p over the stretch [t0, t1] (distances along it)
 // of `layer`: n equal steps, sampled at their midpoints.
-float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, int n) {
+float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, int n, vec2 lod) {
   float h = (stretch.y - stretch.x) / float(n);
   float sum = 0.0;
-  for (int j = 0; j < n; ++j) sum += densityAt(layer, p + dir * (stretch.x + (float(j) + 0.5) * h));
+  for (int j = 0; j < n; ++j) sum += densityAt(layer, p + dir * (stretch.x + (float(j) + 0.5) * h), lod);
   return layer.extinction * h * sum;
 }
 
@@ -135,7 +146,7 @@ float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, in
 // midpoints too coarse for a deck's bump-shaped profile, -14.5 % at 6 light steps). `count` adds the
 // density evaluations.
 float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 sun, int lightSteps, float maxLength,
-                                     inout uint count) {
+                                     vec2 lod, inout uint count) {
   float tau = 0.0;
   for (int i = 0; i < cloud.image.w; ++i) {
     if (i == own) continue;
@@ -148,7 +159,7 @@ float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 s
       float length_m = stretch.y - stretch.x;
       if (!(length_m > 0.0)) continue;
       int n = clamp(int(ceil(float(lightSteps) * length_m / thickness)), 2, 4 * lightSteps);
-      tau += opticalDepthOnStretch(other, p, sun, stretch, n);
+      tau += opticalDepthOnStretch(other, p, sun, stretch, n, lod);
       count += uint(n);
     }
   }

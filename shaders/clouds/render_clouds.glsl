@@ -168,6 +168,7 @@ void main() {
   bool msScattered = (cloud.steps.w & 64) != 0;
   bool lightScaled = (cloud.steps.w & 128) != 0;
   bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
+  float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -225,7 +226,8 @@ void main() {
         float ph;
         vec3 local;
         ++viewCount;
-        if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), column, ph, local) <= -emptyMargin * span / growthStart) {
+        if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), noiseLod(layer, lodScale * dt), column, ph, local) <=
+            -emptyMargin * span / growthStart) {
           t += span;
           continue;
         }
@@ -233,7 +235,10 @@ void main() {
       }
       float h = min(dt, end - t);
       vec3 p = origin + dir * (t + xi * h);
-      float d = densityAt(layer, p);
+      // The noise LOD: the view step's length is the lookup's footprint (the march samples no finer),
+      // times the scale; the light marches from p read the same levels.
+      vec2 lod = noiseLod(layer, lodScale * dt);
+      float d = densityAt(layer, p, lod);
       ++viewCount;
       if (d <= 0.0) {
         ++emptyRun;
@@ -267,10 +272,10 @@ void main() {
           int n = lightScaled && lightToExit ? clamp(int(ceil(float(lightSteps) * marchLength / max(layer.top_radius - layer.bottom_radius, 1.0))),
                                       lightSteps, 4 * lightSteps)
                               : lightSteps;
-          tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone);
+          tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
           lightCount += uint(n);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lightCount);
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lod, lightCount);
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;
@@ -294,7 +299,7 @@ void main() {
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
         int upSteps = max(lightSteps / 2, 2);
-        tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+        tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
       }
       float msSum = 0.0;
@@ -311,10 +316,10 @@ void main() {
         vec3 up = p / rp;
         const int floorSteps = 2;
         if (tauUp < 0.0) {
-          tauUp = transportScale * opticalDepthToSun(layer, p, up, floorSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0);
+          tauUp = transportScale * opticalDepthToSun(layer, p, up, floorSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
           lightCount += uint(floorSteps);
         }
-        float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0);
+        float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
         lightCount += uint(floorSteps);
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin

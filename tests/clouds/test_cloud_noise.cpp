@@ -7,6 +7,7 @@
 #include "atmosphere/reference_random.h"
 #include "clouds/blue_noise.h"
 #include "clouds/cloud_noise.h"
+#include "gpu/command.h"
 #include "common/cloud_noise.glsl"
 #include "tests/support/gpu_test.h"
 
@@ -100,6 +101,40 @@ TEST_F(CloudNoiseTest, Tileable) {
     std::printf("axis %d: mean step across the seam %.4f, between interior neighbours %.4f\n", axis,
                 seam / (n * n), interior / (n * n));
     EXPECT_LT(seam, 1.5 * interior) << axis;
+  }
+}
+
+// The mip chains (for the march's noise LOD): the shape and detail textures have levels down to 4^3,
+// and every texel of level k is the mean of its 2x2x2 texels of level k - 1, to the 8-bit rounding of
+// the result (half a step, 0.5/255, plus float slack).
+TEST_F(CloudNoiseTest, MipLevelsAreBoxAverages) {
+  CloudNoise noise(test::GpuTest::context());
+  gpu::CommandList commands(test::GpuTest::context());
+  noise.update(21u, small(), commands);
+  commands.submitAndWait();
+  for (const gpu::Image* image : {&noise.shape(), &noise.detail()}) {
+    const uint32_t size = image->width();
+    ASSERT_EQ(4u << (image->mipLevels() - 1), size) << image->desc().name;  // down to 4^3
+    for (uint32_t level = 1; level < image->mipLevels(); ++level) {
+      const std::vector<float> finer = image->downloadFloats(level - 1), coarser = image->downloadFloats(level);
+      const int n = int(size >> level), m = 2 * n;
+      ASSERT_EQ(coarser.size(), size_t(n) * n * n * 4);
+      double worst = 0.0;
+      for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+          for (int x = 0; x < n; ++x)
+            for (int c = 0; c < 4; ++c) {
+              double mean = 0.0;
+              for (int i = 0; i < 8; ++i) {
+                const int fx = 2 * x + (i & 1), fy = 2 * y + ((i >> 1) & 1), fz = 2 * z + (i >> 2);
+                mean += finer[((size_t(fz) * m + fy) * m + fx) * 4 + c] / 8.0;
+              }
+              worst = std::max(worst, std::abs(coarser[((size_t(z) * n + y) * n + x) * 4 + c] - mean));
+            }
+      std::printf("%s level %u: largest |texel - mean of its 8| %.5f (1/255 = %.5f)\n", image->desc().name.c_str(), level,
+                  worst, 1.0 / 255.0);
+      EXPECT_LE(worst, 0.5 / 255.0 + 1e-4) << image->desc().name << " level " << level;
+    }
   }
 }
 
