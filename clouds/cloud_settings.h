@@ -99,7 +99,8 @@ struct CloudMarchSettings {
   // and detail textures' mip level log2(s h / texel) (the nearest level, at least 0), h the view step
   // there (it grows with the distance, common/cloud_march.glsl) and s this scale. 0: level 0 everywhere
   // (the path tracer's field; sessions 1-8). 1 since session 9: the same errors against the path tracer,
-  // 0.07-0.22 % from level 0 at 640x360, 2-7 % faster on lavapipe (docs/clouds.md "Noise LOD").
+  // 0.07-0.22 % from level 0 at 640x360, 4-7 % faster on lavapipe where clouds are far, noon within the
+  // timing noise (docs/clouds.md "Noise LOD").
   double noiseLodScale = 1.0;
   // The march runs on a grid this many times coarser in x and y (1, 2 or 4), each of its pixels at the
   // centre of the image pixels it stands for, then is interpolated bilinearly to the image
