@@ -4,10 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "clouds/reference_clouds.h"
 #include "core/atomic_file.h"
@@ -222,8 +222,8 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
-  for (const char* t : {"0.001", "0 (none)"})
-    v.push_back({"early_exit", t, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = std::atof(t); }});
+  for (const auto& [t, label] : {std::pair<double, const char*>{0.001, "0.001"}, {0.0, "0 (none)"}})
+    v.push_back({"early_exit", label, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = t; }});
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
   for (double s : {0.0, 0.5, 2.0})

@@ -60,14 +60,23 @@ CloudLayer layerAt(int i) {
   return layer;
 }
 
+// A layer's texel sizes in metres (x: shape, y: detail), for noiseLod.
+vec2 noiseTexels(CloudLayer layer) {
+  return vec2(layer.shape_period / float(textureSize(shapeNoise, 0).x), layer.detail_period / float(textureSize(detailNoise, 0).x));
+}
+
 // The mip levels (x: shape, y: detail) for a lookup whose footprint is `footprint` metres: log2 of the
-// footprint in texels of each texture, at least 0 (CloudMarchSettings::noiseLodScale; footprint 0:
-// level 0). The sampler takes the nearest level.
-vec2 noiseLod(CloudLayer layer, float footprint) {
+// footprint in texels (noiseTexels) of each texture, at least 0 (CloudMarchSettings::noiseLodScale;
+// footprint 0: level 0). The sampler takes the nearest level.
+vec2 noiseLod(vec2 texels, float footprint) {
   if (!(footprint > 0.0)) return vec2(0.0);
-  float shapeTexel = layer.shape_period / float(textureSize(shapeNoise, 0).x);
-  float detailTexel = layer.detail_period / float(textureSize(detailNoise, 0).x);
-  return max(log2(vec2(footprint / shapeTexel, footprint / detailTexel)), vec2(0.0));
+  return max(log2(vec2(footprint) / texels), vec2(0.0));
+}
+
+// Light-march samples for a way of `length_m` through a layer `thickness_m` thick: lightSteps per
+// thickness of the way, from `minimum` to 4 lightSteps (a grazing sun's long way gets more samples).
+int lightStepsForLength(int lightSteps, float length_m, float thickness_m, int minimum) {
+  return clamp(int(ceil(float(lightSteps) * length_m / max(thickness_m, 1.0))), minimum, 4 * lightSteps);
 }
 
 // The shape-only density SN_nd at p before its clamp (cloudShapeSignedDensity: -1 outside the shell or
@@ -143,8 +152,8 @@ float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, in
 // zenith at p), up to maxLength: a deck above shadows the one below (docs/clouds.md "Light through
 // other layers"). Each stretch the ray spends in another shell gets lightSteps equal steps per layer
 // thickness of its length, 2 to 4 lightSteps (the sample's own layer's rate: half of it left the
-// midpoints too coarse for a deck's bump-shaped profile, -14.5 % at 6 light steps). `count` adds the
-// density evaluations.
+// midpoints too coarse for a deck's bump-shaped profile: -14.5 % at 6 light steps in a scratch run of
+// CloudReference.ADeckAboveShadowsTheLayerBelow's scene). `count` adds the density evaluations.
 float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 sun, int lightSteps, float maxLength,
                                      vec2 lod, inout uint count) {
   float tau = 0.0;
@@ -153,12 +162,11 @@ float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 s
     CloudLayer other = layerAt(i);
     vec2 first, second;
     cloudShellSegments(r, muS, other.bottom_radius, other.top_radius, maxLength, first, second);
-    float thickness = max(other.top_radius - other.bottom_radius, 1.0);
     for (int k = 0; k < 2; ++k) {
       vec2 stretch = k == 0 ? first : second;
       float length_m = stretch.y - stretch.x;
       if (!(length_m > 0.0)) continue;
-      int n = clamp(int(ceil(float(lightSteps) * length_m / thickness)), 2, 4 * lightSteps);
+      int n = lightStepsForLength(lightSteps, length_m, other.top_radius - other.bottom_radius, 2);
       tau += opticalDepthOnStretch(other, p, sun, stretch, n, lod);
       count += uint(n);
     }

@@ -182,6 +182,7 @@ void main() {
   float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
   float diffusion = 0.0;  // that layer's diffusion-floor weight d
+  vec2 texels = vec2(1.0);  // that layer's noise texel sizes (noiseTexels)
 
   float transmittance = 1.0;       // the true one: the alpha, opacity and depth
   float lightTransmittance = 1.0;  // the δ-scaled one the in-scattered light sees (= transmittance without a peak)
@@ -201,6 +202,7 @@ void main() {
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
       diffusion = cloud.layerLighting[phaseLayer].x;
+      texels = noiseTexels(layer);
       for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
                                     cloud.phase.z, cloud.phaseLight.x, nu);
@@ -215,6 +217,9 @@ void main() {
     while (t < end && lightTransmittance > earlyExit && budget > 0) {
       --budget;
       float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
+      // The noise LOD: the view step's length is the lookups' footprint (the march samples no finer),
+      // times the scale; the coarse test, the sample and its light marches read the same levels.
+      vec2 lod = noiseLod(texels, lodScale * dt);
       if (emptyRun >= coarse && coarse > 1) {
         // Coarse step: the shape-only density at one point of the next `coarse` fine steps. The span is
         // skipped only if that point lies outside the shape by more than a margin proportional to the
@@ -226,8 +231,7 @@ void main() {
         float ph;
         vec3 local;
         ++viewCount;
-        if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), noiseLod(layer, lodScale * dt), column, ph, local) <=
-            -emptyMargin * span / growthStart) {
+        if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), lod, column, ph, local) <= -emptyMargin * span / growthStart) {
           t += span;
           continue;
         }
@@ -235,9 +239,6 @@ void main() {
       }
       float h = min(dt, end - t);
       vec3 p = origin + dir * (t + xi * h);
-      // The noise LOD: the view step's length is the lookup's footprint (the march samples no finer),
-      // times the scale; the light marches from p read the same levels.
-      vec2 lod = noiseLod(layer, lodScale * dt);
       float d = densityAt(layer, p, lod);
       ++viewCount;
       if (d <= 0.0) {
@@ -269,9 +270,8 @@ void main() {
           float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
           // Bit 128: as many steps per layer thickness of the way as a vertical way gets, up to 4x
           // (a grazing sun crosses a 1 km layer over ~11 km: 6 steps there left ~2 km between samples).
-          int n = lightScaled && lightToExit ? clamp(int(ceil(float(lightSteps) * marchLength / max(layer.top_radius - layer.bottom_radius, 1.0))),
-                                      lightSteps, 4 * lightSteps)
-                              : lightSteps;
+          int n = lightScaled && lightToExit ? lightStepsForLength(lightSteps, marchLength, layer.top_radius - layer.bottom_radius, lightSteps)
+                                             : lightSteps;
           tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
           lightCount += uint(n);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
