@@ -260,7 +260,7 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::string csv = "group,a,b,c,d,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
-                   "sc_thin x 0.15, the cumulonimbus x 0.1), " +
+                   "sc_thin x 0.15, the cumulonimbus x 0.1, cirrus at its own extinction), " +
                    std::to_string(config.octaves) + " octaves, " +
                    (config.lightSteps > 0 ? std::to_string(config.lightSteps) : std::string("the default's")) +
                    " light steps, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +

@@ -58,7 +58,7 @@ struct CloudCalibrationResult {
 };
 
 // InputError for a group that is not one of cumulus, stratocumulus, stratus, cumulonimbus, cirrus (each
-// its own scenes) and all (the cumulus and stratocumulus scenes together: cirrus's constants), or for an
+// its own scenes) and all (the cumulus and stratocumulus scenes together: the joint fit), or for an
 // unknown phase. Run by runCloudCalibration; the CLI calls it first, to refuse bad input before any work.
 void checkCloudCalibrationConfig(const CloudCalibrationConfig& config);
 

@@ -99,7 +99,7 @@ TEST_F(CloudRender, FiniteAndNonNegativeEverywhere) {
 // away: per pixel, no brighter than each layer lit through its own layer only (the same jitter, so the
 // same samples; 1e-5 relative for float rounding). With more octaves it may add light, as it should:
 // their scattered-only attenuation e^(-a^i tau) - e^(-tau) grows with tau while tau is small (light the
-// other layer scattered towards the sample; side views under a high sun measured up to +13 %).
+// other layer scattered towards the sample; a side view under a high sun measured +13 % at one pixel).
 TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 24;
