@@ -18,7 +18,7 @@ struct CloudBlock {
   float sunDirection[4];   // w = largest march distance
   int32_t image[4];        // width, height, projection, layer count
   int32_t steps[4];        // view steps, light steps, octaves, flags
-  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), unused, light march length
+  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), light-step falloff k, light march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
   float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
@@ -178,7 +178,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   // a, b, c are per layer (below).
-  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, 0.0, m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
+  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, std::max(m.lightStepsFalloff, 0.0), m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
   put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
   for (size_t i = 0; i < layers.size(); ++i) {

@@ -139,6 +139,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
   if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
   if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
+  if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

@@ -229,6 +229,10 @@ std::vector<KnobValue> knobValues(bool quick) {
   for (double s : {0.0, 0.5, 2.0})
     v.push_back({"noise_lod", s == 0.0 ? std::string("0 (level 0)") : std::to_string(s).substr(0, 3), {},
                  [s](SkyRenderOptions& o) { o.clouds.noiseLodScale = s; }});
+  // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k).
+  for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
+    v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3), {},
+                 [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; }});
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
@@ -286,7 +290,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
-      {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"}};
+      {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
@@ -472,6 +477,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
        }, 1, true},
       {"noise_lod 0 (level 0)", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 0.0; }, 1, true},
       {"noise_lod 2", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 2.0; }, 1, true},
+      {"light_steps_falloff 0.5", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 0.5; }, 1, true},
+      {"light_steps_falloff 1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, 1, true},
+      {"light_steps_falloff 2", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; }, 1, true},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

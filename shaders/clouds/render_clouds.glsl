@@ -169,6 +169,7 @@ void main() {
   bool lightScaled = (cloud.steps.w & 128) != 0;
   bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
+  float lightFalloff = cloud.phaseLight.z;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -193,33 +194,52 @@ void main() {
   // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
   // D >= 1 km that stays below ~8 N for G >= 10, hence 8 N.
   int budget = (uniformSteps ? 4 : 8) * viewSteps + 64;
-  for (int s = 0; s < count && lightTransmittance > earlyExit && budget > 0; ++s) {
-    CloudLayer layer = layerAt(segmentLayer[s]);
-    if (segmentLayer[s] != phaseLayer) {
-      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
-      phaseLayer = segmentLayer[s];
-      float a = cloud.layers[5 * phaseLayer + 2].w;
-      float b = cloud.layers[5 * phaseLayer + 3].w;
-      float c = cloud.layers[5 * phaseLayer + 4].w;
-      diffusion = cloud.layerLighting[phaseLayer].x;
-      texels = noiseTexels(layer);
-      for (int o = 0; o < octaves; ++o) {
-        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
-                                    cloud.phase.z, cloud.phaseLight.x, nu);
-        octaveScale[o] = cloudOctaveExtinctionScale(a, o);
-        octaveWeight[o] = cloudOctaveWeight(b, o);
-        octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
+  // The march alternates two phases: (a) step along the ray (coarse empty-space steps, fine steps of
+  // density 0, from segment to segment) until a sample with cloud, then (b) light that sample. Lanes of
+  // a SIMD group (lavapipe's 8-wide vectors, a GPU's warp) that found their sample wait in (a) for the
+  // others, so (b), the expensive part, runs with most lanes busy; written as one loop with the lighting
+  // under "this lane has cloud", (b) ran whenever any lane had cloud (the while-while traversal of
+  // Aila and Laine 2009, "Understanding the efficiency of ray traversal on GPUs").
+  int s = -1;                  // the segment being marched (-1: none yet)
+  float t = 0.0, end = 0.0;    // the march's distance along the ray, and where the segment ends
+  int emptyRun = coarse;       // fine steps without cloud since the last cloud (>= coarse: coarse mode)
+  CloudLayer layer = layerAt(0);
+  while (true) {
+    // (a) The next sample with cloud: its step h, point p, density d and noise LOD.
+    bool found = false;
+    float h = 0.0, d = 0.0;
+    vec3 p = origin;
+    vec2 lod = vec2(0.0);
+    while (lightTransmittance > earlyExit && budget > 0) {
+      if (!(t < end)) {  // the next segment
+        if (++s >= count) break;
+        layer = layerAt(segmentLayer[s]);
+        if (segmentLayer[s] != phaseLayer) {
+          // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
+          phaseLayer = segmentLayer[s];
+          float a = cloud.layers[5 * phaseLayer + 2].w;
+          float b = cloud.layers[5 * phaseLayer + 3].w;
+          float c = cloud.layers[5 * phaseLayer + 4].w;
+          diffusion = cloud.layerLighting[phaseLayer].x;
+          texels = noiseTexels(layer);
+          for (int o = 0; o < octaves; ++o) {
+            phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
+                                        cloud.phase.z, cloud.phaseLight.x, nu);
+            octaveScale[o] = cloudOctaveExtinctionScale(a, o);
+            octaveWeight[o] = cloudOctaveWeight(b, o);
+            octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
+          }
+        }
+        t = segments[s].x;
+        end = segments[s].y;
+        emptyRun = coarse;  // start in coarse mode
+        continue;
       }
-    }
-    float t = segments[s].x;
-    float end = segments[s].y;
-    int emptyRun = coarse;  // start in coarse mode
-    while (t < end && lightTransmittance > earlyExit && budget > 0) {
       --budget;
       float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
       // The noise LOD: the view step's length is the lookups' footprint (the march samples no finer),
       // times the scale; the coarse test, the sample and its light marches read the same levels.
-      vec2 lod = noiseLod(texels, lodScale * dt);
+      lod = noiseLod(texels, lodScale * dt);
       if (emptyRun >= coarse && coarse > 1) {
         // Coarse step: the shape-only density at one point of the next `coarse` fine steps. The span is
         // skipped only if that point lies outside the shape by more than a margin proportional to the
@@ -237,9 +257,9 @@ void main() {
         }
         emptyRun = 0;  // cloud ahead: march this stretch in fine steps
       }
-      float h = min(dt, end - t);
-      vec3 p = origin + dir * (t + xi * h);
-      float d = densityAt(layer, p, lod);
+      h = min(dt, end - t);
+      p = origin + dir * (t + xi * h);
+      d = densityAt(layer, p, lod);
       ++viewCount;
       if (d <= 0.0) {
         ++emptyRun;
@@ -247,6 +267,13 @@ void main() {
         continue;
       }
       emptyRun = 0;
+      found = true;
+      break;
+    }
+    if (!found) break;
+
+    // (b) The sample's light.
+    {
       float sigmaT = layer.extinction * d;
       float sigmaS = albedo * sigmaT;
       float rp = length(p);
@@ -255,6 +282,9 @@ void main() {
       // Sun: atmosphere transmittance at the sample, cloud optical depth by the light march.
       vec3 sunLight = transmittanceToSun(transmittanceLut, atmosphere, rp, muS) * atmosphere.solar_irradiance;
       bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
+      // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff, k): n T^k, at least 2, where T
+      // is what the camera sees of this sample's light; every march below scales with it.
+      int sampleLightSteps = lightFalloff > 0.0 ? max(2, int(ceil(float(lightSteps) * pow(lightTransmittance, lightFalloff)))) : lightSteps;
       float tau = 0.0;
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       if (sunVisible) {
@@ -270,12 +300,12 @@ void main() {
           float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
           // Bit 128: as many steps per layer thickness of the way as a vertical way gets, up to 4x
           // (a grazing sun crosses a 1 km layer over ~11 km: 6 steps there left ~2 km between samples).
-          int n = lightScaled && lightToExit ? lightStepsForLength(lightSteps, marchLength, layer.top_radius - layer.bottom_radius, lightSteps)
-                                             : lightSteps;
+          int n = lightScaled && lightToExit ? lightStepsForLength(sampleLightSteps, marchLength, layer.top_radius - layer.bottom_radius, sampleLightSteps)
+                                             : sampleLightSteps;
           tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
           lightCount += uint(n);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lod, lightCount);
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, sampleLightSteps, lightLength, lod, lightCount);
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;
@@ -298,7 +328,7 @@ void main() {
       }
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
-        int upSteps = max(lightSteps / 2, 2);
+        int upSteps = max(sampleLightSteps / 2, 2);
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
       }

@@ -117,7 +117,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   config.outDir = test::scratchDir("cloud_timing");
   const std::vector<CloudTimingRow> rows = runCloudTiming(context(), config);
   writeCloudTimingOutputs(config, rows);
-  ASSERT_EQ(rows.size(), 20u);
+  ASSERT_EQ(rows.size(), 26u);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
     std::map<std::string, double> samples;
     for (const auto& r : rows) {
@@ -140,11 +140,15 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
         EXPECT_LT(std::abs(r.biasVsDefault), shadowMap ? 0.6 : 0.25) << r.setting;
       }
     }
-    ASSERT_EQ(samples.size(), 10u) << scenario;
+    ASSERT_EQ(samples.size(), 13u) << scenario;
     // The noise LOD changes which mip level a lookup reads, not how many lookups there are (the
     // empty-space test sees a blurred shape, hence a little slack).
     for (const char* lod : {"noise_lod 0 (level 0)", "noise_lod 2"})
       EXPECT_NEAR(samples[lod], samples["default"], 0.02 * samples["default"]) << scenario << " " << lod;
+    // Light samples by transmittance: fewer as the exponent k grows (n T^k, at least 2).
+    EXPECT_LT(samples["light_steps_falloff 0.5"], samples["default"]) << scenario;  // 0: off
+    EXPECT_LT(samples["light_steps_falloff 1"], samples["light_steps_falloff 0.5"]) << scenario;
+    EXPECT_LT(samples["light_steps_falloff 2"], samples["light_steps_falloff 1"]) << scenario;
     // The growing view steps take fewer samples than the fixed-step baseline at noon; at the sunset the
     // default light march takes up to 4x the baseline's 6 light steps along the long ways (steps per
     // layer thickness), so it takes more.
