@@ -218,7 +218,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
-  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), 0.0);
+  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;

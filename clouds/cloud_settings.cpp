@@ -140,6 +140,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
   if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
   if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
+  if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

@@ -83,6 +83,9 @@ struct CloudMarchSettings {
   // to 1.05 % and the two-deck single-scattering test moved from -3.8 % to +15.5 % (docs/clouds.md
   // "Light samples by transmittance").
   double lightStepsFalloff = 0.0;
+  // Where the falloff starts: the counts are n min(T / T0, 1)^k with T0 this value, so the light marches
+  // keep their n samples while T > T0 (1: from the first sample).
+  double lightStepsFalloffStart = 1.0;
   // Octaves i >= 1 of the multiple-scattering approximation (docs/clouds.md "Multiple scattering"):
   // msZenithDepth: the better of the sun ray (E, tau_sun) and the way down from the layer top (E mu_s,
   // tau_up by a second march of lightSteps / 2 samples, at least 2, straight up); msScatteredOnly: the
@@ -197,6 +200,7 @@ struct CloudOverrides {
   std::optional<double> earlyExitTransmittance;
   std::optional<double> noiseLodScale;
   std::optional<double> lightStepsFalloff;
+  std::optional<double> lightStepsFalloffStart;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

@@ -232,7 +232,12 @@ std::vector<KnobValue> knobValues(bool quick) {
   // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k).
   for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
     v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3), {},
-                 [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; }});
+                 [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; o.clouds.lightStepsFalloffStart = 1.0; }});
+  for (double start : {0.3, 0.1})
+    v.push_back({"light_steps_falloff", "1 from T " + std::to_string(start).substr(0, 3), {}, [start](SkyRenderOptions& o) {
+                   o.clouds.lightStepsFalloff = 1.0;
+                   o.clouds.lightStepsFalloffStart = start;
+                 }});
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
@@ -291,7 +296,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
       {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
-      {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"}};
+      {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
+      {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
@@ -480,6 +486,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"light_steps_falloff 0.5", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 0.5; }, 1, true},
       {"light_steps_falloff 1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, 1, true},
       {"light_steps_falloff 2", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; }, 1, true},
+      {"light_steps_falloff 1 from T 0.1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.lightStepsFalloffStart = 0.1; }, 1, true},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

@@ -28,7 +28,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
-  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w unused
+  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: the light-step falloff's start T0 (lightStepsFalloffStart)
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
   vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
 } cloud;

@@ -169,6 +169,7 @@ void main() {
   bool lightScaled = (cloud.steps.w & 128) != 0;
   bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
+  float lightFalloffStart = cloud.aerial.w;  // CloudMarchSettings::lightStepsFalloffStart T0
   float lightFalloff = cloud.phaseLight.z;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
@@ -284,7 +285,7 @@ void main() {
       bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
       // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff, k): n T^k, at least 2, where T
       // is what the camera sees of this sample's light; every march below scales with it.
-      int sampleLightSteps = lightFalloff > 0.0 ? max(2, int(ceil(float(lightSteps) * pow(lightTransmittance, lightFalloff)))) : lightSteps;
+      int sampleLightSteps = lightFalloff > 0.0 ? max(2, int(ceil(float(lightSteps) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff)))) : lightSteps;
       float tau = 0.0;
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       if (sunVisible) {

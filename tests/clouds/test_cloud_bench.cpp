@@ -117,7 +117,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   config.outDir = test::scratchDir("cloud_timing");
   const std::vector<CloudTimingRow> rows = runCloudTiming(context(), config);
   writeCloudTimingOutputs(config, rows);
-  ASSERT_EQ(rows.size(), 26u);
+  ASSERT_EQ(rows.size(), 28u);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
     std::map<std::string, double> samples;
     for (const auto& r : rows) {
@@ -140,7 +140,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
         EXPECT_LT(std::abs(r.biasVsDefault), shadowMap ? 0.6 : 0.25) << r.setting;
       }
     }
-    ASSERT_EQ(samples.size(), 13u) << scenario;
+    ASSERT_EQ(samples.size(), 14u) << scenario;
     // The noise LOD changes which mip level a lookup reads, not how many lookups there are (the
     // empty-space test sees a blurred shape, hence a little slack).
     for (const char* lod : {"noise_lod 0 (level 0)", "noise_lod 2"})
@@ -149,6 +149,9 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     EXPECT_LT(samples["light_steps_falloff 0.5"], samples["default"]) << scenario;  // 0: off
     EXPECT_LT(samples["light_steps_falloff 1"], samples["light_steps_falloff 0.5"]) << scenario;
     EXPECT_LT(samples["light_steps_falloff 2"], samples["light_steps_falloff 1"]) << scenario;
+    // Starting the falloff at T = 0.1 keeps the full counts in front, so it saves less than from T = 1.
+    EXPECT_LT(samples["light_steps_falloff 1 from T 0.1"], samples["default"]) << scenario;
+    EXPECT_GT(samples["light_steps_falloff 1 from T 0.1"], samples["light_steps_falloff 1"]) << scenario;
     // The growing view steps take fewer samples than the fixed-step baseline at noon; at the sunset the
     // default light march takes up to 4x the baseline's 6 light steps along the long ways (steps per
     // layer thickness), so it takes more.
