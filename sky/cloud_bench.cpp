@@ -494,7 +494,8 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"temporal_update 4 (sequence)", [](SkyRenderOptions&) {}, 4},
       {"temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true},
   };
-  const int width = config.quick ? 320 : 640, height = config.quick ? 180 : 360;
+  const int width = config.timingWidth > 0 ? config.timingWidth : config.quick ? 320 : 640;
+  const int height = config.timingHeight > 0 ? config.timingHeight : config.quick ? 180 : 360;
   std::vector<CloudTimingRow> rows;
   SkyRenderer renderer(context);
   for (const Scenario& sc : selectedScenarios(config)) {

@@ -31,6 +31,9 @@ struct CloudBenchConfig {
   // Only the frame timing (runCloudTiming, clouds_timing.*): no path-traced references, no error rows.
   // Not with images or a reference sample count (checkCloudBenchConfig).
   bool timingOnly = false;
+  // The frame timing's image size (runCloudTiming); 0: 640x360 (quick 320x180), the size. A lent
+  // GPU's 1920x1080 timings: --timing-only --timing-size 1920x1080.
+  int timingWidth = 0, timingHeight = 0;
   std::string environmentNote;
 };
 

@@ -115,6 +115,15 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.scenario = args.getOr("scenario", "");
   config.images = args.has("images");
   config.timingOnly = args.has("timing-only");
+  if (auto size = args.get("timing-size")) {
+    // WxH: the frame timing's image size.
+    int w = 0, h = 0;
+    char x = 0, tail = 0;
+    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 || h > 8192)
+      throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. 1920x1080");
+    config.timingWidth = w;
+    config.timingHeight = h;
+  }
   checkCloudBenchConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
@@ -180,7 +189,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults]] [--device D]",
+    "[--images] [--timing-only] [--timing-size WxH] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -196,6 +205,7 @@ const CommandRegistration registration{Command{
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"timing-only", "", "clouds only: the frame timing alone (DIR/clouds_timing.*), no references or error rows"},
+        {"timing-size", "WxH", "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
                           "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
         deviceOption(),

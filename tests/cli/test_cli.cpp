@@ -118,6 +118,8 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --timing-only --images", {"--timing-only", "--images"}},
       {"bench clouds --timing-only --reference-spp 64", {"--timing-only", "--reference-spp"}},
       {"bench clouds --calibrate --timing-only", {"--timing-only", "--calibrate"}},
+      {"bench clouds --timing-only --timing-size 1920", {"--timing-size 1920", "WxH", "8..8192"}},
+      {"bench clouds --timing-only --timing-size 4x4", {"--timing-size 4x4", "WxH"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
@@ -126,6 +128,23 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
     for (const auto& f : c.fragments) EXPECT_NE(r.output.find(f), std::string::npos) << c.arguments << ": " << r.output;
     EXPECT_TRUE(!std::filesystem::exists(out) || std::filesystem::is_empty(out)) << c.arguments;
   }
+}
+
+// --timing-size sets the frame timing's image size (for a lent GPU's 1920x1080 timings): every row of
+// clouds_timing.csv names it.
+TEST(Cli, BenchCloudTimingTakesItsImageSize) {
+  auto dir = test::scratchDir("cli_bench_timing_size");
+  CommandRun r = firmament("bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream csv(dir / "clouds_timing.csv");
+  std::string line;
+  std::getline(csv, line);  // header: scenario,setting,width,height,...
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_NE(line.find(",40,24,"), std::string::npos) << line;
+  }
+  EXPECT_GT(rows, 3);
 }
 
 TEST(Cli, RenderWritesExrPngAndStats) {
