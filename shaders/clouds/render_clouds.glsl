@@ -5,7 +5,8 @@
 //     beyond one thickness, capped), or, with the uniform flag, `view steps` equal steps spread over the
 //     stretches' total length; blue-noise jitter; coarse steps of the shape-only density until it is
 //     non-zero (empty-space skipping; exact, since the shape-only density bounds the full one); an
-//     early exit at low transmittance;
+//     early exit at low transmittance. It alternates stepping to the next sample with cloud and
+//     lighting it, so the lighting runs with most SIMD lanes busy (docs/clouds.md "Keeping SIMD lanes busy");
 //  3. at every step with cloud: sunlight through the atmosphere (transmittance table at the sample)
 //     and through the cloud (a light march of `light steps` in a cone), dual-lobe Henyey-Greenstein,
 //     octave multiple scattering; ambient from the sky irradiance table and the ground; each step
