@@ -231,8 +231,10 @@ std::vector<KnobValue> knobValues(bool quick) {
                  [s](SkyRenderOptions& o) { o.clouds.noiseLodScale = s; }});
   // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k).
   for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
-    v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3), {},
+    v.push_back({"light_steps_falloff", k == 0.0 ? std::string("0 (off)") : std::to_string(k).substr(0, 3), {},
                  [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; o.clouds.lightStepsFalloffStart = 1.0; }});
+  v.push_back({"single_scattering", "1 octave, light_steps_falloff 1", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, true});
   for (double start : {0.3, 0.1})
     v.push_back({"light_steps_falloff", "1 from T " + std::to_string(start).substr(0, 3), {}, [start](SkyRenderOptions& o) {
                    o.clouds.lightStepsFalloff = 1.0;
@@ -297,7 +299,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
       {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
-      {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"}};
+      {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
+      {"single_scattering", "1 octave, light_steps_falloff 1"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)

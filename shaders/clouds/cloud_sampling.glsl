@@ -139,6 +139,28 @@ float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_
   return tau;
 }
 
+// opticalDepthToSun's n quadratically growing steps, gathered into m <= n groups of consecutive steps
+// (sizes n / m and n / m + 1, the larger ones farthest), each group sampled once at the midpoint of
+// its span: with fewer samples the march keeps the same step boundaries, so going from m to m - 1
+// samples (for m >= n / 2) merges one pair of steps and leaves the rest as they were. No cone.
+float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, float length_m, vec2 lod) {
+  m = clamp(m, 1, n);
+  int q = n / m;
+  int r = n - q * m;  // the last r groups take q + 1 steps
+  float tau = 0.0;
+  int first = 0;
+  for (int g = 0; g < m; ++g) {
+    int size = q + (g >= m - r ? 1 : 0);
+    float f0 = float(first) / float(n);
+    float f1 = float(first + size) / float(n);
+    float a = length_m * f0 * f0;
+    float b = length_m * f1 * f1;
+    tau += layer.extinction * densityAt(layer, p + sun * (0.5 * (a + b)), lod) * (b - a);
+    first += size;
+  }
+  return tau;
+}
+
 // Optical depth along the unit direction `dir` from p over the stretch [t0, t1] (distances along it)
 // of `layer`: n equal steps, sampled at their midpoints.
 float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, int n, vec2 lod) {

@@ -284,9 +284,6 @@ void main() {
       // Sun: atmosphere transmittance at the sample, cloud optical depth by the light march.
       vec3 sunLight = transmittanceToSun(transmittanceLut, atmosphere, rp, muS) * atmosphere.solar_irradiance;
       bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
-      // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff, k): n T^k, at least 2, where T
-      // is what the camera sees of this sample's light; every march below scales with it.
-      int sampleLightSteps = lightFalloff > 0.0 ? max(2, int(ceil(float(lightSteps) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff)))) : lightSteps;
       float tau = 0.0;
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       if (sunVisible) {
@@ -302,12 +299,21 @@ void main() {
           float marchLength = lightToExit ? cloudSunExitDistance(layer, p, sun, lightLength) : lightLength;
           // Bit 128: as many steps per layer thickness of the way as a vertical way gets, up to 4x
           // (a grazing sun crosses a 1 km layer over ~11 km: 6 steps there left ~2 km between samples).
-          int n = lightScaled && lightToExit ? lightStepsForLength(sampleLightSteps, marchLength, layer.top_radius - layer.bottom_radius, sampleLightSteps)
-                                             : sampleLightSteps;
-          tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
-          lightCount += uint(n);
+          int n = lightScaled && lightToExit ? lightStepsForLength(lightSteps, marchLength, layer.top_radius - layer.bottom_radius, lightSteps)
+                                             : lightSteps;
+          // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff k, start T0): where the
+          // camera sees little of this sample's light, m = n min(T / T0, 1)^k samples (at least 4), each
+          // the midpoint of a group of the n steps, so the step boundaries stay those of n samples.
+          if (lightFalloff > 0.0) {
+            int m = max(4, int(ceil(float(n) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff))));
+            tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, lod);
+            lightCount += uint(min(m, n));
+          } else {
+            tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
+            lightCount += uint(n);
+          }
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, sampleLightSteps, lightLength, lod, lightCount);
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lod, lightCount);
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;
@@ -330,7 +336,7 @@ void main() {
       }
       if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
         vec3 up = p / rp;
-        int upSteps = max(sampleLightSteps / 2, 2);
+        int upSteps = max(lightSteps / 2, 2);
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
       }

@@ -65,7 +65,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
     EXPECT_EQ(milestone, 1) << scenario;
-    EXPECT_EQ(single, 5) << scenario;
+    EXPECT_EQ(single, 6) << scenario;
     // One layer: no other layer to cross, so the same image; without the early exit the march goes on.
     EXPECT_EQ(ownLayerOnlyError, defaultError) << scenario;
     EXPECT_GT(noEarlyExitSpp, defaultSpp) << scenario;
@@ -146,7 +146,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     for (const char* lod : {"noise_lod 0 (level 0)", "noise_lod 2"})
       EXPECT_NEAR(samples[lod], samples["default"], 0.02 * samples["default"]) << scenario << " " << lod;
     // Light samples by transmittance: fewer as the exponent k grows (n T^k, at least 2).
-    EXPECT_LT(samples["light_steps_falloff 0.5"], samples["default"]) << scenario;  // 0: off
+    EXPECT_LT(samples["light_steps_falloff 0.5"], samples["default"]) << scenario;  // off
     EXPECT_LT(samples["light_steps_falloff 1"], samples["light_steps_falloff 0.5"]) << scenario;
     EXPECT_LT(samples["light_steps_falloff 2"], samples["light_steps_falloff 1"]) << scenario;
     // Starting the falloff at T = 0.1 keeps the full counts in front, so it saves less than from T = 1.
