@@ -79,10 +79,10 @@ struct CloudMarchSettings {
   // the sample's own layer takes m = max(4, ceil(n min(T / T0, 1)^k)) samples of its n, k this exponent
   // and T0 lightStepsFalloffStart, each the midpoint of a group of consecutive steps of the n-sample
   // schedule (opticalDepthToSunGrouped), so the step boundaries do not move as m falls. 0 (off, the
-  // default): n everywhere. At k = 1 the bench's all-order errors are unchanged and the stills 2-29 %
-  // faster (the most at a low sun), but the single scattering against the path tracer's first order
-  // drifts bright by up to 8 points (cirrus +1.0 % -> +9.4 %), hidden in the all-order error by the
-  // model's own; docs/clouds.md "Light samples by transmittance".
+  // default): n everywhere. At k = 1 the bench's all-order errors are unchanged and the stills up to
+  // 29 % faster at a low sun (noon no faster, within the noise), but the single scattering against the
+  // path tracer's first order drifts bright by up to 8 points (cirrus +1.0 % -> +9.4 %), hidden in the
+  // all-order error by the model's own; docs/clouds.md "Light samples by transmittance".
   double lightStepsFalloff = 0.0;
   // Where the falloff starts: m = n while T > T0 (1: from the first sample).
   double lightStepsFalloffStart = 1.0;

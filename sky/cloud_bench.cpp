@@ -231,7 +231,7 @@ std::vector<KnobValue> knobValues(bool quick) {
                  [s](SkyRenderOptions& o) { o.clouds.noiseLodScale = s; }});
   // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k).
   for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
-    v.push_back({"light_steps_falloff", k == 0.0 ? std::string("0 (off)") : std::to_string(k).substr(0, 3), {},
+    v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3), {},
                  [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; o.clouds.lightStepsFalloffStart = 1.0; }});
   v.push_back({"single_scattering", "1 octave, light_steps_falloff 1", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, true});

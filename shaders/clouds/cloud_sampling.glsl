@@ -118,47 +118,39 @@ float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
   return cloudDensity(column, ph, base, detail);
 }
 
-// Optical depth towards the sun (or any unit direction `sun`) from p through `layer`: `n` samples at the midpoints of steps growing
-// quadratically (boundaries L (j/n)^2), each pushed sideways within a cone of half-angle atan(cone)
-// by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
-float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone, vec2 lod) {
+// Optical depth towards the sun (or any unit direction `sun`) from p through `layer`, over `length_m`
+// split into n steps growing quadratically (boundaries L (j/n)^2), sampled `m` <= n times: the steps
+// are gathered into m groups of consecutive ones (sizes n / m and n / m + 1, the larger ones farthest),
+// each sampled once at the midpoint of its span (m = n: every step at its midpoint). With fewer samples
+// the step boundaries stay those of n, so going from m to m - 1 (for m >= n / 2) merges one pair of steps
+// and leaves the rest (CloudMarchSettings::lightStepsFalloff). Each sample is pushed sideways within a
+// cone of half-angle atan(cone) by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
+float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, float length_m, float cone, vec2 lod) {
   const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
                                  vec2(0.95, 0.05), vec2(-0.45, 0.62));
   vec3 t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
   vec3 t2 = cross(sun, t1);
+  m = clamp(m, 1, n);
+  int q = n / m;
+  int r = n - q * m;  // the last r groups take q + 1 steps
   float tau = 0.0;
   float previous = 0.0;
-  for (int j = 1; j <= n; ++j) {
-    float f = float(j) / float(n);
+  int last = 0;  // the last step of the group so far
+  for (int g = 0; g < m; ++g) {
+    last += q + (g >= m - r ? 1 : 0);
+    float f = float(last) / float(n);
     float next = length_m * f * f;
     float mid = 0.5 * (previous + next);
-    vec2 k = kernel[(j - 1) % 6] * cone * mid;
+    vec2 k = kernel[g % 6] * cone * mid;
     tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y, lod) * (next - previous);
     previous = next;
   }
   return tau;
 }
 
-// opticalDepthToSun's n quadratically growing steps, gathered into m <= n groups of consecutive steps
-// (sizes n / m and n / m + 1, the larger ones farthest), each group sampled once at the midpoint of
-// its span: with fewer samples the march keeps the same step boundaries, so going from m to m - 1
-// samples (for m >= n / 2) merges one pair of steps and leaves the rest as they were. No cone.
-float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, float length_m, vec2 lod) {
-  m = clamp(m, 1, n);
-  int q = n / m;
-  int r = n - q * m;  // the last r groups take q + 1 steps
-  float tau = 0.0;
-  int first = 0;
-  for (int g = 0; g < m; ++g) {
-    int size = q + (g >= m - r ? 1 : 0);
-    float f0 = float(first) / float(n);
-    float f1 = float(first + size) / float(n);
-    float a = length_m * f0 * f0;
-    float b = length_m * f1 * f1;
-    tau += layer.extinction * densityAt(layer, p + sun * (0.5 * (a + b)), lod) * (b - a);
-    first += size;
-  }
-  return tau;
+// The same with every one of the n steps sampled.
+float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone, vec2 lod) {
+  return opticalDepthToSunGrouped(layer, p, sun, n, n, length_m, cone, lod);
 }
 
 // Optical depth along the unit direction `dir` from p over the stretch [t0, t1] (distances along it)

@@ -304,14 +304,10 @@ void main() {
           // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff k, start T0): where the
           // camera sees little of this sample's light, m = n min(T / T0, 1)^k samples (at least 4), each
           // the midpoint of a group of the n steps, so the step boundaries stay those of n samples.
-          if (lightFalloff > 0.0) {
-            int m = max(4, int(ceil(float(n) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff))));
-            tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, lod);
-            lightCount += uint(min(m, n));
-          } else {
-            tau = opticalDepthToSun(layer, p, sun, n, marchLength, cone, lod);
-            lightCount += uint(n);
-          }
+          int m = lightFalloff > 0.0 ? min(n, max(4, int(ceil(float(n) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff)))))
+                                     : n;
+          tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, cone, lod);
+          lightCount += uint(m);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
           if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lod, lightCount);
         }
