@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Runs the test suite (validation layer on), the timing benches and a few renders on a GPU machine
+# from a bundle made by scripts/gpu_bundle.sh, in a checkout of the same commit.
+#   scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [STEP...]
+# STEPs (default: all, in this order):
+#   tests       every test binary, in parallel, FIRMAMENT_VALIDATION=1 (as CTest runs them)
+#   clouds1080  firmament bench clouds --timing-only --timing-size 1920x1080
+#   clouds360   firmament bench clouds --timing-only (640x360, the issue's lavapipe size)
+#   atmosphere  firmament bench atmosphere --quick
+#   renders     scenes/default, thunderstorm and overcast at 640x360 (to compare with lavapipe's)
+# RESULTS_DIR gets one folder or log per step and summary.txt. A step that fails is reported and the
+# next one runs; the exit code is the number of failed steps.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+bundle=$(realpath "${1:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [STEP...]}")
+results=$(realpath -m "${2:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [STEP...]}")
+shift 2
+steps=("$@")
+[ ${#steps[@]} -eq 0 ] && steps=(tests clouds1080 clouds360 atmosphere renders)
+mkdir -p "$results"
+summary=$results/summary.txt
+: >"$summary"
+say() { echo "$*" | tee -a "$summary"; }
+
+tar -C "$root" -xJf "$bundle"
+# The test binaries carry the build machine's source and build paths (FIRMAMENT_SOURCE_DIR): point
+# that path at this checkout, and ../shared/data beside it at the bundle's copy.
+built_source=$(cat gpu-source-dir.txt)
+if [ "$built_source" != "$root" ] && [ ! -e "$built_source" ]; then
+  mkdir -p "$(dirname "$built_source")" && ln -s "$root" "$built_source"
+fi
+mkdir -p "$(dirname "$built_source")/shared"
+[ -e "$(dirname "$built_source")/shared/data" ] || cp -r shared-data "$(dirname "$built_source")/shared/data"
+
+export LD_LIBRARY_PATH=$root/gpu-lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export VK_LAYER_PATH=$root/gpu-layers
+# The NVIDIA container images keep the driver's Vulkan manifest outside the loader's search path.
+for icd in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+  /etc/vulkan/icd.d/nvidia_icd.json; do
+  if [ -f "$icd" ]; then export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd; break; fi
+done
+export FIRMAMENT_PROGRESS=0
+fm=$root/build/samples/firmament
+
+{ nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv 2>/dev/null || true; nproc; } |
+  tee -a "$summary"
+failed=0
+run_step() {
+  local name=$1
+  shift
+  local start=$SECONDS
+  if "$@" >"$results/$name.log" 2>&1; then
+    say "step $name: ok ($((SECONDS - start)) s)"
+  else
+    say "step $name: FAILED, exit $? ($((SECONDS - start)) s); the end of $name.log:"
+    tail -n 30 "$results/$name.log" | tee -a "$summary"
+    failed=$((failed + 1))
+  fi
+}
+
+run_tests() {
+  local pids=() t rc=0
+  mkdir -p "$results/tests"
+  for t in build/tests/test_*; do
+    FIRMAMENT_VALIDATION=1 "$t" --gtest_brief=1 >"$results/tests/$(basename "$t").log" 2>&1 &
+    pids+=($!)
+  done
+  for p in "${pids[@]}"; do wait "$p" || rc=1; done
+  grep -h -E '^\[  (PASSED|FAILED)|^\[  FAILED|tests? ran' "$results"/tests/*.log
+  return $rc
+}
+
+for step in "${steps[@]}"; do
+  case $step in
+    tests) run_step tests run_tests ;;
+    clouds1080) run_step clouds1080 "$fm" bench clouds --timing-only --timing-size 1920x1080 --out "$results/clouds1080" ;;
+    clouds360) run_step clouds360 "$fm" bench clouds --timing-only --out "$results/clouds360" ;;
+    atmosphere) run_step atmosphere "$fm" bench atmosphere --quick --out "$results/atmosphere" ;;
+    renders)
+      mkdir -p "$results/renders"
+      for s in default thunderstorm overcast; do
+        run_step "render_$s" "$fm" render "scenes/$s.json" --width 640 --height 360 -o "$results/renders/$s.exr"
+      done
+      ;;
+    *) say "unknown step $step (tests clouds1080 clouds360 atmosphere renders)"; failed=$((failed + 1)) ;;
+  esac
+done
+say "failed steps: $failed"
+exit "$failed"
