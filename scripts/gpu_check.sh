@@ -8,8 +8,12 @@
 #   clouds360   firmament bench clouds --timing-only (640x360, the issue's lavapipe size)
 #   atmosphere  firmament bench atmosphere --quick
 #   renders     scenes/default, thunderstorm and overcast at 640x360 (to compare with lavapipe's)
+# A step named twice runs twice (its second folder gets _2: the run-to-run spread of the timings).
+# REPEATS=N sets the benches' --repeats (default 3).
 # RESULTS_DIR gets one folder or log per step and summary.txt. A step that fails is reported and the
 # next one runs; the exit code is the number of failed steps.
+# The NVIDIA driver's Vulkan library needs libglvnd (libGLdispatch, libGLX); a bare container may
+# lack it: unpack Debian's libglvnd0, libglx0, libgl1, libegl1, libgles2 and libopengl0 first.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -71,11 +75,14 @@ run_tests() {
   return $rc
 }
 
+repeats=${REPEATS:-3}
 for step in "${steps[@]}"; do
+  out=$step
+  [ -e "$results/$out" ] && out=${step}_2
   case $step in
     tests) run_step tests run_tests ;;
-    clouds1080) run_step clouds1080 "$fm" bench clouds --timing-only --timing-size 1920x1080 --out "$results/clouds1080" ;;
-    clouds360) run_step clouds360 "$fm" bench clouds --timing-only --out "$results/clouds360" ;;
+    clouds1080) run_step "$out" "$fm" bench clouds --timing-only --timing-size 1920x1080 --repeats "$repeats" --out "$results/$out" ;;
+    clouds360) run_step "$out" "$fm" bench clouds --timing-only --repeats "$repeats" --out "$results/$out" ;;
     atmosphere) run_step atmosphere "$fm" bench atmosphere --quick --out "$results/atmosphere" ;;
     renders)
       mkdir -p "$results/renders"

@@ -64,9 +64,17 @@ SHARED_INLINE vec4 cloudApproximateMie(Real d) {
 //     L_ms = Σ_{i=0}^{N-1} b^i σ_s p(c^i g, nu) E_sun T_atm e^(-a^i τ_sun).
 // Energy: the octaves sum to at most Σ b^i times single scattering; with a <= b the added light never
 // exceeds what the extinction removed (Hillaire 2016). The caller enforces a <= b.
-SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return pow(b, Real(octave)); }
-SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return pow(a, Real(octave)); }
-SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return pow(c, Real(octave)); }
+// x^i by repeated products, with 0^0 = 1: GLSL leaves pow(x, y) undefined for x = 0 and y <= 0, and
+// NVIDIA's pow(0, 0) = exp2(0 * log2 0) is NaN. The stratus fit has c = 0, so octave 0's
+// c^0 turned every stratus pixel into NaN on an H100 while lavapipe gave 1 (docs/gpu.md).
+SHARED_INLINE Real cloudOctavePower(Real x, int octave) {
+  Real p = 1.0;
+  for (int i = 0; i < octave; ++i) p *= x;
+  return p;
+}
+SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return cloudOctavePower(b, octave); }
+SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return cloudOctavePower(a, octave); }
+SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return cloudOctavePower(c, octave); }
 
 // The attenuation of octave i >= 1 at optical depth tau along a way in (docs/clouds.md, "Multiple
 // scattering"). Wrenninge et al.'s octave uses e^(-a^i tau). With `scatteredOnly` the unscattered part

@@ -96,5 +96,15 @@ TEST(CloudOctaveBound, NoDepthExceedsItAndItIsReached) {
   EXPECT_EQ(shared::cloudOctaveTransmittanceBound(1.5, true), 0.0);
 }
 
+// Octave i scales by a^i, b^i, c^i with 0^0 = 1: the stratus fit has c = 0, and the shader's former
+// pow(0, 0) was NaN on an NVIDIA GPU (undefined in GLSL). The products equal pow to rounding.
+TEST(CloudOctavePower, ZeroToTheZeroIsOneAndOtherwiseMatchesPow) {
+  EXPECT_EQ(shared::cloudOctavePower(0.0, 0), 1.0);
+  EXPECT_EQ(shared::cloudOctavePower(0.0, 3), 0.0);
+  EXPECT_EQ(shared::cloudOctaveEccentricityScale(0.0, 0), 1.0);
+  for (double x : {1e-3, 0.347, 0.538, 0.966, 1.0})
+    for (int i = 0; i <= 8; ++i) EXPECT_NEAR(shared::cloudOctavePower(x, i), std::pow(x, double(i)), 1e-15) << x << " " << i;
+}
+
 }  // namespace
 }  // namespace firmament
