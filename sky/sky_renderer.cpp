@@ -330,11 +330,15 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   }
   result.timingNote = commands.timingNote();
 
-  result.image = Image(width, height, 4);
-  result.image.pixels = output.download<float>();
+  if (options.downloadImages) {
+    result.image = Image(width, height, 4);
+    result.image.pixels = output.download<float>();
+  }
   if (clouds) {
-    result.clouds = Image(width, height, 4);
-    result.clouds.pixels = clouds_->cloudFrame().download<float>();
+    if (options.downloadImages) {
+      result.clouds = Image(width, height, 4);
+      result.clouds.pixels = clouds_->cloudFrame().download<float>();
+    }
     result.cloudSamples = clouds_->sampleCounts();
     result.cloudsReprojected = clouds_->lastFrameReprojected();
   }

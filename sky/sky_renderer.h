@@ -56,6 +56,10 @@ struct SkyRenderOptions {
   // (/clouds/temporal_update, docs/clouds.md "Temporal reprojection"), and the sky-view table is kept
   // when its inputs are unchanged. False: a still, every pixel marched, every table of the frame computed.
   bool continueSequence = false;
+  // False: the frame stays on the GPU and RenderResult::image and ::clouds are empty. Benches time
+  // renders this way: downloading two 1920x1080 float images per frame kept an H100 busy 13-37 % of
+  // the time, and its driver lowered the clocks from 1980 to ~600 MHz within 2 s (docs/gpu.md).
+  bool downloadImages = true;
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).
@@ -75,7 +79,7 @@ struct RenderResult {
   int spectralSamples = 3;               // the wavelengths used (kSpectralSamplesAuto resolved)
   std::string timingNote;                // non-empty when timings are wall clock
   // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
-  // is sky * a + rgb). Empty without clouds.
+  // is sky * a + rgb). Empty without clouds (and, like image, with SkyRenderOptions::downloadImages off).
   Image clouds;
   CloudSampleCounts cloudSamples;  // density evaluations per pixel of the cloud march
   bool cloudsReprojected = false;  // the clouds marched 1 in /clouds/temporal_update pixels, reprojected the rest
