@@ -9,7 +9,11 @@
 //   - out/inout parameters through OUT(T) / INOUT(T); no swizzles (v.xy) and no struct constructors:
 //     build vectors with vec2(v.x, v.y) and fill structs field by field;
 //   - only GLSL built-ins that GLM also has (exp, sqrt, max, min, clamp, mix, dot, cross, length,
-//     normalize, abs, pow, floor, fract, step, smoothstep, sign, sin, cos, acos, atan).
+//     normalize, abs, pow, floor, fract, step, smoothstep, sign, sin, cos, acos, atan);
+//   - where GLSL leaves a built-in undefined, C++ and lavapipe still give a number, but a GPU may
+//     not: pow(x, y) with x < 0, or x = 0 and y <= 0 (NaN on NVIDIA: exp2(y log2 x)), acos/asin
+//     outside [-1, 1], sqrt of a negative. Guard or clamp such arguments (docs/gpu.md, "Checking on
+//     a real GPU").
 #ifndef FIRMAMENT_COMPAT_GLSL
 #define FIRMAMENT_COMPAT_GLSL
 
