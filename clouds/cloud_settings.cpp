@@ -138,6 +138,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
   if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
   if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
+  if (earlyExitRemainder) march.earlyExitRemainder = *earlyExitRemainder;
   if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
   if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
   if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;

@@ -54,6 +54,10 @@ struct CloudMarchSettings {
   // attenuated by the full sigma_t, which darkened the approximate Mie clouds (docs/clouds.md "Phase").
   bool deltaScaling = true;
   double earlyExitTransmittance = 0.01;
+  // At the early exit, the light still to come estimated as a continuation of the last sample's cloud
+  // (T times its source over its extinction, the step integral's limit) and the alpha set to 0;
+  // off: dropped, the alpha left at T (docs/clouds.md "Early exit").
+  bool earlyExitRemainder = true;
   double maxDistance_m = 80000.0;  // clouds farther along the view ray are not drawn
   // tan of the light cone's half-angle (Schneider 2015's cone sampling). 0 by default: the cone's
   // sideways offsets grow with the distance along the sun ray and biased single scattering against the
@@ -198,6 +202,7 @@ struct CloudOverrides {
   std::optional<bool> lightStepsPerThickness;
   std::optional<bool> lightThroughOtherLayers;
   std::optional<double> earlyExitTransmittance;
+  std::optional<bool> earlyExitRemainder;
   std::optional<double> noiseLodScale;
   std::optional<double> lightStepsFalloff;
   std::optional<double> lightStepsFalloffStart;

@@ -254,6 +254,7 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
   for (const auto& [t, label] : {std::pair<double, const char*>{0.001, "0.001"}, {0.0, "0 (none)"}})
     v.push_back({"early_exit", label, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = t; }});
+  v.push_back({"early_exit", "0.01, rest dropped", {}, [](SkyRenderOptions& o) { o.clouds.earlyExitRemainder = false; }});
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
   for (double s : {0.0, 0.5, 2.0})
@@ -327,7 +328,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
-      {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
       {"single_scattering", "1 octave, light_steps_falloff 1"}};

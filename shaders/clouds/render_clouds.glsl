@@ -169,6 +169,7 @@ void main() {
   bool msScattered = (cloud.steps.w & 64) != 0;
   bool lightScaled = (cloud.steps.w & 128) != 0;
   bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
+  bool exitRemainder = (cloud.steps.w & 512) != 0;
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
   float lightFalloffStart = cloud.aerial.w;  // CloudMarchSettings::lightStepsFalloffStart T0
   float lightFalloff = cloud.phaseLight.z;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
@@ -191,6 +192,9 @@ void main() {
   float lightTransmittance = 1.0;  // the δ-scaled one the in-scattered light sees (= transmittance without a peak)
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
   vec3 skylike = vec3(0.0);  // cloud light with the sky's spectrum
+  // The last cloud sample's light per unit of transmittance if the cloud went on unchanged:
+  // sigma_s S / sigma_t, the limit of its step integral (the early exit's remainder).
+  vec3 sunBeyond = vec3(0.0), skyBeyond = vec3(0.0);
   float depthSum = 0.0, depthWeight = 0.0;
   // Hard cap on samples (segment ends add partial steps). Growing steps: a stretch [t0, t1] takes
   // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
@@ -382,6 +386,9 @@ void main() {
       float integral = cloudStepIntegral(sigmaTLight, h);
       sunlike += lightTransmittance * sigmaS * sunSource * integral;
       skylike += lightTransmittance * sigmaS * skySource * integral;
+      float perExtinction = sigmaS / max(sigmaTLight, 1e-12);
+      sunBeyond = perExtinction * sunSource;
+      skyBeyond = perExtinction * skySource;
       lightTransmittance *= exp(-sigmaTLight * h);
       float stepT = exp(-sigmaT * h);
       float opacity = transmittance * (1.0 - stepT);
@@ -390,6 +397,16 @@ void main() {
       transmittance *= stepT;
       t += h;
     }
+  }
+
+  // The early exit (docs/clouds.md "Early exit"): the march stopped inside cloud with the light's
+  // transmittance at or below earlyExit. The rest of the ray is taken as the last sample's cloud going
+  // on, whose light is T sigma_s S / sigma_t (what that sample would give at any thickness), and as
+  // opaque (alpha 0), so that the sky behind is not added as well.
+  if (exitRemainder && lightTransmittance <= earlyExit) {
+    sunlike += lightTransmittance * sunBeyond;
+    skylike += lightTransmittance * skyBeyond;
+    transmittance = 0.0;
   }
 
   // 4. Aerial perspective to the cloud's mean depth (none without cloud: opacity 0 below).
