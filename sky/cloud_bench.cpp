@@ -252,7 +252,7 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
-  for (const auto& [t, label] : {std::pair<double, const char*>{0.001, "0.001"}, {0.0, "0 (none)"}})
+  for (const auto& [t, label] : {std::pair<double, const char*>{0.1, "0.1"}, {0.03, "0.03"}, {0.001, "0.001"}, {0.0, "0 (none)"}})
     v.push_back({"early_exit", label, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = t; }});
   v.push_back({"early_exit", "0.01, rest dropped", {}, [](SkyRenderOptions& o) { o.clouds.earlyExitRemainder = false; }});
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
@@ -327,8 +327,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"view_steps", "32"},        {"view_steps", "128"},                     {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
-      {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.001"}, {"early_exit", "0 (none)"},
-      {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
+      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
       {"single_scattering", "1 octave, light_steps_falloff 1"}};
