@@ -166,9 +166,8 @@ void requireFinite(const RenderResult& r, const std::string& name, const std::ve
 }
 
 // Warm-up renders before the timed ones: one on a CPU device (tables, noise, lavapipe's JIT), and on
-// a GPU more, until this much wall time has passed, so that the timed renders run at the clocks a
-// steady load gets (an idle H100 sat at 345 MHz; with one warm-up the first row of a scenario ran up
-// to 1.6x slower than rows of the same work after it).
+// a GPU more, until this much wall time has passed, so that the timed renders start at the clocks a
+// steady load gets (an idle H100 sits at 345 MHz; docs/gpu.md "Checking on a real GPU").
 constexpr double kGpuWarmUpSeconds = 0.5;
 constexpr int kMostWarmUpRenders = 20;
 
@@ -443,7 +442,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       if (!sc.fullSweep && !k.everyScenario) continue;
       SkyRenderOptions o = base;
       k.apply(o);
-      TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats,
+      TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + k.knob + " " + k.value + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats,
                                 !sc.cameraInLayer);
       const RenderResult& r = run.last;
       CloudBenchRow row;
@@ -541,7 +540,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       if (!sc.fullSweep && !setting.everyScenario) continue;
       SkyRenderOptions o;
       setting.apply(o);
-      const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ">", sizeOverrides, o, setting.temporalUpdate,
+      const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + setting.name + ">", sizeOverrides, o, setting.temporalUpdate,
                                       config.repeats, !sc.cameraInLayer);
       const RenderResult& r = run.last;
       CloudTimingRow row{sc.name, setting.name, width, height, median(run.cloudMs), median(run.frameMs), run.samplesPerPixel};
