@@ -7,6 +7,7 @@
 #   clouds1080  firmament bench clouds --timing-only --timing-size 1920x1080
 #   clouds360   firmament bench clouds --timing-only (640x360, the issue's lavapipe size)
 #   atmosphere  firmament bench atmosphere --quick
+#   cloudsquick firmament bench clouds --quick (errors against the CPU path tracer, GPU renders)
 #   renders     scenes/default, thunderstorm and overcast at 640x360 (to compare with lavapipe's)
 # A step named twice runs twice (its second folder gets _2: the run-to-run spread of the timings).
 # REPEATS=N sets the benches' --repeats (default 3).
@@ -21,7 +22,7 @@ bundle=$(realpath "${1:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [S
 results=$(realpath -m "${2:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [STEP...]}")
 shift 2
 steps=("$@")
-[ ${#steps[@]} -eq 0 ] && steps=(tests clouds1080 clouds360 atmosphere renders)
+[ ${#steps[@]} -eq 0 ] && steps=(tests clouds1080 clouds360 atmosphere cloudsquick renders)
 mkdir -p "$results"
 summary=$results/summary.txt
 : >"$summary"
@@ -84,13 +85,14 @@ for step in "${steps[@]}"; do
     clouds1080) run_step "$out" "$fm" bench clouds --timing-only --timing-size 1920x1080 --repeats "$repeats" --out "$results/$out" ;;
     clouds360) run_step "$out" "$fm" bench clouds --timing-only --repeats "$repeats" --out "$results/$out" ;;
     atmosphere) run_step atmosphere "$fm" bench atmosphere --quick --out "$results/atmosphere" ;;
+    cloudsquick) run_step cloudsquick "$fm" bench clouds --quick --out "$results/cloudsquick" ;;
     renders)
       mkdir -p "$results/renders"
       for s in default thunderstorm overcast; do
         run_step "render_$s" "$fm" render "scenes/$s.json" --width 640 --height 360 -o "$results/renders/$s.exr"
       done
       ;;
-    *) say "unknown step $step (tests clouds1080 clouds360 atmosphere renders)"; failed=$((failed + 1)) ;;
+    *) say "unknown step $step (tests clouds1080 clouds360 atmosphere cloudsquick renders)"; failed=$((failed + 1)) ;;
   esac
 done
 say "failed steps: $failed"
