@@ -84,8 +84,8 @@ for step in "${steps[@]}"; do
     tests) run_step tests run_tests ;;
     clouds1080) run_step "$out" "$fm" bench clouds --timing-only --timing-size 1920x1080 --repeats "$repeats" --out "$results/$out" ;;
     clouds360) run_step "$out" "$fm" bench clouds --timing-only --repeats "$repeats" --out "$results/$out" ;;
-    atmosphere) run_step atmosphere "$fm" bench atmosphere --quick --out "$results/atmosphere" ;;
-    cloudsquick) run_step cloudsquick "$fm" bench clouds --quick --out "$results/cloudsquick" ;;
+    atmosphere) run_step "$out" "$fm" bench atmosphere --quick --out "$results/$out" ;;
+    cloudsquick) run_step "$out" "$fm" bench clouds --quick --out "$results/$out" ;;
     renders)
       mkdir -p "$results/renders"
       for s in default thunderstorm overcast; do
