@@ -17,7 +17,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_up;        // xyz
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
-  ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only, 128 light steps per thickness, 256 light through the other layers)
+  ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only, 128 light steps per thickness, 256 light through the other layers, 512 the early exit's remainder)
   vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y: δ-scaled share f (CloudMarchSettings::deltaScaling); z: light-step falloff k (lightStepsFalloff); w: light march length (m; the largest one with flag 16)
   vec4 phase;            // phase lobes g1, g2, second lobe's weight w (cloudPhase), single-scattering albedo
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan

@@ -192,9 +192,8 @@ void main() {
   float lightTransmittance = 1.0;  // the δ-scaled one the in-scattered light sees (= transmittance without a peak)
   vec3 sunlike = vec3(0.0);  // cloud light with the sun's spectrum, at the batch's wavelengths
   vec3 skylike = vec3(0.0);  // cloud light with the sky's spectrum
-  // The last cloud sample's light per unit of transmittance if the cloud went on unchanged:
-  // sigma_s S / sigma_t, the limit of its step integral (the early exit's remainder).
-  vec3 sunBeyond = vec3(0.0), skyBeyond = vec3(0.0);
+  // The last cloud sample's sources S (the early exit's remainder, below).
+  vec3 lastSunSource = vec3(0.0), lastSkySource = vec3(0.0);
   float depthSum = 0.0, depthWeight = 0.0;
   // Hard cap on samples (segment ends add partial steps). Growing steps: a stretch [t0, t1] takes
   // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
@@ -386,9 +385,8 @@ void main() {
       float integral = cloudStepIntegral(sigmaTLight, h);
       sunlike += lightTransmittance * sigmaS * sunSource * integral;
       skylike += lightTransmittance * sigmaS * skySource * integral;
-      float perExtinction = sigmaS / max(sigmaTLight, 1e-12);
-      sunBeyond = perExtinction * sunSource;
-      skyBeyond = perExtinction * skySource;
+      lastSunSource = sunSource;
+      lastSkySource = skySource;
       lightTransmittance *= exp(-sigmaTLight * h);
       float stepT = exp(-sigmaT * h);
       float opacity = transmittance * (1.0 - stepT);
@@ -401,11 +399,13 @@ void main() {
 
   // The early exit (docs/clouds.md "Early exit"): the march stopped inside cloud with the light's
   // transmittance at or below earlyExit. The rest of the ray is taken as the last sample's cloud going
-  // on, whose light is T sigma_s S / sigma_t (what that sample would give at any thickness), and as
-  // opaque (alpha 0), so that the sky behind is not added as well.
+  // on, whose light is T sigma_s S / sigma_t (its step integral's limit: what that sample would give at
+  // any thickness), and as opaque (alpha 0), so that the sky behind is not added as well. sigma_s /
+  // sigma_t = albedo sigma_t / (transportScale sigma_t), the same for every sample.
   if (exitRemainder && lightTransmittance <= earlyExit) {
-    sunlike += lightTransmittance * sunBeyond;
-    skylike += lightTransmittance * skyBeyond;
+    float perExtinction = albedo / max(transportScale, 1e-6);
+    sunlike += lightTransmittance * perExtinction * lastSunSource;
+    skylike += lightTransmittance * perExtinction * lastSkySource;
     transmittance = 0.0;
   }
 
