@@ -11,6 +11,7 @@
 #include "core/image_metrics.h"
 #include "core/log.h"
 #include "core/statistics.h"
+#include "sky/gpu_warm_up.h"
 #include "sky/reference_image_cache.h"
 #include "sky/scene_view.h"
 
@@ -49,11 +50,9 @@ struct TableTiming {
 
 // Tables: fresh renderers (nothing cached in memory; the context has no disk cache), the median of
 // their table time over `repeats` (once when one takes over kSinglePrecomputeMilliseconds).
-// On a GPU the tables are timed after 0.5 s of renders, so that they start at the clocks a steady
-// load gets (an idle H100 sits at 345 MHz); a CPU device needs none. On the H100 the defaults' tables
-// then measured 2.5 ms, against 14.1 ms before, but other rows of the same work still measured 4-8 ms:
-// each repeat builds a fresh renderer first (docs/gpu.md "Checking on a real GPU").
-constexpr double kGpuWarmUpSeconds = 0.5;
+// On a GPU the tables are timed after warmUpGpu. On the H100 the defaults' tables then measured
+// 2.5 ms, against 14.1 ms before, but another row of the same work still measured 8 ms: each repeat
+// builds a fresh renderer first (docs/gpu.md "Checking on a real GPU").
 
 TableTiming measureTables(gpu::Context& context, const Scene& scene, const SkyRenderOptions& options, int repeats) {
   TableTiming t;
@@ -61,11 +60,9 @@ TableTiming measureTables(gpu::Context& context, const Scene& scene, const SkyRe
   std::vector<std::vector<gpu::PassTiming>> passes;
   SkyRenderOptions onGpu = options;  // the images are not needed, only the tables' time
   onGpu.downloadImages = false;
-  if (!context.isCpu()) {
+  if (!context.isCpu()) {  // no renderer to build on lavapipe
     SkyRenderer warm(context);
-    const auto start = std::chrono::steady_clock::now();
-    do warm.render(scene, onGpu);
-    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < kGpuWarmUpSeconds);
+    warmUpGpu(warm, scene, onGpu);
   }
   for (int i = 0; i < repeats; ++i) {
     t.renderer = std::make_unique<SkyRenderer>(context);

@@ -20,6 +20,7 @@
 #include "core/statistics.h"
 #include "core/svg_xy_plot.h"
 #include "sky/atmosphere_bench.h"
+#include "sky/gpu_warm_up.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
 
@@ -165,13 +166,8 @@ void requireFinite(const RenderResult& r, const std::string& name, const std::ve
   throw RuntimeError("bench clouds: " + what + ": " + std::to_string(bad) + " NaN or Inf values in the rendered image");
 }
 
-// Warm-up renders before the timed ones: one on a CPU device (tables, noise, lavapipe's JIT), and on
-// a GPU more, until this much wall time has passed, so that the timed renders start at the clocks a
-// steady load gets (an idle H100 sits at 345 MHz; docs/gpu.md "Checking on a real GPU").
-constexpr double kGpuWarmUpSeconds = 0.5;
-constexpr int kMostWarmUpRenders = 20;
-
-// The scene `text` with `overrides`, warmed up (above): with temporalUpdate 1, `repeats` stills;
+// The scene `text` with `overrides`, warmed up (one render: tables, noise, lavapipe's JIT; on a GPU
+// then warmUpGpu): with temporalUpdate 1, `repeats` stills;
 // above 1, a sequence of 2 N + 1 frames ending at the view (the constants above) whose reprojected
 // frames are timed.
 TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::string& name,
@@ -179,17 +175,13 @@ TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::s
                     bool expectReprojection = true) {
   const Scene scene = Scene::parse(text, name, overrides);
   TimedRuns run;
-  const auto warmUpStart = std::chrono::steady_clock::now();
-  const double warmUpSeconds = renderer.context().isCpu() ? 0.0 : kGpuWarmUpSeconds;
+  run.last = renderer.render(scene, options);
+  requireFinite(run.last, name, overrides);
+  warmUpGpu(renderer, scene, options);
   // Only the first warm-up and the last timed render download their images (checked, compared): the
   // others stay on the GPU, so that a GPU is kept busy between frames (SkyRenderOptions::downloadImages).
   SkyRenderOptions onGpu = options;
   onGpu.downloadImages = false;
-  for (int i = 0; i < kMostWarmUpRenders; ++i) {
-    run.last = renderer.render(scene, i == 0 ? options : onGpu);
-    if (i == 0) requireFinite(run.last, name, overrides);
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmUpStart).count() >= warmUpSeconds) break;
-  }
   const bool sequence = temporalUpdate > 1;
   const int frames = sequence ? 2 * temporalUpdate + 1 : std::max(repeats, 1);
   const double yaw = scene.number("/camera/yaw_deg");
