@@ -58,7 +58,7 @@ struct SkyRenderOptions {
   bool continueSequence = false;
   // False: the frame stays on the GPU and RenderResult::image and ::clouds are empty. Benches time
   // renders this way: downloading two 1920x1080 float images per frame kept an H100 busy 13-37 % of
-  // the time, and its driver lowered the clocks from 1980 to ~600 MHz within 2 s (docs/gpu.md).
+  // the time, and its driver lowered the clocks from 1980 to 615 MHz in about 2 s (docs/gpu.md).
   bool downloadImages = true;
 };
 
