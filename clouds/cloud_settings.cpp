@@ -142,6 +142,8 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
   if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
   if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;
+  if (lowTransmittanceStepStart) march.lowTransmittanceStepStart = *lowTransmittanceStepStart;
+  if (lowTransmittanceStepMax) march.lowTransmittanceStepMax = *lowTransmittanceStepMax;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

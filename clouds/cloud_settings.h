@@ -90,6 +90,12 @@ struct CloudMarchSettings {
   double lightStepsFalloff = 0.0;
   // Where the falloff starts: m = n while T > T0 (1: from the first sample).
   double lightStepsFalloffStart = 1.0;
+  // Longer view steps behind dense cloud: once the view ray's δ-scaled transmittance T falls below
+  // T1 = lowTransmittanceStepStart, the fine step is multiplied by min(T1 / T, K), K =
+  // lowTransmittanceStepMax (common/cloud_march.glsl cloudLowTransmittanceStepFactor; docs/clouds.md
+  // "Longer steps behind dense cloud"). 0: off.
+  double lowTransmittanceStepStart = 0.0;
+  double lowTransmittanceStepMax = 4.0;
   // Octaves i >= 1 of the multiple-scattering approximation (docs/clouds.md "Multiple scattering"):
   // msZenithDepth: the better of the sun ray (E, tau_sun) and the way down from the layer top (E mu_s,
   // tau_up by a second march of lightSteps / 2 samples, at least 2, straight up); msScatteredOnly: the
@@ -206,6 +212,8 @@ struct CloudOverrides {
   std::optional<double> noiseLodScale;
   std::optional<double> lightStepsFalloff;
   std::optional<double> lightStepsFalloffStart;
+  std::optional<double> lowTransmittanceStepStart;
+  std::optional<double> lowTransmittanceStepMax;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

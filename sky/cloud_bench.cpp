@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "clouds/reference_clouds.h"
@@ -262,6 +263,20 @@ std::vector<KnobValue> knobValues(bool quick) {
                    o.clouds.lightStepsFalloff = 1.0;
                    o.clouds.lightStepsFalloffStart = start;
                  }});
+  // Longer view steps behind dense cloud (CloudMarchSettings::lowTransmittanceStep*: the step times
+  // min(T1 / T, K) once the view ray's transmittance T < T1).
+  for (const auto& [start, most, label] : {std::tuple<double, double, const char*>{0.1, 4.0, "from T 0.1 up to 4x"},
+                                           {0.3, 4.0, "from T 0.3 up to 4x"}, {0.3, 8.0, "from T 0.3 up to 8x"}, {1.0, 8.0, "from T 1 up to 8x"}}) {
+    v.push_back({"low_transmittance_steps", label, {}, [start, most](SkyRenderOptions& o) {
+                   o.clouds.lowTransmittanceStepStart = start;
+                   o.clouds.lowTransmittanceStepMax = most;
+                 }});
+    v.push_back({"single_scattering", std::string("1 octave, low_transmittance_steps ") + label, {"/clouds/lighting/ms_octaves=1"},
+                 [start, most](SkyRenderOptions& o) {
+                   o.clouds.lowTransmittanceStepStart = start;
+                   o.clouds.lowTransmittanceStepMax = most;
+                 }, true});
+  }
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
@@ -323,6 +338,9 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
       {"single_scattering", "1 octave, light_steps_falloff 1"}};
+  // Every low_transmittance_steps row and its single-scattering twin, in every scenario.
+  for (KnobValue& k : v)
+    if (k.knob == "low_transmittance_steps" || k.value.find("low_transmittance_steps") != std::string::npos) k.everyScenario = true;
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
@@ -512,6 +530,10 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"light_steps_falloff 1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, 1, true},
       {"light_steps_falloff 2", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; }, 1, true},
       {"light_steps_falloff 1 from T 0.1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.lightStepsFalloffStart = 0.1; }, 1, true},
+      {"low_transmittance_steps from T 0.1 up to 4x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.1; o.clouds.lowTransmittanceStepMax = 4.0; }, 1, true},
+      {"low_transmittance_steps from T 0.3 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.3; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true},
+      {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true},
+      {"low_transmittance_steps from T 0.1 up to 4x, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.1; o.clouds.lowTransmittanceStepMax = 4.0; }, 16, true},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

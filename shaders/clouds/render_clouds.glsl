@@ -177,6 +177,8 @@ void main() {
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
   float maxFactor = cloud.stepGrowth.z;
+  float lowTransmittanceStart = cloud.weatherPlanet.y;  // CloudMarchSettings::lowTransmittanceStepStart T1 (0: off)
+  float lowTransmittanceMax = cloud.weatherPlanet.z;    // CloudMarchSettings::lowTransmittanceStepMax K
   uint viewCount = 0u, lightCount = 0u;
   ivec2 blueSize = textureSize(blueNoise, 0);
   float xi = jitter ? texelFetch(blueNoise, (pixel + push.noiseShift) % blueSize, 0).r : 0.5;
@@ -241,7 +243,8 @@ void main() {
         continue;
       }
       --budget;
-      float dt = uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor);
+      float dt = (uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor)) *
+                 cloudLowTransmittanceStepFactor(lightTransmittance, lowTransmittanceStart, lowTransmittanceMax);
       // The noise LOD: the view step's length is the lookups' footprint (the march samples no finer),
       // times the scale; the coarse test, the sample and its light marches read the same levels.
       lod = noiseLod(texels, lodScale * dt);

@@ -24,6 +24,20 @@ SHARED_INLINE Real cloudViewStep(Real t, Real h0, Real growthStart, Real maxFact
   return h0 * clamp(t / growthStart, 1.0, max(maxFactor, 1.0));
 }
 
+// Longer steps where little of the light gets through (CloudMarchSettings::lowTransmittanceStepStart
+// T1, lowTransmittanceStepMax K): a sample's light reaches the pixel weighted by the view ray's
+// transmittance T in front of it, so once T < T1 the step is multiplied by
+//     f(T) = clamp(T1 / T, 1, K),
+// continuous in T (no seam). In a cloud of extinction sigma a step then moves T by
+// dT = -T sigma h0 f = -sigma h0 T1 (until the cap): linear in T instead of geometric, so the stretch
+// from T1 to the early exit's T_e takes (T1 - T_e) / (T1 sigma h0) steps instead of ln(T1 / T_e) /
+// (sigma h0): 0.9 against 2.3 for T1 = 0.1, T_e = 0.01, while that stretch carries at most T1 - T_e
+// of the pixel's light (docs/clouds.md "Longer steps behind dense cloud"). T1 <= 0: 1 (off).
+SHARED_INLINE Real cloudLowTransmittanceStepFactor(Real transmittance, Real start, Real maxFactor) {
+  if (!(start > 0.0)) return 1.0;
+  return clamp(start / max(transmittance, Real(1e-6)), 1.0, max(maxFactor, 1.0));
+}
+
 SHARED_END
 
 #endif  // FIRMAMENT_CLOUD_MARCH_GLSL
