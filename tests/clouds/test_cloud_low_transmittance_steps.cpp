@@ -44,10 +44,14 @@ struct MarchError {
 
 // A cumulonimbus tower 1000-8000 m at full extinction seen from below: the view transmittance falls
 // to the early exit within a few hundred metres of the cloud's edge, so much of the march lies behind
-// dense cloud. The knob's march (64 steps, T1 = 1, K = 8) against a converged one (1024 steps, no
-// knob), beside the defaults' 64 steps and a plain halving to 32 steps: it must save samples against
-// 64 steps, and its error must stay below the halving's, which saves samples the other way.
-TEST_F(CloudLowTransmittanceSteps, CostLessErrorThanHalvingTheViewSteps) {
+// dense cloud. Against a converged march (1024 steps, off), jitter off: the longer the steps behind
+// dense cloud (a higher T1, then a higher K), the fewer the samples and the larger the error, and the
+// mildest setting (T1 0.1, K 4) saves samples for an error under 1 %. Measured (48 x 27, 32^3 noise):
+// 64 steps 0.23 % (189 samples/pixel); T1 0.1 K 4 0.48 % (172); 0.3/4 0.77 % (149); 1/8 2.7 % (107);
+// plain 48 steps 0.62 % (140) and 32 steps 0.99 % (95), so on this thick tower fewer view steps do as
+// well per sample, which is why the knob is off by default (docs/clouds.md "Longer steps behind dense
+// cloud").
+TEST_F(CloudLowTransmittanceSteps, ErrorGrowsAndSamplesFallAsTheStepsGrowBehindDenseCloud) {
   const Scene s = test::cloudScene(
       {"/camera/pitch_deg=30", "/camera/fov_deg=60", "/camera/width=48", "/camera/height=27"},
       test::cloudSceneText(R"({"kind": "cumulonimbus", "bottom_m": 1000, "top_m": 8000, "coverage": 0.6})"));
@@ -56,11 +60,11 @@ TEST_F(CloudLowTransmittanceSteps, CostLessErrorThanHalvingTheViewSteps) {
   o.clouds.lowTransmittanceStepStart = 0.0;
   o.clouds.viewSteps = 1024;
   const RenderResult truth = test::cloudRenderer().render(s, o);
-  auto errorOf = [&](int steps, double start) {
+  auto errorOf = [&](int steps, double start, double most) {
     SkyRenderOptions m = o;
     m.clouds.viewSteps = steps;
     m.clouds.lowTransmittanceStepStart = start;
-    m.clouds.lowTransmittanceStepMax = 8.0;
+    m.clouds.lowTransmittanceStepMax = most;
     const RenderResult r = test::cloudRenderer().render(s, m);
     double sum2 = 0.0, ref2 = 0.0, sum = 0.0, ref = 0.0;
     for (size_t i = 0; i < r.clouds.pixelCount(); ++i) {
@@ -69,14 +73,23 @@ TEST_F(CloudLowTransmittanceSteps, CostLessErrorThanHalvingTheViewSteps) {
       const double y = luminanceRec709(p), t = luminanceRec709(truth.clouds.pixels.data() + 4 * i);
       sum2 += (y - t) * (y - t), ref2 += t * t, sum += y, ref += t;
     }
-    return MarchError{std::sqrt(sum2 / std::max(ref2, 1e-30)), sum / std::max(ref, 1e-30) - 1.0,
-                      r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel};
+    const MarchError e{std::sqrt(sum2 / std::max(ref2, 1e-30)), sum / std::max(ref, 1e-30) - 1.0,
+                       r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel};
+    std::printf("%4d steps, T1 %.1f, K %.0f: rel RMSE vs 1024 steps %.4f, bias %+.4f, samples/pixel %.1f\n", steps, start, most, e.relRmse,
+                e.bias, e.samples);
+    return e;
   };
-  const MarchError plain64 = errorOf(64, 0.0), knob64 = errorOf(64, 1.0), plain32 = errorOf(32, 0.0);
-  for (const auto& [name, e] : {std::pair<const char*, MarchError>{"64 steps", plain64}, {"64 steps, T1 1, K 8", knob64}, {"32 steps", plain32}})
-    std::printf("%-20s rel RMSE vs 1024 steps %.4f, bias %+.4f, samples/pixel %.1f\n", name, e.relRmse, e.bias, e.samples);
-  EXPECT_LT(knob64.samples, 0.85 * plain64.samples);
-  EXPECT_LT(knob64.relRmse, plain32.relRmse);
+  const MarchError off = errorOf(64, 0.0, 1.0), mild = errorOf(64, 0.1, 4.0), middle = errorOf(64, 0.3, 4.0), far = errorOf(64, 1.0, 8.0);
+  errorOf(48, 0.0, 1.0);  // printed for the comparison above
+  errorOf(32, 0.0, 1.0);
+  EXPECT_LT(mild.samples, 0.95 * off.samples);
+  EXPECT_LT(middle.samples, mild.samples);
+  EXPECT_LT(far.samples, middle.samples);
+  EXPECT_LT(off.relRmse, mild.relRmse);
+  EXPECT_LT(mild.relRmse, middle.relRmse);
+  EXPECT_LT(middle.relRmse, far.relRmse);
+  EXPECT_LT(mild.relRmse, 0.01);
+  EXPECT_LT(std::abs(mild.bias), 0.005);
 }
 
 }  // namespace
