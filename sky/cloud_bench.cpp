@@ -218,6 +218,7 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"baseline_fixed_steps", "64v/6l uniform", {}, [](SkyRenderOptions& o) {
                  o.clouds.uniformSteps = true;
                  o.clouds.lightStepsPerThickness = false;
+                 o.clouds.lowTransmittanceStepStart = 0.0;
                }});
   // The first milestone's lighting, all of it: fixed-length light march, cone 0.15, plain octaves with
   // a = b = c = 0.5 (the "before" of docs/clouds.md).
@@ -240,13 +241,16 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"single_scattering", "1 octave vs order 1", {"/clouds/lighting/ms_octaves=1"}, [](SkyRenderOptions&) {}, true});
   v.push_back({"single_scattering", "1 octave, no cone, 16 light", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightCone = 0.0; o.clouds.lightSteps = 16; }, true});
-  for (int n : quick ? std::vector<int>{16, 256} : std::vector<int>{16, 32, 128, 256})
+  for (int n : quick ? std::vector<int>{16, 256} : std::vector<int>{16, 32, 48, 128, 256})
     v.push_back({"view_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.viewSteps = n; }});
   for (int n : quick ? std::vector<int>{2, 16} : std::vector<int>{2, 4, 8, 16})
     v.push_back({"light_steps", std::to_string(n), {}, [n](SkyRenderOptions& o) { o.clouds.lightSteps = n; }});
   for (const auto& [t, label] : {std::pair<double, const char*>{0.1, "0.1"}, {0.03, "0.03"}, {0.001, "0.001"}, {0.0, "0 (none)"}})
     v.push_back({"early_exit", label, {}, [t](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = t; }});
   v.push_back({"early_exit", "0.01, rest dropped", {}, [](SkyRenderOptions& o) { o.clouds.earlyExitRemainder = false; }});
+  if (!quick)
+    v.push_back({"single_scattering", "1 octave, 48 view steps", {"/clouds/lighting/ms_octaves=1"},
+                 [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, true});
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
   for (double s : {0.0, 0.5, 2.0})
@@ -264,10 +268,10 @@ std::vector<KnobValue> knobValues(bool quick) {
                    o.clouds.lightStepsFalloffStart = start;
                  }});
   // Longer view steps behind dense cloud (CloudMarchSettings::lowTransmittanceStep*: the step times
-  // min(T1 / T, K) once the view ray's transmittance T < T1).
-  for (const auto& [start, most, label] : {std::tuple<double, double, const char*>{0.1, 4.0, "from T 0.1 up to 4x"},
+  // min(T1 / T, K) once the view ray's transmittance T < T1; the default T1 0.1, K 4).
+  for (const auto& [start, most, label] : {std::tuple<double, double, const char*>{0.0, 4.0, "off (sessions 1-11)"},
                                            {0.3, 4.0, "from T 0.3 up to 4x"}, {0.3, 8.0, "from T 0.3 up to 8x"}, {1.0, 8.0, "from T 1 up to 8x"}}) {
-    if (quick && !(start == 0.3 && most == 4.0)) continue;  // --quick: one row, no single-scattering twin
+    if (quick && start != 0.0) continue;  // --quick: the off row alone, no single-scattering twin
     v.push_back({"low_transmittance_steps", label, {}, [start, most](SkyRenderOptions& o) {
                    o.clouds.lowTransmittanceStepStart = start;
                    o.clouds.lowTransmittanceStepMax = most;
@@ -332,7 +336,7 @@ std::vector<KnobValue> knobValues(bool quick) {
   // own error (single scattering, steps), the floor, the sequence, and the approximate Mie phase.
   const std::vector<std::pair<std::string, std::string>> everywhere = {
       {"default", "64v/6l/3o"},    {"baseline_fixed_steps", "64v/6l uniform"}, {"single_scattering", "1 octave vs order 1"},
-      {"view_steps", "32"},        {"view_steps", "128"},                     {"light_steps", "4"},
+      {"view_steps", "32"},        {"view_steps", "48"},         {"view_steps", "128"},  {"single_scattering", "1 octave, 48 view steps"},                     {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
@@ -526,6 +530,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"baseline_fixed_steps", [](SkyRenderOptions& o) {
          o.clouds.uniformSteps = true;
          o.clouds.lightStepsPerThickness = false;
+         o.clouds.lowTransmittanceStepStart = 0.0;
        }, 1, true},
       {"noise_lod 0 (level 0)", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 0.0; }, 1, true},
       {"noise_lod 2", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 2.0; }, 1, true},
@@ -533,10 +538,12 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"light_steps_falloff 1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, 1, true},
       {"light_steps_falloff 2", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; }, 1, true},
       {"light_steps_falloff 1 from T 0.1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.lightStepsFalloffStart = 0.1; }, 1, true},
-      {"low_transmittance_steps from T 0.1 up to 4x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.1; o.clouds.lowTransmittanceStepMax = 4.0; }, 1, true, false},
+      {"low_transmittance_steps off (sessions 1-11)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 1, true, false},
       {"low_transmittance_steps from T 0.3 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.3; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
-      {"low_transmittance_steps from T 0.1 up to 4x, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.1; o.clouds.lowTransmittanceStepMax = 4.0; }, 16, true, false},
+      {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
+      {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
+      {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

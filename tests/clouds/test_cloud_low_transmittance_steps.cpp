@@ -46,11 +46,11 @@ struct MarchError {
 // to the early exit within a few hundred metres of the cloud's edge, so much of the march lies behind
 // dense cloud. Against a converged march (1024 steps, off), jitter off: the longer the steps behind
 // dense cloud (a higher T1, then a higher K), the fewer the samples and the larger the error, and the
-// mildest setting (T1 0.1, K 4) saves samples for an error under 1 %. Measured (48 x 27, 32^3 noise):
-// 64 steps 0.23 % (189 samples/pixel); T1 0.1 K 4 0.48 % (172); 0.3/4 0.77 % (149); 1/8 2.7 % (107);
-// plain 48 steps 0.62 % (140) and 32 steps 0.99 % (95), so on this thick tower fewer view steps do as
-// well per sample, which is why the knob is off by default (docs/clouds.md "Longer steps behind dense
-// cloud").
+// default (T1 0.1, K 4) saves samples for an error under 1 %. Measured (48 x 27, 32^3 noise): off
+// 0.23 % (189 samples/pixel); T1 0.1 K 4 0.48 % (172); 0.3/4 0.77 % (149); 1/8 2.7 % (107); plain 48
+// steps 0.62 % (140) and 32 steps 0.99 % (95): on this thick tower fewer view steps do about as well
+// per sample, but they cost thin clouds and the single scattering more (docs/clouds.md "Longer steps
+// behind dense cloud").
 TEST_F(CloudLowTransmittanceSteps, ErrorGrowsAndSamplesFallAsTheStepsGrowBehindDenseCloud) {
   const Scene s = test::cloudScene(
       {"/camera/pitch_deg=30", "/camera/fov_deg=60", "/camera/width=48", "/camera/height=27"},
