@@ -22,7 +22,7 @@ TableData download(const gpu::Image& image) {
 
 bool fits(const TableData& data, const gpu::Image& image) {
   return data.width == image.width() && data.height == image.height() && data.depth == image.depth() &&
-         data.channels == 4;
+         data.channels == 4 && data.values.size() == size_t(data.width) * data.height * data.depth * 4;
 }
 
 // Both variants of shaders/atmosphere/multiple_scattering_lut.glsl share one layout.

@@ -9,7 +9,7 @@
 namespace firmament {
 namespace {
 
-constexpr char kMagic[8] = {'F', 'M', 'T', 'A', 'B', 'L', 'E', '1'};
+constexpr char kMagic[8] = {'F', 'M', 'T', 'A', 'B', 'L', 'E', '2'};
 
 template <class T>
 bool readValue(std::ifstream& in, T& value) {
@@ -35,12 +35,21 @@ std::optional<std::vector<TableData>> readTableFile(const std::filesystem::path&
     return std::nullopt;
   std::vector<TableData> tables(count);
   for (auto& t : tables) {
-    if (!readValue(in, t.width) || !readValue(in, t.height) || !readValue(in, t.depth) || !readValue(in, t.channels))
+    uint32_t bytesPerValue = 0;
+    if (!readValue(in, t.width) || !readValue(in, t.height) || !readValue(in, t.depth) || !readValue(in, t.channels) ||
+        !readValue(in, bytesPerValue) || (bytesPerValue != 4 && bytesPerValue != 1))
       return std::nullopt;
     uint64_t n = uint64_t(t.width) * t.height * t.depth * t.channels;
     if (n == 0 || n > (uint64_t(1) << 28)) return std::nullopt;
-    t.values.resize(size_t(n));
-    if (!in.read(reinterpret_cast<char*>(t.values.data()), std::streamsize(n * sizeof(float)))) return std::nullopt;
+    char* data = nullptr;
+    if (bytesPerValue == 4) {
+      t.values.resize(size_t(n));
+      data = reinterpret_cast<char*>(t.values.data());
+    } else {
+      t.bytes.resize(size_t(n));
+      data = reinterpret_cast<char*>(t.bytes.data());
+    }
+    if (!in.read(data, std::streamsize(n * bytesPerValue))) return std::nullopt;
   }
   return tables;
 }
@@ -59,7 +68,12 @@ void writeTableFile(const std::filesystem::path& file, const std::string& key, c
         writeValue(out, t.height);
         writeValue(out, t.depth);
         writeValue(out, t.channels);
-        out.write(reinterpret_cast<const char*>(t.values.data()), std::streamsize(t.values.size() * sizeof(float)));
+        const bool floats = !t.values.empty();
+        writeValue(out, uint32_t(floats ? sizeof(float) : 1));
+        if (floats)
+          out.write(reinterpret_cast<const char*>(t.values.data()), std::streamsize(t.values.size() * sizeof(float)));
+        else
+          out.write(reinterpret_cast<const char*>(t.bytes.data()), std::streamsize(t.bytes.size()));
       }
       if (!out) throw std::runtime_error("write failed");
     });

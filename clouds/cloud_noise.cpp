@@ -1,6 +1,9 @@
 #include "clouds/cloud_noise.h"
 
+#include "atmosphere/table_file.h"
 #include "clouds/blue_noise.h"
+#include "core/hash.h"
+#include "gpu/shaders.h"
 
 namespace firmament {
 namespace {
@@ -52,7 +55,10 @@ CloudNoise::CloudNoise(gpu::Context& context)
 
 bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::CommandList& commands) {
   const std::string key = settings.key(seed);
-  if (key == key_) return false;
+  if (key == key_) {
+    source_ = "memory";
+    return false;
+  }
   auto make = [&](int size, int depth, const char* name, uint32_t levels) {
     return gpu::Image(context_, {uint32_t(size), uint32_t(size), uint32_t(depth), gpu::Format::RGBA8, true, true, name, levels});
   };
@@ -63,6 +69,45 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
                                      gpu::Format::R32F, false, true, "blue noise"});
   blueNoise_.uploadFloats(blueNoiseMask(settings.blueNoiseSize, seed));
 
+  auto groups = [](int n, int local) { return uint32_t((n + local - 1) / local); };
+  // The disk cache: the same bits as a bake on this device with these shaders, or nothing.
+  static const std::string code = gpu::shaderCodeHash({"clouds/bake_noise_3d", "clouds/bake_curl"});
+  const std::string diskKey = "cloud-noise-v1/" + key + "/" + context_.description() + "/" + code;
+  const std::filesystem::path file =
+      context_.cacheDir().empty() ? std::filesystem::path() : context_.cacheDir() / "noise" / ("cloud-noise-" + hex16(fnv1a(diskKey)) + ".bin");
+  pendingCacheFile_.clear();
+  std::optional<std::vector<TableData>> cached;
+  if (!file.empty()) cached = readTableFile(file, diskKey);
+  auto fits = [](const TableData& t, const gpu::Image& image) {
+    return t.width == image.width() && t.height == image.height() && t.depth == image.depth() && t.channels == 4 &&
+           t.bytes.size() == image.byteSize();
+  };
+  if (cached && cached->size() == 3 && fits((*cached)[0], shape_) && fits((*cached)[1], detail_) && fits((*cached)[2], curl_)) {
+    shape_.upload((*cached)[0].bytes.data(), (*cached)[0].bytes.size());
+    detail_.upload((*cached)[1].bytes.data(), (*cached)[1].bytes.size());
+    curl_.upload((*cached)[2].bytes.data(), (*cached)[2].bytes.size());
+    source_ = "disk cache";
+  } else {
+    recordBake(seed, settings, commands);
+    source_ = "baked";
+    pendingCacheFile_ = file;
+    pendingCacheKey_ = diskKey;
+  }
+  // The mip chains, level by level (each reads the one before).
+  for (gpu::Image* image : {&shape_, &detail_})
+    for (uint32_t level = 1; level < image->mipLevels(); ++level) {
+      commands.barrier();
+      const int size = std::max(int(image->width() >> level), 1);
+      commands.bind(downsample3d_, {{*image, gpu::MipLevel{level - 1}}, {*image, gpu::MipLevel{level}}});
+      commands.pushConstants(DownsamplePush{size, {0, 0, 0}});
+      const uint32_t g = groups(size, 4);
+      commands.dispatch(g, g, g, "clouds/downsample_noise_3d");
+    }
+  key_ = key;
+  return true;
+}
+
+void CloudNoise::recordBake(uint32_t seed, const CloudNoiseSettings& settings, gpu::CommandList& commands) {
   auto groups = [](int n, int local) { return uint32_t((n + local - 1) / local); };
   BakePush push{settings.shapeSize, seed, 0, 0};
   commands.bind(bake3d_, {shape_});
@@ -79,18 +124,18 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
   commands.pushConstants(push);
   const uint32_t c = groups(settings.curlSize, 8);
   commands.dispatch(c, c, 1, "clouds/bake_curl");
-  // The mip chains, level by level (each reads the one before).
-  for (gpu::Image* image : {&shape_, &detail_})
-    for (uint32_t level = 1; level < image->mipLevels(); ++level) {
-      commands.barrier();
-      const int size = std::max(int(image->width() >> level), 1);
-      commands.bind(downsample3d_, {{*image, gpu::MipLevel{level - 1}}, {*image, gpu::MipLevel{level}}});
-      commands.pushConstants(DownsamplePush{size, {0, 0, 0}});
-      const uint32_t g = groups(size, 4);
-      commands.dispatch(g, g, g, "clouds/downsample_noise_3d");
-    }
-  key_ = key;
-  return true;
+}
+
+void CloudNoise::storeBaked() {
+  if (pendingCacheFile_.empty()) return;
+  std::vector<TableData> tables;
+  for (const gpu::Image* image : {&shape_, &detail_, &curl_}) {
+    TableData t{image->width(), image->height(), image->depth(), 4, {}, std::vector<uint8_t>(image->byteSize())};
+    image->download(t.bytes.data(), t.bytes.size());
+    tables.push_back(std::move(t));
+  }
+  writeTableFile(pendingCacheFile_, pendingCacheKey_, tables);
+  pendingCacheFile_.clear();
 }
 
 NoiseVolume CloudNoise::downloadShape() const { return download(shape_); }

@@ -71,9 +71,9 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       plan.omitted.push_back({"clouds", "the clouds section has no layers"});
       plan.omitted.push_back({"sky/aerial_perspective_volume", "nothing at a finite distance reads it (no cloud layers, no terrain)"});
     } else {
-      plan.passes.push_back({"clouds/bake_noise_3d", "shape 128^3 and detail 32^3 RGBA noise (+ CPU blue noise)",
+      plan.passes.push_back({"clouds/bake_noise_3d", "shape 128^3 and detail 32^3 RGBA noise (+ CPU blue noise); once per seed, or read from the disk cache",
                              "cloud density, tileable, from the clouds seed", false});
-      plan.passes.push_back({"clouds/bake_curl", "curl noise 128^2", "distorts the detail noise", false});
+      plan.passes.push_back({"clouds/bake_curl", "curl noise 128^2; once per seed, or read from the disk cache", "distorts the detail noise", false});
       plan.passes.push_back({"clouds/downsample_noise_3d", "mip chains of the shape and detail noise, down to 4^3",
                              "the noise LOD by distance (lookups at the view step's footprint)", false});
       const AerialPerspective aerial = options.aerialPerspective

@@ -154,11 +154,13 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     gpu::CommandList bake(context_);
     if (clouds_->prepareNoise(*clouds, options.cloudNoise, bake)) {
       bake.submitAndWait();
+      clouds_->noise().storeBaked();
       for (const auto& t : bake.passTimings()) {
         result.timings.push_back(t);
         result.precomputeMilliseconds += t.milliseconds;
       }
     }
+    result.cloudNoiseSource = clouds_->noise().source();
   }
 
   FrameBlock frame{};
@@ -407,7 +409,8 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
   if (result.clouds.pixelCount() > 0)
     j["clouds"] = {{"view_samples_per_pixel", result.cloudSamples.viewPerPixel},
                    {"light_samples_per_pixel", result.cloudSamples.lightPerPixel},
-                   {"reprojected", result.cloudsReprojected}};
+                   {"reprojected", result.cloudsReprojected},
+                   {"noise", result.cloudNoiseSource}};
   if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
   j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
                           {"max", maxY},

@@ -75,6 +75,7 @@ struct RenderResult {
   bool tablesReused = false;     // from memory or the disk cache
   bool skyViewReused = false;    // a sequence's frame kept the previous frame's sky-view table (same inputs)
   std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
+  std::string cloudNoiseSource;  // cloud noise textures: "memory", "disk cache" or "baked"; empty without clouds
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
   int spectralSamples = 3;               // the wavelengths used (kSpectralSamplesAuto resolved)
   std::string timingNote;                // non-empty when timings are wall clock

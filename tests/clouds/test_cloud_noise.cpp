@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "atmosphere/reference_random.h"
 #include "clouds/blue_noise.h"
@@ -157,6 +161,66 @@ TEST(BlueNoise, UniformRanksAndNoLowFrequencies) {
   variance /= double(n * n / 16);
   std::printf("blue noise: variance of 4x4 means %.2e (white noise %.2e)\n", variance, 1.0 / 12.0 / 16.0);
   EXPECT_LT(variance, 0.25 * (1.0 / 12.0 / 16.0));
+}
+
+// The disk cache (gpu::Context::cacheDir; the tests' context has a scratch folder): once a bake's
+// commands ran, storeBaked writes it; a fresh CloudNoise (as in a later process) then uploads the same
+// bits, records no bake pass, and rebuilds the same mip chains. A damaged file is ignored: baked again
+// and rewritten.
+TEST_F(CloudNoiseTest, DiskCacheGivesTheBakedBitsAndADamagedFileIsBakedAgain) {
+  const uint32_t seed = 90210;  // no other test bakes it
+  struct Run {
+    std::string source;
+    bool baked = false;  // a clouds/bake_noise_3d pass ran
+    std::vector<float> shape, detail, curl, shapeLevel1;
+  };
+  auto run = [&]() {
+    CloudNoise noise(context());
+    gpu::CommandList commands(context());
+    EXPECT_TRUE(noise.update(seed, small(), commands));
+    commands.submitAndWait();
+    noise.storeBaked();
+    Run r;
+    r.source = noise.source();
+    for (const auto& t : commands.passTimings()) r.baked = r.baked || t.label == "clouds/bake_noise_3d";
+    r.shape = noise.shape().downloadFloats();
+    r.detail = noise.detail().downloadFloats();
+    r.curl = noise.curl().downloadFloats();
+    r.shapeLevel1 = noise.shape().downloadFloats(1);
+    return r;
+  };
+  const std::filesystem::path folder = context().cacheDir() / "noise";
+  auto files = [&]() {
+    std::set<std::filesystem::path> names;
+    if (std::filesystem::exists(folder))
+      for (const auto& entry : std::filesystem::directory_iterator(folder)) names.insert(entry.path());
+    return names;
+  };
+  const auto before = files();
+  const Run first = run();
+  EXPECT_EQ(first.source, "baked");
+  EXPECT_TRUE(first.baked);
+  std::vector<std::filesystem::path> added;
+  for (const auto& f : files())
+    if (!before.count(f)) added.push_back(f);
+  ASSERT_EQ(added.size(), 1u);
+  const auto size = std::filesystem::file_size(added[0]);
+
+  const Run second = run();
+  EXPECT_EQ(second.source, "disk cache");
+  EXPECT_FALSE(second.baked);
+  EXPECT_EQ(second.shape, first.shape);
+  EXPECT_EQ(second.detail, first.detail);
+  EXPECT_EQ(second.curl, first.curl);
+  EXPECT_EQ(second.shapeLevel1, first.shapeLevel1);
+
+  std::filesystem::resize_file(added[0], size / 2);  // damaged: cut short
+  const Run third = run();
+  EXPECT_EQ(third.source, "baked");
+  EXPECT_TRUE(third.baked);
+  EXPECT_EQ(third.shape, first.shape);
+  EXPECT_EQ(std::filesystem::file_size(added[0]), size);  // rewritten whole
+  EXPECT_EQ(run().source, "disk cache");
 }
 
 }  // namespace
