@@ -28,6 +28,9 @@ uint32_t noiseMipLevels(int size) {
   return levels;
 }
 
+// Workgroups of `local` invocations covering n.
+uint32_t workgroups(int n, int local) { return uint32_t((n + local - 1) / local); }
+
 NoiseVolume download(const gpu::Image& image) {
   NoiseVolume v;
   v.size = int(image.width());
@@ -69,7 +72,6 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
                                      gpu::Format::R32F, false, true, "blue noise"});
   blueNoise_.uploadFloats(blueNoiseMask(settings.blueNoiseSize, seed));
 
-  auto groups = [](int n, int local) { return uint32_t((n + local - 1) / local); };
   // The disk cache: the same bits as a bake on this device with these shaders, or nothing.
   static const std::string code = gpu::shaderCodeHash({"clouds/bake_noise_3d", "clouds/bake_curl"});
   const std::string diskKey = "cloud-noise-v1/" + key + "/" + context_.description() + "/" + code;
@@ -100,7 +102,7 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
       const int size = std::max(int(image->width() >> level), 1);
       commands.bind(downsample3d_, {{*image, gpu::MipLevel{level - 1}}, {*image, gpu::MipLevel{level}}});
       commands.pushConstants(DownsamplePush{size, {0, 0, 0}});
-      const uint32_t g = groups(size, 4);
+      const uint32_t g = workgroups(size, 4);
       commands.dispatch(g, g, g, "clouds/downsample_noise_3d");
     }
   key_ = key;
@@ -108,21 +110,20 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
 }
 
 void CloudNoise::recordBake(uint32_t seed, const CloudNoiseSettings& settings, gpu::CommandList& commands) {
-  auto groups = [](int n, int local) { return uint32_t((n + local - 1) / local); };
   BakePush push{settings.shapeSize, seed, 0, 0};
   commands.bind(bake3d_, {shape_});
   commands.pushConstants(push);
-  const uint32_t s = groups(settings.shapeSize, 4);
+  const uint32_t s = workgroups(settings.shapeSize, 4);
   commands.dispatch(s, s, s, "clouds/bake_noise_3d");
   push = {settings.detailSize, seed, 1, 0};
   commands.bind(bake3d_, {detail_});
   commands.pushConstants(push);
-  const uint32_t d = groups(settings.detailSize, 4);
+  const uint32_t d = workgroups(settings.detailSize, 4);
   commands.dispatch(d, d, d, "clouds/bake_noise_3d");
   push = {settings.curlSize, seed, 0, 0};
   commands.bind(bakeCurl_, {curl_});
   commands.pushConstants(push);
-  const uint32_t c = groups(settings.curlSize, 8);
+  const uint32_t c = workgroups(settings.curlSize, 8);
   commands.dispatch(c, c, 1, "clouds/bake_curl");
 }
 
