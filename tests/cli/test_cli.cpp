@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -206,6 +208,32 @@ TEST(Cli, RenderFramesWritesASequence) {
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad_0000.exr")) << bad;
   }
+}
+
+// The cloud noise on disk (docs/clouds.md "Noise"): a second `render` of a cloud scene reads the noise
+// that the first baked (stats JSON clouds.noise) and writes the same image, bit for bit. The cache
+// folder is a scratch one (FIRMAMENT_CACHE_DIR), so the test starts empty and leaves the user's alone.
+TEST(Cli, RenderReadsTheCloudNoiseTheLastRunBaked) {
+  auto dir = test::scratchDir("cli_noise_cache");
+  const std::string scene = writeScene(dir, "clouds.json", R"({"camera": {"width": 24, "height": 14, "pitch_deg": 30},
+      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "seed": 4242}})").string();
+  const char* saved = std::getenv("FIRMAMENT_CACHE_DIR");
+  const std::string previous = saved ? saved : "";
+  setenv("FIRMAMENT_CACHE_DIR", (dir / "cache").c_str(), 1);
+  std::string source[2];
+  for (int i = 0; i < 2; ++i) {
+    CommandRun r = firmament("render " + scene + " -o " + (dir / ("run" + std::to_string(i) + ".exr")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream stats(dir / ("run" + std::to_string(i) + ".json"));
+    source[i] = nlohmann::json::parse(stats).at("clouds").at("noise").get<std::string>();
+  }
+  if (saved) setenv("FIRMAMENT_CACHE_DIR", previous.c_str(), 1); else unsetenv("FIRMAMENT_CACHE_DIR");
+  EXPECT_EQ(source[0], "baked");
+  EXPECT_EQ(source[1], "disk cache");
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "cache" / "noise")) files += entry.is_regular_file();
+  EXPECT_EQ(files, 1);
+  EXPECT_EQ(readExr(dir / "run0.exr").pixels, readExr(dir / "run1.exr").pixels);
 }
 
 TEST(Cli, ExplainListsOnlyNeededPasses) {
