@@ -23,7 +23,7 @@ struct CloudBlock {
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
   float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
   float weatherRegion[4];  // width, height (m), skew east, north (m/m)
-  float weatherPlanet[4];  // ground radius (m), low-transmittance step start T1 and largest factor K, unused
+  float weatherPlanet[4];  // ground radius (m), low-transmittance step start T1 and largest factor K, other layers' light-step scale
   float shadowCentre[4];   // centre (cloud frame, m), extent (m)
   float shadowAxisU[4];    // axis u, start distance L (m)
   float shadowAxisV[4];    // axis v, march length (m)
@@ -195,7 +195,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
-  put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0), std::max(m.lowTransmittanceStepMax, 1.0), 0.0);
+  put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0), std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
   // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
   // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
   // L = (top - mid) / max(mu_s, 0.05) + 1 km (past every layer's top for any sun above the horizon),

@@ -144,6 +144,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;
   if (lowTransmittanceStepStart) march.lowTransmittanceStepStart = *lowTransmittanceStepStart;
   if (lowTransmittanceStepMax) march.lowTransmittanceStepMax = *lowTransmittanceStepMax;
+  if (otherLayerLightStepsScale) march.otherLayerLightStepsScale = *otherLayerLightStepsScale;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

@@ -77,6 +77,9 @@ struct CloudMarchSettings {
   // tracer. Off: each sample sees only its own layer (sessions 1-8). Not used where the Beer shadow map
   // covers the sample (the map has every layer). docs/clouds.md "Light through other layers".
   bool lightThroughOtherLayers = true;
+  // The other layers' crossings take lightSteps x this scale per layer thickness of each (2 to 4 times
+  // that); bench rows measure 2 (docs/clouds.md "Light through other layers").
+  double otherLayerLightStepsScale = 1.0;
   double lightMaxLength_m = 40000.0;
   // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
   // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
@@ -216,6 +219,7 @@ struct CloudOverrides {
   std::optional<double> lightStepsFalloffStart;
   std::optional<double> lowTransmittanceStepStart;
   std::optional<double> lowTransmittanceStepMax;
+  std::optional<double> otherLayerLightStepsScale;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

@@ -286,6 +286,14 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
+  // The other layers' crossings with twice the light samples (Jensen's bias of a few samples across a
+  // patchy deck; docs/clouds.md "Light through other layers"). Only two_layers has another layer.
+  if (!quick) {
+    v.push_back({"light_through_other_layers", "2x samples across the other layers", {},
+                 [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }});
+    v.push_back({"single_scattering", "1 octave, 2x samples across the other layers", {"/clouds/lighting/ms_octaves=1"},
+                 [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, true});
+  }
   v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
   v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }, true});
@@ -339,6 +347,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"view_steps", "32"},        {"view_steps", "48"},         {"view_steps", "128"},  {"single_scattering", "1 octave, 48 view steps"},                     {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
+      {"light_through_other_layers", "2x samples across the other layers"},
+      {"single_scattering", "1 octave, 2x samples across the other layers"},
       {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
       {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
@@ -543,6 +553,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
+      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},

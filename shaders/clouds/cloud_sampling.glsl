@@ -23,7 +23,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
   vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, empty-space margin per thickness
   vec4 weatherRegion;    // weather map: width (m), height (m), skew east, skew north (m per m)
-  vec4 weatherPlanet;    // x: planet (ground) radius (m); y, z: the view step's growth behind dense cloud T1, K (cloudLowTransmittanceStepFactor); w unused
+  vec4 weatherPlanet;    // x: planet (ground) radius (m); y, z: the view step's growth behind dense cloud T1, K (cloudLowTransmittanceStepFactor); w: the other layers' light-step scale
   vec4 shadowCentre;     // Beer shadow map: centre C (cloud frame, m); w = extent (m, square side)
   vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)

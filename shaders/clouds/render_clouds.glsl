@@ -315,7 +315,9 @@ void main() {
           tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, cone, lod);
           lightCount += uint(m);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, lightSteps, lightLength, lod, lightCount);
+          // CloudMarchSettings::otherLayerLightStepsScale: the crossings' rate per thickness, times lightSteps.
+          int otherSteps = max(int(float(lightSteps) * cloud.weatherPlanet.w + 0.5), 1);
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherSteps, lightLength, lod, lightCount);
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;
