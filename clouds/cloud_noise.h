@@ -4,10 +4,10 @@
 // them across frames. With a context cache folder (gpu::Context::cacheDir) the baked level 0 of the
 // shape, detail and curl textures is also kept on disk, keyed by the seed, the sizes, the bake
 // shaders' code and the device, so a later process uploads the same bits instead of baking (about
-// 2 s on lavapipe for 128^3) and rebuilds only the mip chains. Formats are RGBA8 unorm (Schneider 2015 uses 8 bits too): 8 MiB for the 128³
-// shape texture. The shape and detail textures carry box-filtered mip chains down to 4^3 for the
-// march's noise LOD (CloudMarchSettings::noiseLodScale). The blue-noise mask is built on the CPU
-// (clouds/blue_noise.h) and uploaded.
+// 2 s on lavapipe for 128^3) and rebuilds only the mip chains. Formats are RGBA8 unorm (Schneider
+// 2015 uses 8 bits too): 8 MiB for the 128³ shape texture. The shape and detail textures carry
+// box-filtered mip chains down to 4^3 for the march's noise LOD (CloudMarchSettings::noiseLodScale).
+// The blue-noise mask is built on the CPU (clouds/blue_noise.h) and uploaded.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -53,7 +53,6 @@ struct TableTiming {
 // On a GPU the tables are timed after warmUpGpu. On the H100 the defaults' tables then measured
 // 2.5 ms, against 14.1 ms before, but another row of the same work still measured 8 ms: each repeat
 // builds a fresh renderer first (docs/gpu.md "Checking on a real GPU").
-
 TableTiming measureTables(gpu::Context& context, const Scene& scene, const SkyRenderOptions& options, int repeats) {
   TableTiming t;
   std::vector<double> ms;

@@ -272,16 +272,15 @@ std::vector<KnobValue> knobValues(bool quick) {
   for (const auto& [start, most, label] : {std::tuple<double, double, const char*>{0.0, 4.0, "off (sessions 1-11)"},
                                            {0.3, 4.0, "from T 0.3 up to 4x"}, {0.3, 8.0, "from T 0.3 up to 8x"}, {1.0, 8.0, "from T 1 up to 8x"}}) {
     if (quick && start != 0.0) continue;  // --quick: the off row alone, no single-scattering twin
-    v.push_back({"low_transmittance_steps", label, {}, [start, most](SkyRenderOptions& o) {
-                   o.clouds.lowTransmittanceStepStart = start;
-                   o.clouds.lowTransmittanceStepMax = most;
-                 }});
+    auto apply = [start, most](SkyRenderOptions& o) {
+      o.clouds.lowTransmittanceStepStart = start;
+      o.clouds.lowTransmittanceStepMax = most;
+    };
+    v.push_back({"low_transmittance_steps", label, {}, apply});
+    v.back().everyScenario = true;
     if (quick) continue;
-    v.push_back({"single_scattering", std::string("1 octave, low_transmittance_steps ") + label, {"/clouds/lighting/ms_octaves=1"},
-                 [start, most](SkyRenderOptions& o) {
-                   o.clouds.lowTransmittanceStepStart = start;
-                   o.clouds.lowTransmittanceStepMax = most;
-                 }, true});
+    v.push_back({"single_scattering", std::string("1 octave, low_transmittance_steps ") + label, {"/clouds/lighting/ms_octaves=1"}, apply, true});
+    v.back().everyScenario = true;
   }
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
@@ -344,7 +343,8 @@ std::vector<KnobValue> knobValues(bool quick) {
   // own error (single scattering, steps), the floor, the sequence, and the approximate Mie phase.
   const std::vector<std::pair<std::string, std::string>> everywhere = {
       {"default", "64v/6l/3o"},    {"baseline_fixed_steps", "64v/6l uniform"}, {"single_scattering", "1 octave vs order 1"},
-      {"view_steps", "32"},        {"view_steps", "48"},         {"view_steps", "128"},  {"single_scattering", "1 octave, 48 view steps"},                     {"light_steps", "4"},
+      {"view_steps", "32"},        {"view_steps", "48"},                      {"view_steps", "128"},
+      {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"light_through_other_layers", "2x samples across the other layers"},
@@ -354,9 +354,6 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
       {"single_scattering", "1 octave, light_steps_falloff 1"}};
-  // Every low_transmittance_steps row and its single-scattering twin, in every scenario.
-  for (KnobValue& k : v)
-    if (k.knob == "low_transmittance_steps" || k.value.find("low_transmittance_steps") != std::string::npos) k.everyScenario = true;
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
@@ -553,8 +550,8 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
-      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
+      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},

@@ -144,6 +144,8 @@ void main() {
   // 2.-3. The march.
   int viewSteps = max(cloud.steps.x, 1);
   int lightSteps = max(cloud.steps.y, 1);
+  // The other layers' crossings: lightSteps x CloudMarchSettings::otherLayerLightStepsScale per thickness.
+  int otherLayerSteps = max(int(float(lightSteps) * cloud.weatherPlanet.w + 0.5), 1);
   int octaves = clamp(cloud.steps.z, 1, 8);
   bool jitter = (cloud.steps.w & 2) != 0;
   bool ambientOn = (cloud.steps.w & 4) != 0;
@@ -315,9 +317,7 @@ void main() {
           tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, cone, lod);
           lightCount += uint(m);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          // CloudMarchSettings::otherLayerLightStepsScale: the crossings' rate per thickness, times lightSteps.
-          int otherSteps = max(int(float(lightSteps) * cloud.weatherPlanet.w + 0.5), 1);
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherSteps, lightLength, lod, lightCount);
+          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherLayerSteps, lightLength, lod, lightCount);
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;
