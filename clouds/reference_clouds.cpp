@@ -51,7 +51,7 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   const double r = glm::length(p);
   if (double h = shared::cloudHeightFraction(layer, r); h <= 0.0 || h >= 1.0) return 0.0;
   const glm::dvec4 weather = weather_.sample(shared::cloudWeatherCoordinate(
-      p, groundRadius_m_, glm::dvec2(weather_.width_m, weather_.height_m), weather_.skew));
+      p, groundRadius_m_, glm::dvec2(weather_.width_m, weather_.height_m), weather_.skew, layer.wind_offset));
   bool empty = false;
   const shared::CloudLayer column = shared::cloudColumnLayer(layer, weather, groundRadius_m_, empty);
   if (empty) return 0.0;

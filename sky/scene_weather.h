@@ -6,7 +6,10 @@
 //   time (time.utc; solar time = UTC + longitude / 15 degrees per hour) up to that time, so the map
 //   holds the day's convection so far (0 to 24 h of model time); its map (coverage, type,
 //   precipitation, top) is placed on the region centred on the scene's location, with the shear skew.
-//   Cached in memory by the weather section's hash, the location and the time.
+//   Cached in memory by the weather section's hash, the location and the time. A later time of the
+//   same day (a time-lapse's next frame) continues from the last run's checkpoint instead of running
+//   from midnight again: the checkpoint is the model before its last, shortened step, a state reached
+//   by whole steps only, so the continued map is bit for bit the one a run from midnight gives.
 // - Otherwise: the procedural map of the cloud seed (clouds/cloud_weather_map.h).
 #include "clouds/cloud_weather_map.h"
 #include "core/scene.h"
@@ -14,10 +17,15 @@
 namespace firmament {
 
 struct SceneWeatherInfo {
-  double simulated_s = 0.0;  // model time run (0 for the procedural map)
+  double simulated_s = 0.0;  // model time of the map since the solar midnight (0 for the procedural map)
+  double stepped_s = 0.0;     // model time this call ran: simulated_s, less a checkpoint's time, 0 when cached
   double milliseconds = 0.0;  // wall clock of the simulation (0 when cached or procedural)
   bool cached = false;
+  bool continued = false;  // run on from an earlier time's checkpoint
 };
+
+// Forgets the maps and checkpoints held in memory (tests: a run from midnight after a continued one).
+void clearSceneWeatherCache();
 
 // The map for `scene` (which must have a clouds section; the seed comes from it).
 CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* info = nullptr);

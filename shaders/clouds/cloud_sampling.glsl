@@ -90,7 +90,7 @@ float shapeSignedDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer co
   ph = cloudHeightFraction(layer, r);
   if (ph <= 0.0 || ph >= 1.0) return -1.0;
   float planet = cloud.weatherPlanet.x;
-  vec4 weather = textureLod(weatherMap, cloudWeatherCoordinate(p, planet, cloud.weatherRegion.xy, cloud.weatherRegion.zw), 0.0);
+  vec4 weather = textureLod(weatherMap, cloudWeatherCoordinate(p, planet, cloud.weatherRegion.xy, cloud.weatherRegion.zw, layer.wind_offset), 0.0);
   bool empty;
   column = cloudColumnLayer(layer, weather, planet, empty);
   if (empty) return -1.0;

@@ -10,8 +10,10 @@
 //     east = R atan2(p.x, p.z),   north = R atan2(p.y, p.z)
 // (R the planet radius: the tangent-plane angles times R, the local distance near the centre), moved
 // downwind with height z above the ground by the shear skew s (m per m: shear x the thermal's rise
-// time, 300 s), and to texture coordinates
-//     u = (east - s.x z) / width + 1/2,   v = 1/2 - (north - s.y z) / height,
+// time, 300 s), moved with the clouds' wind by the layer's wind offset o (the noise is read at p + o,
+// cloudLocalPosition, so the map is read at east + o.x: the whole field, coverage included, drifts
+// with the wind as one), and to texture coordinates
+//     u = (east + o.x - s.x z) / width + 1/2,   v = 1/2 - (north + o.y - s.y z) / height,
 // read with a linear, repeating sampler (texel centres at (i + 1/2) / N), as WeatherMap::sampleMap.
 //
 // Use in the density: the layer's coverage becomes g_c WM_c (Häggström eq. 15's threshold 1 - g_c WM_c),
@@ -30,11 +32,12 @@ SHARED_BEGIN
 const Real kCloudWeatherNoTop = 100000.0;  // m: a top above every layer (the layer's own top applies)
 const Real kCloudWeatherMinThickness = 10.0;  // m: thinner columns hold no cloud
 
-// regionSize = (width, height) of the map (m); skew = downwind shift per metre of height (east, north).
-SHARED_INLINE vec2 cloudWeatherCoordinate(vec3 p, Real planetRadius, vec2 regionSize, vec2 skew) {
+// regionSize = (width, height) of the map (m); skew = downwind shift per metre of height (east, north);
+// windOffset = the layer's wind_offset (m; its x and y are east and north).
+SHARED_INLINE vec2 cloudWeatherCoordinate(vec3 p, Real planetRadius, vec2 regionSize, vec2 skew, vec3 windOffset) {
   Real z = length(p) - planetRadius;
-  Real east = planetRadius * atan(p.x, p.z) - skew.x * z;
-  Real north = planetRadius * atan(p.y, p.z) - skew.y * z;
+  Real east = planetRadius * atan(p.x, p.z) + windOffset.x - skew.x * z;
+  Real north = planetRadius * atan(p.y, p.z) + windOffset.y - skew.y * z;
   return vec2(east / regionSize.x + 0.5, 0.5 - north / regionSize.y);
 }
 

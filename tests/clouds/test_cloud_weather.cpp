@@ -3,8 +3,11 @@
 // tracer's medium alike; the procedural map; the thunderstorm scene's simulated map grows cumulonimbus.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "clouds/reference_clouds.h"
 #include "common/cloud_weather.glsl"
@@ -98,6 +101,45 @@ TEST_F(CloudWeather, CloudOnlyOverTheCoveredDisc) {
   EXPECT_EQ(verticalOpticalDepth(medium, ground, 0.0, 5000.0), 0.0);
 }
 
+// The wind moves the whole field, the map's coverage with the noise: 10 m/s from the west for 1000 s
+// carries the disc 10 km east. The GPU looking straight up then sees no cloud, and on the CPU the
+// column 10 km east holds what the column overhead held at time 0. The two columns differ only by the
+// curvature: the noise moves in the cloud frame's x, the map in tangent-plane angles times R, and a
+// point 10 km east at the same height lies 2-6 m further along x and ~8 m lower in z.
+TEST_F(CloudWeather, TheWindCarriesTheMapWithTheNoise) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  const std::vector<std::string> view = {"/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30",
+                                         "/camera/width=16", "/camera/height=16", "/clouds/wind_m_s=10",
+                                         "/clouds/wind_from_deg=270"};
+  auto at = [&](double time_s) {
+    std::vector<std::string> v = view;
+    v.push_back("/clouds/time_s=" + std::to_string(time_s));
+    return test::cloudScene(v);
+  };
+  o.cloudWeather = std::make_shared<CloudWeatherMap>(discMap({0.0, 0.0}, 3000.0));
+  const RenderResult before = test::cloudRenderer().render(at(0.0), o);
+  const RenderResult after = test::cloudRenderer().render(at(1000.0), o);
+  const double tBefore = meanTransmittance(before.clouds), tAfter = meanTransmittance(after.clouds);
+  std::printf("overhead: mean T %.4f at 0 s, %.4f after 1000 s of 10 m/s wind\n", tBefore, tAfter);
+  EXPECT_LT(tBefore, 0.5);
+  EXPECT_EQ(tAfter, 1.0);
+
+  const double ground = before.view.cameraRadius - 2.0;
+  const CloudMedium still = mediumFor(at(0.0), discMap({0.0, 0.0}, 3000.0), ground);
+  const CloudMedium moved = mediumFor(at(1000.0), discMap({0.0, 0.0}, 3000.0), ground);
+  double worst = 0.0;
+  for (double north : {-1500.0, 0.0, 1500.0}) {
+    const double then = verticalOpticalDepth(still, ground, 0.0, north);
+    const double now = verticalOpticalDepth(moved, ground, 10000.0, north);
+    std::printf("column at north %+.0f m: optical depth %.4f overhead at 0 s, %.4f 10 km east at 1000 s\n", north,
+                then, now);
+    ASSERT_GT(then, 1.0);
+    worst = std::max(worst, std::abs(now / then - 1.0));
+    EXPECT_EQ(verticalOpticalDepth(moved, ground, 0.0, north), 0.0) << north;
+  }
+  EXPECT_LT(worst, 0.01);
+}
+
 // The procedural map: deterministic per seed, with clear gaps and fully covered areas.
 TEST(CloudWeatherMapTest, ProceduralMapHasGapsAndCover) {
   const CloudWeatherMap a = proceduralCloudWeatherMap(1), b = proceduralCloudWeatherMap(1), c = proceduralCloudWeatherMap(2);
@@ -166,6 +208,39 @@ TEST_F(CloudWeather, ThunderstormSceneGrowsCumulonimbus) {
         }
   std::printf("largest extinction above 8 km near it: %.4f 1/m\n", high);
   EXPECT_GT(high, 0.0);
+}
+
+// A time-lapse's next frame runs the simulation on from the last run's checkpoint instead of from
+// midnight, and gets the same map bit for bit as a run from midnight. 13:30 UTC at 7.98 deg E is
+// 50515 s after the solar midnight, not a whole number of 60 s steps, so the first run ends with a
+// shortened step and its checkpoint lies before it; the frames after it are 90 s and 1 h later. An
+// earlier time than the checkpoint runs from midnight again.
+TEST(SceneWeather, ATimeLapseContinuesTheSimulationBitForBit) {
+  auto at = [](const std::string& utc) {
+    return Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
+                       {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/time/utc=" + utc});
+  };
+  clearSceneWeatherCache();
+  SceneWeatherInfo info;
+  const CloudWeatherMap first = cloudWeatherMapForScene(at("2026-06-21T13:30:00Z"), &info);
+  EXPECT_FALSE(info.continued);
+  EXPECT_DOUBLE_EQ(info.stepped_s, info.simulated_s);
+  for (const std::string utc : {"2026-06-21T13:31:30Z", "2026-06-21T14:31:30Z"}) {
+    const CloudWeatherMap continued = cloudWeatherMapForScene(at(utc), &info);
+    std::printf("%s: continued %d, %.0f s of %.0f s run in %.0f ms\n", utc.c_str(), int(info.continued), info.stepped_s,
+                info.simulated_s, info.milliseconds);
+    EXPECT_TRUE(info.continued);
+    EXPECT_LT(info.stepped_s, 3600.0 + 120.0);
+    clearSceneWeatherCache();
+    const CloudWeatherMap fresh = cloudWeatherMapForScene(at(utc), &info);
+    EXPECT_FALSE(info.continued);
+    ASSERT_EQ(continued.map.pixels.size(), fresh.map.pixels.size());
+    EXPECT_EQ(continued.map.pixels, fresh.map.pixels) << utc << ": the continued map differs from a run from midnight";
+    EXPECT_NE(continued.map.pixels, first.map.pixels) << utc << ": the weather did not move";
+  }
+  cloudWeatherMapForScene(at("2026-06-21T12:00:00Z"), &info);
+  EXPECT_FALSE(info.continued);
+  EXPECT_DOUBLE_EQ(info.stepped_s, info.simulated_s);
 }
 
 }  // namespace
