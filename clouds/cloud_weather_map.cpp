@@ -41,7 +41,7 @@ CloudWeatherMap proceduralCloudWeatherMap(uint32_t seed, int size) {
       const double n = shared::perlinFbm01(p, period, noiseSeed);
       float* px = m.map.at(column, row);
       px[0] = float(std::clamp((n - 0.38) / 0.2, 0.0, 1.0));
-      px[1] = 1.0f;
+      px[1] = float(shared::kCloudWeatherLayerType);  // no type: each layer keeps its own kind
       px[2] = 0.0f;
       px[3] = float(shared::kCloudWeatherNoTop);
     }

@@ -30,7 +30,7 @@ struct CloudWeatherMap {
 // The map without a weather section: coverage from a tileable Perlin fbm of the cloud seed, features
 // a quarter of the region (12.8 km): WM_c = SAT((n - 0.38) / 0.2), so broad clear gaps (n < 0.38) and
 // fully covered areas (n > 0.58) alternate; the layer's coverage g_c scales it (threshold
-// 1 - g_c WM_c). Type 1 (a cumulonimbus layer keeps its anvil; other types ignore it), no
+// 1 - g_c WM_c). Type kCloudWeatherLayerType (no type: each layer keeps its own kind and anvil), no
 // precipitation, top kCloudWeatherNoTop (the layers keep their tops). size x size texels.
 CloudWeatherMap proceduralCloudWeatherMap(uint32_t seed, int size = 128);
 

@@ -57,6 +57,8 @@ CloudLayer layerAt(int i) {
   layer.wind_offset = d.xyz;
   layer.skew = e.xy;
   layer.kind = int(e.z + 0.5);
+  layer.stratiform = 0.0;  // set per column by cloudColumnLayer
+  layer.stratiform_kind = kCloudStratus;
   return layer;
 }
 

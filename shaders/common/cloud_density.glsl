@@ -52,6 +52,10 @@ struct CloudLayer {
   vec3 wind_offset;      // m: wind x time, added to positions before the lookups
   vec2 skew;             // m of horizontal shift per m of height (wind shear: towers lean downwind)
   int kind;              // kCloud*
+  // Set per map column by cloudColumnLayer (common/cloud_weather.glsl) from the weather map's type;
+  // 0 for the layer itself: the profiles are mix(kind's, stratiform_kind's, stratiform).
+  Real stratiform;       // weight in [0, 1] of the stratiform profile
+  int stratiform_kind;   // kCloudStratus or kCloudStratocumulus
 };
 
 SHARED_INLINE Real cloudSaturate(Real x) { return clamp(x, 0.0, 1.0); }
@@ -102,6 +106,19 @@ SHARED_INLINE Real cloudDensityProfile(int kind, Real ph, Real anvil) {
   return cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0)) * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
 }
 
+// The column's profiles: the kind's, blended towards the stratiform kind's by the weather map's type
+// (cloudColumnLayer). Without a blend exactly the kind's.
+SHARED_INLINE Real cloudLayerShapeProfile(CloudLayer layer, Real ph) {
+  Real sa = layer.stratiform < 1.0 ? cloudShapeProfile(layer.kind, ph, layer.coverage, layer.anvil) : 0.0;
+  if (layer.stratiform <= 0.0) return sa;
+  return mix(sa, cloudShapeProfile(layer.stratiform_kind, ph, layer.coverage, 0.0), layer.stratiform);
+}
+SHARED_INLINE Real cloudLayerDensityProfile(CloudLayer layer, Real ph) {
+  Real da = layer.stratiform < 1.0 ? cloudDensityProfile(layer.kind, ph, layer.anvil) : 0.0;
+  if (layer.stratiform <= 0.0) return da;
+  return mix(da, cloudDensityProfile(layer.stratiform_kind, ph, 0.0), layer.stratiform);
+}
+
 // Position (planet-centred, m) -> shape texture coordinate (in periods; the sampler repeats). The
 // origin is the point of the layer's bottom sphere on the +z axis (below the camera), so coordinates
 // stay small near the camera (float keeps ~1 cm at 100 km). Wind moves the field; the skew shifts it
@@ -138,7 +155,7 @@ SHARED_INLINE Real cloudShapeSignedDensity(CloudLayer layer, Real ph, vec4 shape
   if (coverage <= 0.0) return -1.0;  // R(x, 1, 1, 0, 1) is 0/0: no coverage, no cloud
   Real fbm = 0.625 * shape.y + 0.25 * shape.z + 0.125 * shape.w;
   Real shapeSample = cloudSaturate(cloudRemap(shape.x, fbm - 1.0, 1.0, 0.0, 1.0));                   // eq. 11
-  Real sa = cloudShapeProfile(layer.kind, ph, layer.coverage, layer.anvil);
+  Real sa = cloudLayerShapeProfile(layer, ph);
   // eq. 15 with the threshold 1 - c: R(x, 1 - c, 1, 0, 1) = (x - 1 + c) / c.
   return min((shapeSample * sa - 1.0 + coverage) / coverage, 1.0);
 }
@@ -153,7 +170,7 @@ SHARED_INLINE Real cloudDensity(CloudLayer layer, Real ph, Real shapeDensity, ve
   Real erosion = layer.detail_strength * exp(-layer.coverage * 0.75) * mix(fbm, 1.0 - fbm, cloudSaturate(ph * 5.0));  // eq. 14
   erosion = clamp(erosion, 0.0, 0.99);
   Real eroded = cloudSaturate((shapeDensity - erosion) / (1.0 - erosion));                        // eq. 16
-  return eroded * cloudDensityProfile(layer.kind, ph, layer.anvil) * layer.density_scale;
+  return eroded * cloudLayerDensityProfile(layer, ph) * layer.density_scale;
 }
 
 // The parts of the ray (r, mu) inside the shell inner <= radius <= outer, clipped to [0, tMax]: the ray

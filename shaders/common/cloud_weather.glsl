@@ -18,10 +18,16 @@
 //
 // Use in the density: the layer's coverage becomes g_c WM_c (Häggström eq. 15's threshold 1 - g_c WM_c),
 // the layer's top is lowered to the map's cloud top (a column whose top lies below the layer bottom
-// has no cloud; the height fraction p_h runs from the bottom to that top, so the type profiles shape
-// each column), and the cumulonimbus anvil (eqs. 17, 18) is weighted by how far the type is past
-// congestus, SAT(3 type - 2) (0 for Cu and Cg, 1 for Cb). Without a weather section the map is
-// procedural (clouds/cloud_weather_map.h): its top is kCloudWeatherNoTop, so the layer keeps its top.
+// has no cloud; the height fraction p_h runs from the bottom to that top), and the map's type picks
+// the column's height profiles (Häggström 2018's WM_t), continuously:
+//   type 0 -> 1/3:  the stratiform profiles (stratocumulus in a stratocumulus layer, else stratus)
+//                   blended into cumulus's, weight SAT(1 - 3 type);
+//   type 1/3 -> 1:  the convective profiles, cumulus's with the cumulonimbus anvil (eqs. 17, 18)
+//                   weighted by how far the type is past congestus, SAT(3 type - 2) (0 for Cu and Cg,
+//                   1 for Cb; the cumulonimbus profiles with no anvil are cumulus's exactly).
+// Cirrus layers keep their own profiles. A map without types (the procedural map of a scene without a
+// weather section, clouds/cloud_weather_map.h) holds kCloudWeatherLayerType: the layer's own kind and
+// anvil. Its top is kCloudWeatherNoTop, so the layer also keeps its top.
 #ifndef FIRMAMENT_CLOUD_WEATHER_GLSL
 #define FIRMAMENT_CLOUD_WEATHER_GLSL
 
@@ -31,6 +37,7 @@ SHARED_BEGIN
 
 const Real kCloudWeatherNoTop = 100000.0;  // m: a top above every layer (the layer's own top applies)
 const Real kCloudWeatherMinThickness = 10.0;  // m: thinner columns hold no cloud
+const Real kCloudWeatherLayerType = -1.0;     // type channel: no type, the layer's own kind applies
 
 // regionSize = (width, height) of the map (m); skew = downwind shift per metre of height (east, north);
 // windOffset = the layer's wind_offset (m; its x and y are east and north).
@@ -42,13 +49,19 @@ SHARED_INLINE vec2 cloudWeatherCoordinate(vec3 p, Real planetRadius, vec2 region
 }
 
 // The layer as seen by one column of the map: top lowered to the map's cloud top (planetRadius + top),
-// anvil weighted by the type. `empty` is set where the column holds no cloud of this layer.
+// profiles picked by the type (above). `empty` is set where the column holds no cloud of this layer.
 SHARED_INLINE CloudLayer cloudColumnLayer(CloudLayer layer, vec4 weather, Real planetRadius, OUT(bool) empty) {
   CloudLayer column = layer;
   Real top = min(layer.top_radius, planetRadius + weather.w);
   empty = weather.x <= 0.0 || top - layer.bottom_radius < kCloudWeatherMinThickness;
   column.top_radius = empty ? layer.top_radius : top;
-  column.anvil = layer.anvil * clamp(3.0 * weather.y - 2.0, 0.0, 1.0);
+  if (weather.y >= 0.0 && layer.kind != kCloudCirrus) {
+    column.kind = kCloudCumulus;  // the cumulonimbus profiles with no anvil are cumulus's
+    column.anvil = layer.anvil * clamp(3.0 * weather.y - 2.0, 0.0, 1.0);
+    if (column.anvil > 0.0) column.kind = kCloudCumulonimbus;
+    column.stratiform = clamp(1.0 - 3.0 * weather.y, 0.0, 1.0);
+    column.stratiform_kind = layer.kind == kCloudStratocumulus ? kCloudStratocumulus : kCloudStratus;
+  }
   return column;
 }
 

@@ -243,5 +243,80 @@ TEST(SceneWeather, ATimeLapseContinuesTheSimulationBitForBit) {
   EXPECT_DOUBLE_EQ(info.stepped_s, info.simulated_s);
 }
 
+// The map's type picks each column's height profiles (common/cloud_weather.glsl): stratiform at 0
+// (stratocumulus in a stratocumulus layer, else stratus), cumulus at 1/3 and 2/3, cumulonimbus with the
+// layer's anvil at 1, linear blends between; cirrus layers and maps without types keep the layer's own.
+TEST(CloudWeatherType, TheMapTypePicksTheHeightProfiles) {
+  shared::CloudLayer layer{};
+  layer.bottom_radius = 6360000.0 + 1000.0;
+  layer.top_radius = 6360000.0 + 8000.0;
+  layer.coverage = 0.6;
+  layer.anvil = 0.8;
+  auto column = [&](int kind, double type) {
+    shared::CloudLayer l = layer;
+    l.kind = kind;
+    bool empty = true;
+    const shared::CloudLayer c = shared::cloudColumnLayer(l, glm::dvec4(1.0, type, 0.0, shared::kCloudWeatherNoTop), 6360000.0, empty);
+    EXPECT_FALSE(empty);
+    return c;
+  };
+  auto profiles = [&](int kind, double anvil) {
+    return [=](double ph) {
+      return glm::dvec2(shared::cloudShapeProfile(kind, ph, layer.coverage, anvil), shared::cloudDensityProfile(kind, ph, anvil));
+    };
+  };
+  auto blended = [&](const shared::CloudLayer& c) {
+    return [=](double ph) { return glm::dvec2(shared::cloudLayerShapeProfile(c, ph), shared::cloudLayerDensityProfile(c, ph)); };
+  };
+  const auto stratus = profiles(shared::kCloudStratus, 0.0), stratocumulus = profiles(shared::kCloudStratocumulus, 0.0);
+  const auto cumulus = profiles(shared::kCloudCumulus, 0.0), cirrus = profiles(shared::kCloudCirrus, 0.0);
+  const auto cumulonimbus = profiles(shared::kCloudCumulonimbus, layer.anvil);
+  const auto half = profiles(shared::kCloudCumulonimbus, 0.5 * layer.anvil);
+  for (double ph = 0.0; ph <= 1.0; ph += 1.0 / 64.0) {
+    for (int kind : {shared::kCloudStratus, shared::kCloudCumulus, shared::kCloudCumulonimbus}) {
+      EXPECT_EQ(blended(column(kind, 0.0))(ph), stratus(ph)) << kind << " " << ph;
+      EXPECT_EQ(blended(column(kind, 1.0 / 3.0))(ph), cumulus(ph)) << kind << " " << ph;
+      EXPECT_EQ(blended(column(kind, 2.0 / 3.0))(ph), cumulus(ph)) << kind << " " << ph;
+      EXPECT_EQ(blended(column(kind, 1.0))(ph), cumulonimbus(ph)) << kind << " " << ph;
+      const glm::dvec2 mid = blended(column(kind, 1.0 / 6.0))(ph), mean = 0.5 * (stratus(ph) + cumulus(ph));
+      EXPECT_NEAR(mid.x, mean.x, 1e-12) << kind << " " << ph;
+      EXPECT_NEAR(mid.y, mean.y, 1e-12) << kind << " " << ph;
+      const glm::dvec2 anvil = blended(column(kind, 5.0 / 6.0))(ph);
+      EXPECT_NEAR(anvil.x, half(ph).x, 1e-12) << kind << " " << ph;
+      EXPECT_NEAR(anvil.y, half(ph).y, 1e-12) << kind << " " << ph;
+    }
+    EXPECT_EQ(blended(column(shared::kCloudStratocumulus, 0.0))(ph), stratocumulus(ph)) << ph;
+    EXPECT_EQ(blended(column(shared::kCloudCirrus, 0.0))(ph), cirrus(ph)) << ph;
+    EXPECT_EQ(blended(column(shared::kCloudCirrus, 1.0))(ph), cirrus(ph)) << ph;
+    EXPECT_EQ(blended(column(shared::kCloudStratocumulus, shared::kCloudWeatherLayerType))(ph), stratocumulus(ph)) << ph;
+    EXPECT_EQ(blended(column(shared::kCloudCumulonimbus, shared::kCloudWeatherLayerType))(ph), cumulonimbus(ph)) << ph;
+  }
+  // The procedural map has no types.
+  const CloudWeatherMap procedural = proceduralCloudWeatherMap(1, 16);
+  for (size_t i = 0; i < procedural.map.pixelCount(); ++i)
+    ASSERT_EQ(procedural.map.pixels[4 * i + 1], float(shared::kCloudWeatherLayerType));
+}
+
+// On the GPU: a cumulonimbus layer under a map of stratus type looks, straight up, as a stratus layer
+// of the same extinction (0.0024 1/m) under a map without types: the same transmittance; under cumulus
+// type it is another cloud.
+TEST_F(CloudWeather, TheMapTypeShapesTheGpuColumnsToo) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.jitter = false;
+  const std::vector<std::string> view = {"/camera/pitch_deg=90", "/camera/fov_deg=30", "/camera/width=16", "/camera/height=16"};
+  auto meanT = [&](const std::string& layer, float type) {
+    o.cloudWeather = std::make_shared<CloudWeatherMap>(uniformCloudWeatherMap(glm::vec4(1.0f, type, 0.0f, float(shared::kCloudWeatherNoTop))));
+    return meanTransmittance(test::cloudRenderer().render(test::cloudScene(view, test::cloudSceneText(layer)), o).clouds);
+  };
+  const std::string cb = R"({"kind": "cumulonimbus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.02})";
+  const std::string st = R"({"kind": "stratus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.048})";
+  const double cbAsStratus = meanT(cb, 0.0f), stratus = meanT(st, float(shared::kCloudWeatherLayerType));
+  const double cbAsCumulus = meanT(cb, 1.0f / 3.0f);
+  std::printf("mean T looking up: cumulonimbus layer, stratus type %.5f; stratus layer %.5f; cumulonimbus layer, cumulus type %.5f\n",
+              cbAsStratus, stratus, cbAsCumulus);
+  EXPECT_NEAR(cbAsStratus, stratus, 1e-4);
+  EXPECT_GT(std::abs(cbAsCumulus - stratus), 0.02);
+}
+
 }  // namespace
 }  // namespace firmament
