@@ -1,6 +1,7 @@
 #include "clouds/cloud_pass.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 
@@ -138,7 +139,27 @@ void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
   weatherHash_ = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
                        fnv1a(&weatherRegion_, sizeof(weatherRegion_), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h)))));
+  weatherTexels_ = map.map.pixels;
 }
+
+namespace {
+// Whether a weather map evolved from `before` by no more than the reprojection's clamp absorbs: the
+// clouds of a weather scene's 30 fps sequence (the map simulated to each frame's time) change by
+// ~1e-4 in coverage per frame, a time-lapse's by far more. The same size and region, the skew within
+// 1e-3 m per m (1 m at 1 km), coverage and type within 0.01 and the top within 10 m in every texel
+// (precipitation is not read).
+bool weatherEvolvedLittle(const std::vector<float>& before, glm::dvec4 regionBefore, const std::vector<float>& now,
+                          glm::dvec4 region) {
+  if (before.size() != now.size() || regionBefore.x != region.x || regionBefore.y != region.y ||
+      std::abs(regionBefore.z - region.z) > 1e-3 || std::abs(regionBefore.w - region.w) > 1e-3)
+    return false;
+  for (size_t i = 0; i + 3 < now.size(); i += 4)
+    if (std::abs(now[i] - before[i]) > 0.01f || std::abs(now[i + 1] - before[i + 1]) > 0.01f ||
+        std::abs(now[i + 3] - before[i + 3]) > 10.0f)
+      return false;
+  return true;
+}
+}  // namespace
 
 CloudSampleCounts CloudPass::sampleCounts() const {
   uint32_t c[2] = {0, 0};
@@ -332,8 +353,11 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const glm::dvec3 windOffset = layers.empty() ? glm::dvec3(0.0) : glm::dvec3(layers[0].wind_offset);
   // A reduced-resolution march (divisor > 1) runs every frame instead: it is already the cheap path.
   const int k = m.resolutionDivisor > 1 ? 1 : update == 16 ? 4 : update == 4 ? 2 : 1;
-  reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey &&
-                 history_.weather == weatherHash_;
+  // The same map, or one that evolved a little (a weather scene's sequence simulates it to each
+  // frame's time): what changed the clamp takes out, as it does for the sun's move.
+  const bool sameWeather = history_.weather == weatherHash_ ||
+                           weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
+  reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
   int offset[2] = {0, 0};
   if (reprojected_) {
     const int n = int(temporalFrame_ % uint32_t(k * k));
@@ -447,6 +471,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   history_.usable = k > 1;
   history_.settings = std::move(settingsKey);
   history_.weather = weatherHash_;
+  history_.weatherRegion = weatherRegion_;
+  if (history_.weatherTexels != weatherTexels_) history_.weatherTexels = weatherTexels_;
   history_.view = view;
   history_.windOffset = windOffset;
 }

@@ -126,10 +126,13 @@ class CloudPass {
     bool usable = false;            // recorded with temporal update > 1
     std::vector<uint8_t> settings;  // the cloud block without camera, sun and wind (clouds/cloud_pass.cpp)
     uint64_t weather = 0;
+    glm::dvec4 weatherRegion{0.0};
+    std::vector<float> weatherTexels;  // the map's texels, to tell a map that has evolved a little
     CloudView view;
     glm::dvec3 windOffset{0.0};
   } history_;
   uint64_t weatherHash_ = 0;
+  std::vector<float> weatherTexels_;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
   bool shadowBaked_ = false;  // recordShadowMap() ran for the coming record()

@@ -1,5 +1,6 @@
 #include "sky/scene_weather.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -27,26 +28,44 @@ namespace {
 
 using weather::WeatherModel;
 
-// Runs `model` to model time end_s in the steps WeatherModel::advance takes from time 0
-// (config.timeStep_s, the last one shortened) and returns a copy of it from before that shortened
-// step (at end_s when there is none). The copy was reached by whole steps only: for any later end a
-// run from time 0 takes the same whole steps up to it (end2 - t >= end1 - t >= timeStep), so running
-// on from it repeats a run from midnight operation for operation.
-WeatherModel runTo(WeatherModel& model, double end_s) {
+// Runs `model` by whole steps of config.timeStep_s while one more fits before end_s: the steps a run
+// from midnight to any later time takes too, so running on from the result repeats such a run
+// operation for operation.
+void runWholeSteps(WeatherModel& model, double end_s) {
   const double step = model.config().timeStep_s;
-  std::optional<WeatherModel> checkpoint;
-  while (model.time_s() < end_s - 1e-6) {
-    const double left = end_s - model.time_s();
-    if (left < step) checkpoint = model;
-    model.step(std::min(step, left));
-  }
-  return checkpoint ? std::move(*checkpoint) : model;
+  while (model.time_s() + step <= end_s + 1e-6) model.step(step);
 }
+
+CloudWeatherMap cloudMapOf(const WeatherModel& model, const weather::RegionPlacement& placement) {
+  const weather::WeatherMap w = model.map(placement);
+  CloudWeatherMap m;
+  m.map = w.map;
+  m.width_m = w.width_m();
+  m.height_m = w.height_m();
+  m.skew = w.windShear_per_s * weather::WeatherMap::kSkewRiseTime_s;  // (du/dz) z 300 s: m per m
+  m.source = "weather simulation";
+  return m;
+}
+
+// (1 - w) a + w b, texel by texel (maps of one model: same size and region).
+CloudWeatherMap interpolate(const CloudWeatherMap& a, const CloudWeatherMap& b, double w) {
+  CloudWeatherMap m = a;
+  const float wf = float(w);
+  for (size_t i = 0; i < m.map.pixels.size(); ++i) m.map.pixels[i] = (1.0f - wf) * a.map.pixels[i] + wf * b.map.pixels[i];
+  if (a.skew != b.skew) m.skew = (1.0 - w) * a.skew + w * b.skew;
+  return m;
+}
+
+// The model at a whole step and its maps there and one step later.
+struct Checkpoint {
+  WeatherModel model;
+  CloudWeatherMap now, next;
+};
 
 struct WeatherCache {
   std::mutex mutex;
-  std::map<std::string, CloudWeatherMap> maps;      // by weather section, location and time: a few 256^2 x 16 bytes
-  std::map<std::string, WeatherModel> checkpoints;  // by weather section, location and start (midnight)
+  std::map<std::string, CloudWeatherMap> maps;    // by weather section, location and time: a few 256^2 x 16 bytes
+  std::map<std::string, Checkpoint> checkpoints;  // by weather section, location and start (midnight)
 };
 
 WeatherCache& weatherCache() {
@@ -77,45 +96,52 @@ CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* in
   const std::string key = place + "|" + utc;
   const std::string day = place + "|" + astro::formatUtc(start);
   WeatherCache& cache = weatherCache();
-  std::optional<WeatherModel> model;
+  std::optional<Checkpoint> from;
   {
     std::lock_guard<std::mutex> lock(cache.mutex);
     if (auto it = cache.maps.find(key); it != cache.maps.end()) {
       if (info) *info = {run_s, 0.0, 0.0, true, false};
       return it->second;
     }
-    if (auto it = cache.checkpoints.find(day); it != cache.checkpoints.end() && it->second.time_s() <= run_s)
-      model.emplace(it->second);
+    if (auto it = cache.checkpoints.find(day); it != cache.checkpoints.end() && it->second.model.time_s() <= run_s + 1e-6)
+      from.emplace(it->second);
   }
 
   const auto started = std::chrono::steady_clock::now();
   const auto location = astro::GeodeticLocation::fromDegrees(latitude, longitude, scene.number("/location/height_m"));
-  const bool continued = model.has_value();
-  const double from_s = continued ? model->time_s() : 0.0;
+  const weather::RegionPlacement placement{location.latitude, location.longitude, 6360000.0};
+  const bool continued = from.has_value();
+  const double from_s = continued ? from->model.time_s() : 0.0;
   if (!continued) {
     weather::WeatherConfig config = weather::configFromJson(scene.at("/weather"));
     config.surfacePressure_Pa = weather::surfacePressureFromHeight(scene.number("/location/height_m"));
-    model.emplace(config, [location, start](double t) {
+    WeatherModel model(config, [location, start](double t) {
       return astro::sunPosition(astro::makeAstroTime(astro::addSeconds(start, t)), location).elevation();
     });
+    from.emplace(Checkpoint{std::move(model), {}, {}});
   }
-  WeatherModel checkpoint = runTo(*model, run_s);
-  const weather::RegionPlacement placement{location.latitude, location.longitude, 6360000.0};
-  const weather::WeatherMap w = model->map(placement);
-
-  CloudWeatherMap m;
-  m.map = w.map;
-  m.width_m = w.width_m();
-  m.height_m = w.height_m();
-  m.skew = w.windShear_per_s * weather::WeatherMap::kSkewRiseTime_s;  // (du/dz) z 300 s: m per m
-  m.source = "weather simulation";
+  // The map between two whole steps is the linear interpolation of theirs: the model's operators act
+  // per step, so a shortened last step would not be continuous in time (a 30 fps sequence's maps
+  // would jump by up to 0.035 in coverage from frame to frame).
+  Checkpoint& c = *from;
+  const double step = c.model.config().timeStep_s;
+  const double before = c.model.time_s();
+  runWholeSteps(c.model, run_s);
+  if (!continued || c.model.time_s() != before) {
+    c.now = cloudMapOf(c.model, placement);
+    WeatherModel next = c.model;
+    next.step(step);
+    c.next = cloudMapOf(next, placement);
+  }
+  const double w = std::clamp((run_s - c.model.time_s()) / step, 0.0, 1.0);
+  const CloudWeatherMap m = w <= 1e-9 ? c.now : interpolate(c.now, c.next, w);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
-  if (info) *info = {run_s, run_s - from_s, ms, false, continued};
+  if (info) *info = {run_s, c.model.time_s() - from_s, ms, false, continued};
   std::lock_guard<std::mutex> lock(cache.mutex);
   if (cache.maps.size() > 8) cache.maps.clear();
   cache.maps.emplace(key, m);
   if (cache.checkpoints.size() > 2) cache.checkpoints.clear();
-  cache.checkpoints.insert_or_assign(day, std::move(checkpoint));
+  cache.checkpoints.insert_or_assign(day, std::move(c));
   return m;
 }
 
