@@ -138,6 +138,17 @@ TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
   EXPECT_GT(darker, 0);  // the other layer does shadow somewhere (the check can fail)
 }
 
+// Relative RMS luminance difference of two cloud layers.
+double relativeRmsLuminance(const Image& img, const Image& truth) {
+  double sum2 = 0.0, ref2 = 0.0;
+  for (size_t i = 0; i < img.pixelCount(); ++i) {
+    const double y = luminanceRec709(img.pixels.data() + 4 * i), t = luminanceRec709(truth.pixels.data() + 4 * i);
+    sum2 += (y - t) * (y - t);
+    ref2 += t * t;
+  }
+  return std::sqrt(sum2 / std::max(ref2, 1e-30));
+}
+
 // The march converges: the error against a 1024-step render falls as the view steps grow (jitter off,
 // so the error is the quadrature's, not noise).
 TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
@@ -151,13 +162,7 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
   for (int steps : {16, 64, 256}) {
     o.clouds.viewSteps = steps;
     const Image img = test::cloudRenderer().render(s, o).clouds;
-    double sum2 = 0.0, ref2 = 0.0;
-    for (size_t i = 0; i < img.pixelCount(); ++i) {
-      const double y = luminanceRec709(img.pixels.data() + 4 * i), t = luminanceRec709(truth.pixels.data() + 4 * i);
-      sum2 += (y - t) * (y - t);
-      ref2 += t * t;
-    }
-    errors.push_back(std::sqrt(sum2 / std::max(ref2, 1e-30)));
+    errors.push_back(relativeRmsLuminance(img, truth));
     std::printf("view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps, errors.back());
   }
   EXPECT_LT(errors[1], errors[0]);
@@ -181,13 +186,7 @@ TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
   for (int steps : {64, 128, 256}) {
     o.clouds.viewSteps = steps;
     const Image img = test::cloudRenderer().render(s, o).clouds;
-    double sum2 = 0.0, ref2 = 0.0;
-    for (size_t i = 0; i < img.pixelCount(); ++i) {
-      const double y = luminanceRec709(img.pixels.data() + 4 * i), t = luminanceRec709(truth.pixels.data() + 4 * i);
-      sum2 += (y - t) * (y - t);
-      ref2 += t * t;
-    }
-    errors.push_back(std::sqrt(sum2 / std::max(ref2, 1e-30)));
+    errors.push_back(relativeRmsLuminance(img, truth));
     std::printf("thunderstorm, view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps, errors.back());
   }
   EXPECT_LT(errors[1], 0.6 * errors[0]);
@@ -288,17 +287,6 @@ TEST_F(CloudRender, AerialVolumeAgreesWithAFineAirMarch) {
     EXPECT_FALSE(ran(off));
     expectFiniteNonNegative(volume.image, view.front());
   }
-}
-
-// Relative RMS luminance difference of two cloud layers.
-double relativeRmsLuminance(const Image& img, const Image& truth) {
-  double sum2 = 0.0, ref2 = 0.0;
-  for (size_t i = 0; i < img.pixelCount(); ++i) {
-    const double y = luminanceRec709(img.pixels.data() + 4 * i), t = luminanceRec709(truth.pixels.data() + 4 * i);
-    sum2 += (y - t) * (y - t);
-    ref2 += t * t;
-  }
-  return std::sqrt(sum2 / std::max(ref2, 1e-30));
 }
 
 // The default scene (cumulus at 12 degrees pitch, here 80x45 with the tests' small noise): the uniform
