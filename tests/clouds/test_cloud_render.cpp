@@ -170,8 +170,9 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
 }
 
 // The shipped thunderstorm scene (one cumulonimbus layer 1-12 km at the type's full extinction, its
-// storm cells 10-50 km away) converges too, but slowly: the fine step grows from H / N with H the
-// thickest layer (11 km), so 64 steps leave ~170 m to 1.4 km between samples. Measured at 160x90
+// storm cells 10-50 km away) converges too, but slowly: the empty-space test's margin does not bound
+// the simulated map's coverage, which jumps within a cell or two (docs/clouds.md, "Left for later";
+// 7.4 % at 64 steps without skipping). Measured at 160x90
 // (session 13, jitter off, against 1024 steps): 24.8 % at 64 steps, 8.9 % at 128, 3.4 % at 256, 1.5 %
 // at 512; here at 80x45 (measured 24.2 / 8.1 / 2.9 % at 64 / 128 / 256). With jitter that error becomes noise: two stills differ by ~27 % per pixel,
 // the speckle of docs/clouds.md "Left for later".
