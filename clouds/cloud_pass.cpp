@@ -32,8 +32,9 @@ struct CloudBlock {
   float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
   float layers[kMaxLayers * 5][4];
   float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
+  float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test) and the map's skew's size, unused x2
 };
-static_assert(sizeof(CloudBlock) == (18 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (19 + kMaxLayers * 6) * 16);
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -136,6 +137,13 @@ void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   if (!weatherImage_ || weatherImage_.width() != w || weatherImage_.height() != h)
     weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
   weatherImage_.uploadFloats(map.map.pixels);
+  // The coverage reach for the empty-space test on a map with sharp coverage (CloudWeatherMap).
+  reachRadius_ = map.sharpCoverage ? kReachRadius_m : 0.0;
+  const Image reach = map.sharpCoverage ? coverageReach(map, kReachRadius_m) : Image(1, 1, 1);
+  const uint32_t rw = uint32_t(reach.width), rh = uint32_t(reach.height);
+  if (!weatherReach_ || weatherReach_.width() != rw || weatherReach_.height() != rh)
+    weatherReach_ = gpu::Image(context_, {rw, rh, 1, gpu::Format::R32F, false, true, "cloud weather reach"});
+  weatherReach_.uploadFloats(reach.pixels);
   weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
   weatherHash_ = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
                        fnv1a(&weatherRegion_, sizeof(weatherRegion_), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h)))));
@@ -216,6 +224,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
+  put(b.weatherReach, reachRadius_, glm::length(glm::dvec2(weatherRegion_.z, weatherRegion_.w)), 0.0, 0.0);
   put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0), std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
   // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
   // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
@@ -393,7 +402,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer},
+                                     gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                                     gpu::BindingType::SampledImage},
                                     sizeof(Push)});
   if (!volume && !aerialPlaceholder_)
     aerialPlaceholder_ = gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
@@ -416,7 +426,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          {shadowImage_, luts.linearClamp()},
                                          {lut.multipleScatteringAnisotropy, luts.linearClamp()},
                                          {aerialImage, luts.linearClamp()},
-                                         depth_});
+                                         depth_,
+                                         {weatherReach_, noise_.linearRepeat()}});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
     Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,

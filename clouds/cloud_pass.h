@@ -112,6 +112,9 @@ class CloudPass {
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
+  gpu::Image weatherReach_;  // coverageReach of a sharp map (1x1 otherwise), R32F, linear, repeat
+  double reachRadius_ = 0.0;  // m; 0: the map is smooth, the margin test applies
+  static constexpr double kReachRadius_m = 2000.0;
   glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)
   // This frame's and the previous frame's cloud frames (the history), swapped by every record().
   gpu::Buffer cloudFrames_[2];

@@ -48,6 +48,30 @@ CloudWeatherMap proceduralCloudWeatherMap(uint32_t seed, int size) {
   return m;
 }
 
+Image coverageReach(const CloudWeatherMap& map, double radius_m) {
+  const int w = map.map.width, h = map.map.height;
+  const double texelX = map.width_m / w, texelY = map.height_m / h;
+  // A read between texel centres blends the four around it: each must bound the coverage within
+  // radius_m of the read point, up to one texel away, so the window reaches radius_m + 1 texel.
+  const int rx = std::min(w / 2, int(std::ceil(radius_m / texelX)) + 1);
+  const int ry = std::min(h / 2, int(std::ceil(radius_m / texelY)) + 1);
+  // Separable maximum: rows, then columns.
+  Image rows(w, h, 1), reach(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float m = 0.0f;
+      for (int d = -rx; d <= rx; ++d) m = std::max(m, map.map.at(wrap(x + d, w), y)[0]);
+      rows.at(x, y)[0] = m;
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float m = 0.0f;
+      for (int d = -ry; d <= ry; ++d) m = std::max(m, rows.at(x, wrap(y + d, h))[0]);
+      reach.at(x, y)[0] = m;
+    }
+  return reach;
+}
+
 CloudWeatherMap uniformCloudWeatherMap(glm::vec4 value, int size) {
   CloudWeatherMap m;
   m.map = Image(size, size, 4);

@@ -21,6 +21,11 @@ struct CloudWeatherMap {
   double height_m = 51200.0;  // region size north-south (m)
   glm::dvec2 skew{0.0};       // downwind shift per metre of height (east, north; m/m)
   std::string source;         // "procedural" or "weather simulation" (reports)
+  // Coverage that jumps from 0 to 1 within a texel or two (the weather simulation's, 200 m cells).
+  // The march's one-point empty-space test with a margin cannot bound such a map; it skips a span
+  // only where coverageReach() says no coverage lies within the span's length (docs/clouds.md
+  // "Empty-space skipping").
+  bool sharpCoverage = false;
 
   // Bilinear, repeating lookup at texture coordinates uv (texel centres at (i + 1/2) / N), as the
   // GPU's linear, repeating sampler.
@@ -33,6 +38,12 @@ struct CloudWeatherMap {
 // 1 - g_c WM_c). Type kCloudWeatherLayerType (no type: each layer keeps its own kind and anvil), no
 // precipitation, top kCloudWeatherNoTop (the layers keep their tops). size x size texels.
 CloudWeatherMap proceduralCloudWeatherMap(uint32_t seed, int size = 128);
+
+// The largest coverage within radius_m of each texel centre: the maximum over the texels whose
+// centres lie within radius_m + one texel diagonal in x and y (a square window, wrapping), so that a
+// bilinear read anywhere between four texel centres bounds the coverage within radius_m of that
+// point. One channel, the map's size.
+Image coverageReach(const CloudWeatherMap& map, double radius_m);
 
 // A map of one value everywhere (tests: coverage 0 gives no cloud).
 CloudWeatherMap uniformCloudWeatherMap(glm::vec4 value, int size = 4);

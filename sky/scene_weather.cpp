@@ -44,6 +44,7 @@ CloudWeatherMap cloudMapOf(const WeatherModel& model, const weather::RegionPlace
   m.height_m = w.height_m();
   m.skew = w.windShear_per_s * weather::WeatherMap::kSkewRiseTime_s;  // (du/dz) z 300 s: m per m
   m.source = "weather simulation";
+  m.sharpCoverage = true;  // 200 m cells: coverage jumps within one or two
   return m;
 }
 

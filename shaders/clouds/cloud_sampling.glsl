@@ -31,6 +31,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: the light-step falloff's start T0 (lightStepsFalloffStart)
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
   vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
+  vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: |skew| of the map (m per m)
 } cloud;
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)

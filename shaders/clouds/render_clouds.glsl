@@ -70,6 +70,9 @@ layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, 
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
 layout(set = 0, binding = 15) uniform sampler3D aerialVolume;  // the aerial-perspective volume (linear, clamp)
+// The largest map coverage within cloud.weatherReach.x metres (clouds/cloud_weather_map.h
+// coverageReach), for a map with sharp coverage (linear, repeat; 1x1 and unread otherwise).
+layout(set = 0, binding = 17) uniform sampler2D weatherReachMap;
 
 // Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
 // integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
@@ -257,13 +260,26 @@ void main() {
         // the margin a span whose point just missed a thin fringe lost it, which dimmed a sunset's
         // forward-scattering edges by 16 % (docs/clouds.md, "Empty-space skipping").
         float span = min(float(coarse) * dt, end - t);
-        CloudLayer column;
-        float ph;
-        vec3 local;
         ++viewCount;
-        if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), lod, column, ph, local) <= -emptyMargin * span / growthStart) {
-          t += span;
-          continue;
+        if (cloud.weatherReach.x > 0.0) {
+          // A map with sharp coverage: skip a span only where no coverage lies within its reach. A
+          // span's points map within span (1 + |skew|) of each other on the map (the skew shifts the
+          // columns with height); 0.9 leaves room for the map's tangent-plane placement.
+          span = min(span, 0.9 * cloud.weatherReach.x / (1.0 + cloud.weatherReach.y));
+          vec3 q = origin + dir * (t + xi * span);
+          vec2 uv = cloudWeatherCoordinate(q, cloud.weatherPlanet.x, cloud.weatherRegion.xy, cloud.weatherRegion.zw, layer.wind_offset);
+          if (textureLod(weatherReachMap, uv, 0.0).r <= 0.0) {
+            t += span;
+            continue;
+          }
+        } else {
+          CloudLayer column;
+          float ph;
+          vec3 local;
+          if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), lod, column, ph, local) <= -emptyMargin * span / growthStart) {
+            t += span;
+            continue;
+          }
         }
         emptyRun = 0;  // cloud ahead: march this stretch in fine steps
       }

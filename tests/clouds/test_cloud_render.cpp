@@ -170,12 +170,10 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
 }
 
 // The shipped thunderstorm scene (one cumulonimbus layer 1-12 km at the type's full extinction, its
-// storm cells 10-50 km away) converges too, but slowly: the empty-space test's margin does not bound
-// the simulated map's coverage, which jumps within a cell or two (docs/clouds.md, "Left for later";
-// 7.4 % at 64 steps without skipping). Measured at 160x90
-// (session 13, jitter off, against 1024 steps): 24.8 % at 64 steps, 8.9 % at 128, 3.4 % at 256, 1.5 %
-// at 512; here at 80x45 (measured 24.2 / 8.1 / 2.9 % at 64 / 128 / 256). With jitter that error becomes noise: two stills differ by ~27 % per pixel,
-// the speckle of docs/clouds.md "Left for later".
+// storm cells 10-50 km away, the weather simulation's map with 200 m cells) converges as the view
+// steps grow. Measured at 80x45 against 1024 steps: 7.35 / 3.39 / 1.47 % at 64 / 128 / 256 steps with
+// the empty-space test on the coverage reach (session 13), against 24.2 / 8.1 / 2.9 % with the margin
+// test, whose bound the map's coverage jumps broke (docs/clouds.md "Empty-space skipping").
 TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.jitter = false;
@@ -190,9 +188,9 @@ TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
     errors.push_back(relativeRmsLuminance(img, truth));
     std::printf("thunderstorm, view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps, errors.back());
   }
+  EXPECT_LT(errors[0], 0.12);
   EXPECT_LT(errors[1], 0.6 * errors[0]);
   EXPECT_LT(errors[2], 0.6 * errors[1]);
-  EXPECT_LT(errors[2], 0.06);
 }
 
 // Empty-space skipping must not lose cloud (docs/clouds.md, "Empty-space skipping"): the default march

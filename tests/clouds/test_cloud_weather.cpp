@@ -330,5 +330,32 @@ TEST_F(CloudWeather, TheMapTypeShapesTheGpuColumnsToo) {
   EXPECT_GT(std::abs(cbAsCumulus - stratus), 0.02);
 }
 
+// coverageReach (the empty-space test's map for sharp coverage): one covered texel of a 64^2 map of
+// 200 m texels reaches every texel whose centre lies within the radius plus one texel in x and y (a
+// square window, wrapping at the edges), and no other; a bilinear read between texel centres within
+// the radius of the covered point is positive.
+TEST(CloudWeatherReach, OneCoveredTexelReachesItsWindow) {
+  CloudWeatherMap m = uniformCloudWeatherMap(glm::vec4(0.0f, 0.0f, 0.0f, 5000.0f), 64);
+  m.width_m = m.height_m = 64 * 200.0;
+  m.map.at(1, 30)[0] = 0.7f;
+  const Image reach = coverageReach(m, 1000.0);  // 5 texels + 1
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const int dx = std::min(std::abs(x - 1), 64 - std::abs(x - 1)), dy = std::abs(y - 30);
+      EXPECT_EQ(reach.at(x, y)[0], dx <= 6 && dy <= 6 ? 0.7f : 0.0f) << x << " " << y;
+    }
+  EXPECT_EQ(reach.at(60, 30)[0], 0.7f);  // wraps: 5 texels west of column 1
+  // Any read point within 1000 m of the covered texel's centre: its four bilinear neighbours all hold it.
+  CloudWeatherMap r = m;
+  r.map = Image(64, 64, 4);
+  for (size_t i = 0; i < reach.pixelCount(); ++i) r.map.pixels[4 * i] = reach.pixels[i];
+  const glm::dvec2 centre((1 + 0.5) / 64.0, (30 + 0.5) / 64.0);
+  for (double a = 0.0; a < 6.283; a += 0.1)
+    for (double d : {0.0, 500.0, 999.0}) {
+      const glm::dvec2 uv = centre + d / (64 * 200.0) * glm::dvec2(std::cos(a), std::sin(a));
+      EXPECT_NEAR(r.sample(uv).x, 0.7, 1e-6) << a << " " << d;
+    }
+}
+
 }  // namespace
 }  // namespace firmament
