@@ -32,7 +32,7 @@ struct CloudBlock {
   float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
   float layers[kMaxLayers * 5][4];
   float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
-  float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test) and the map's skew's size, unused x2
+  float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m), unused x2
 };
 static_assert(sizeof(CloudBlock) == (19 + kMaxLayers * 6) * 16);
 
@@ -134,6 +134,11 @@ CloudPass::CloudPass(gpu::Context& context)
 void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   if (map.map.channels != 4 || map.map.pixelCount() == 0) throw std::logic_error("CloudPass: weather map must be RGBA");
   const uint32_t w = uint32_t(map.map.width), h = uint32_t(map.map.height);
+  const glm::dvec4 region(map.width_m, map.height_m, map.skew.x, map.skew.y);
+  const uint8_t sharp = map.sharpCoverage ? 1 : 0;
+  const uint64_t hash = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
+                              fnv1a(&sharp, 1, fnv1a(&region, sizeof(region), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h))))));
+  if (weatherImage_ && hash == weatherHash_) return;  // the same map as the last frame's: nothing to upload
   if (!weatherImage_ || weatherImage_.width() != w || weatherImage_.height() != h)
     weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
   weatherImage_.uploadFloats(map.map.pixels);
@@ -144,9 +149,8 @@ void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   if (!weatherReach_ || weatherReach_.width() != rw || weatherReach_.height() != rh)
     weatherReach_ = gpu::Image(context_, {rw, rh, 1, gpu::Format::R32F, false, true, "cloud weather reach"});
   weatherReach_.uploadFloats(reach.pixels);
-  weatherRegion_ = glm::dvec4(map.width_m, map.height_m, map.skew.x, map.skew.y);
-  weatherHash_ = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
-                       fnv1a(&weatherRegion_, sizeof(weatherRegion_), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h)))));
+  weatherRegion_ = region;
+  weatherHash_ = hash;
   weatherTexels_ = map.map.pixels;
 }
 
@@ -224,7 +228,10 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
-  put(b.weatherReach, reachRadius_, glm::length(glm::dvec2(weatherRegion_.z, weatherRegion_.w)), 0.0, 0.0);
+  // The longest coarse span on a reach map: a span's points lie within span (1 + |skew|) of each other
+  // on the map (the skew shifts the columns with height); 0.9 leaves room for the map's tangent-plane
+  // placement.
+  put(b.weatherReach, reachRadius_, 0.9 * reachRadius_ / (1.0 + glm::length(glm::dvec2(weatherRegion_.z, weatherRegion_.w))), 0.0, 0.0);
   put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0), std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
   // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
   // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
@@ -481,9 +488,9 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   }
   history_.usable = k > 1;
   history_.settings = std::move(settingsKey);
+  if (history_.weather != weatherHash_) history_.weatherTexels = weatherTexels_;  // copied only when it changed
   history_.weather = weatherHash_;
   history_.weatherRegion = weatherRegion_;
-  if (history_.weatherTexels != weatherTexels_) history_.weatherTexels = weatherTexels_;
   history_.view = view;
   history_.windOffset = windOffset;
 }

@@ -31,7 +31,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: the light-step falloff's start T0 (lightStepsFalloffStart)
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
   vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
-  vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: |skew| of the map (m per m)
+  vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: the longest coarse span on it (m)
 } cloud;
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)
@@ -82,6 +82,11 @@ int lightStepsForLength(int lightSteps, float length_m, float thickness_m, int m
   return clamp(int(ceil(float(lightSteps) * length_m / max(thickness_m, 1.0))), minimum, 4 * lightSteps);
 }
 
+// p's texture coordinate on the weather map (and its coverage reach) for `layer` (common/cloud_weather.glsl).
+vec2 weatherCoordinateAt(CloudLayer layer, vec3 p) {
+  return cloudWeatherCoordinate(p, cloud.weatherPlanet.x, cloud.weatherRegion.xy, cloud.weatherRegion.zw, layer.wind_offset);
+}
+
 // The shape-only density SN_nd at p before its clamp (cloudShapeSignedDensity: -1 outside the shell or
 // where the weather map has no cloud, <= 0 outside the shape); the weather map's column layer, ph and
 // local are returned for the detail.
@@ -93,7 +98,7 @@ float shapeSignedDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer co
   ph = cloudHeightFraction(layer, r);
   if (ph <= 0.0 || ph >= 1.0) return -1.0;
   float planet = cloud.weatherPlanet.x;
-  vec4 weather = textureLod(weatherMap, cloudWeatherCoordinate(p, planet, cloud.weatherRegion.xy, cloud.weatherRegion.zw, layer.wind_offset), 0.0);
+  vec4 weather = textureLod(weatherMap, weatherCoordinateAt(layer, p), 0.0);
   bool empty;
   column = cloudColumnLayer(layer, weather, planet, empty);
   if (empty) return -1.0;

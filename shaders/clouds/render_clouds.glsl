@@ -262,13 +262,10 @@ void main() {
         float span = min(float(coarse) * dt, end - t);
         ++viewCount;
         if (cloud.weatherReach.x > 0.0) {
-          // A map with sharp coverage: skip a span only where no coverage lies within its reach. A
-          // span's points map within span (1 + |skew|) of each other on the map (the skew shifts the
-          // columns with height); 0.9 leaves room for the map's tangent-plane placement.
-          span = min(span, 0.9 * cloud.weatherReach.x / (1.0 + cloud.weatherReach.y));
-          vec3 q = origin + dir * (t + xi * span);
-          vec2 uv = cloudWeatherCoordinate(q, cloud.weatherPlanet.x, cloud.weatherRegion.xy, cloud.weatherRegion.zw, layer.wind_offset);
-          if (textureLod(weatherReachMap, uv, 0.0).r <= 0.0) {
+          // A map with sharp coverage: skip a span only where no coverage lies within its reach (the
+          // span no longer than the block's bound, so that all its points lie within the reach).
+          span = min(span, cloud.weatherReach.y);
+          if (textureLod(weatherReachMap, weatherCoordinateAt(layer, origin + dir * (t + xi * span)), 0.0).r <= 0.0) {
             t += span;
             continue;
           }
