@@ -114,16 +114,21 @@ float shapeDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer column, 
   return max(shapeSignedDensityAt(layer, p, lod, column, ph, local), 0.0);
 }
 
+// The full density d from the shape-only density `base` and what shapeSignedDensityAt returned with it.
+float densityFromShape(CloudLayer column, float ph, vec3 local, float base, vec2 lod) {
+  if (base <= 0.0) return 0.0;
+  vec2 curl = textureLod(curlNoise, cloudCurlCoordinate(column, local), 0.0).xy;
+  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(column, local, curl, ph), lod.y);
+  return cloudDensity(column, ph, base, detail);
+}
+
 // The full density d at p.
 float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
   CloudLayer column;
   float ph;
   vec3 local;
   float base = shapeDensityAt(layer, p, lod, column, ph, local);
-  if (base <= 0.0) return 0.0;
-  vec2 curl = textureLod(curlNoise, cloudCurlCoordinate(column, local), 0.0).xy;
-  vec4 detail = textureLod(detailNoise, cloudDetailCoordinate(column, local, curl, ph), lod.y);
-  return cloudDensity(column, ph, base, detail);
+  return densityFromShape(column, ph, local, base, lod);
 }
 
 // Optical depth towards the sun (or any unit direction `sun`) from p through `layer`, over `length_m`

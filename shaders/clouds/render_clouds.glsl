@@ -222,68 +222,57 @@ void main() {
     float h = 0.0, d = 0.0;
     vec3 p = origin;
     vec2 lod = vec2(0.0);
+    // lavapipe (gallivm) runs every branch of a loop body under a mask, whichever way its lanes go
+    // (docs/gpu.md), so an iteration costs all the code in it: each iteration evaluates the shape at
+    // one point, for the coarse test or for the fine sample, and the per-layer set-up waits for (b).
     while (lightTransmittance > earlyExit && budget > 0) {
       if (!(t < end)) {  // the next segment
         if (++s >= count) break;
         layer = layerAt(segmentLayer[s]);
-        if (segmentLayer[s] != phaseLayer) {
-          // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
-          phaseLayer = segmentLayer[s];
-          float a = cloud.layers[5 * phaseLayer + 2].w;
-          float b = cloud.layers[5 * phaseLayer + 3].w;
-          float c = cloud.layers[5 * phaseLayer + 4].w;
-          diffusion = cloud.layerLighting[phaseLayer].x;
-          texels = noiseTexels(layer);
-          for (int o = 0; o < octaves; ++o) {
-            phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
-                                        cloud.phase.z, cloud.phaseLight.x, nu);
-            octaveScale[o] = cloudOctaveExtinctionScale(a, o);
-            octaveWeight[o] = cloudOctaveWeight(b, o);
-            octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
-          }
-        }
+        texels = noiseTexels(layer);
         t = segments[s].x;
         end = segments[s].y;
         emptyRun = coarse;  // start in coarse mode
         continue;
       }
-      --budget;
       float dt = (uniformSteps ? uniformStep : cloudViewStep(t, baseStep, growthStart, maxFactor)) *
                  cloudLowTransmittanceStepFactor(lightTransmittance, lowTransmittanceStart, lowTransmittanceMax);
       // The noise LOD: the view step's length is the lookups' footprint (the march samples no finer),
       // times the scale; the coarse test, the sample and its light marches read the same levels.
       lod = noiseLod(texels, lodScale * dt);
-      if (emptyRun >= coarse && coarse > 1) {
-        // Coarse step: the shape-only density at one point of the next `coarse` fine steps. The span is
-        // skipped only if that point lies outside the shape by more than a margin proportional to the
-        // span (a Lipschitz-like bound: the unsampled rest of the span cannot reach the shape). Without
-        // the margin a span whose point just missed a thin fringe lost it, which dimmed a sunset's
-        // forward-scattering edges by 16 % (docs/clouds.md, "Empty-space skipping").
-        float span = min(float(coarse) * dt, end - t);
-        ++viewCount;
-        if (cloud.weatherReach.x > 0.0) {
-          // A map with sharp coverage: skip a span only where no coverage lies within its reach (the
-          // span no longer than the block's bound, so that all its points lie within the reach).
-          span = min(span, cloud.weatherReach.y);
-          if (textureLod(weatherReachMap, weatherCoordinateAt(layer, origin + dir * (t + xi * span)), 0.0).r <= 0.0) {
-            t += span;
-            continue;
-          }
-        } else {
-          CloudLayer column;
-          float ph;
-          vec3 local;
-          if (shapeSignedDensityAt(layer, origin + dir * (t + xi * span), lod, column, ph, local) <= -emptyMargin * span / growthStart) {
-            t += span;
-            continue;
-          }
-        }
-        emptyRun = 0;  // cloud ahead: march this stretch in fine steps
-      }
-      h = min(dt, end - t);
-      p = origin + dir * (t + xi * h);
-      d = densityAt(layer, p, lod);
+      // Coarse step: the shape-only density at one point of the next `coarse` fine steps. The span is
+      // skipped only if that point lies outside the shape by more than a margin proportional to the
+      // span (a Lipschitz-like bound: the unsampled rest of the span cannot reach the shape). Without
+      // the margin a span whose point just missed a thin fringe lost it, which dimmed a sunset's
+      // forward-scattering edges by 16 % (docs/clouds.md, "Empty-space skipping"). A map with sharp
+      // coverage: a span is skipped only where no coverage lies within its reach (the span no longer
+      // than the block's bound, so that all its points lie within the reach).
+      bool coarseStep = emptyRun >= coarse && coarse > 1;
+      bool byReach = coarseStep && cloud.weatherReach.x > 0.0;
+      float span = !coarseStep ? min(dt, end - t) : byReach ? min(min(float(coarse) * dt, end - t), cloud.weatherReach.y)
+                                                             : min(float(coarse) * dt, end - t);
+      vec3 q = origin + dir * (t + xi * span);
       ++viewCount;
+      CloudLayer column;
+      float ph;
+      vec3 local;
+      float shape = -1.0;
+      if (!byReach) shape = shapeSignedDensityAt(layer, q, lod, column, ph, local);
+      if (coarseStep) {
+        bool skip = byReach ? textureLod(weatherReachMap, weatherCoordinateAt(layer, q), 0.0).r <= 0.0
+                            : shape <= -emptyMargin * span / growthStart;
+        if (skip) {
+          --budget;
+          t += span;
+          continue;
+        }
+        emptyRun = 0;  // cloud ahead: march this stretch in fine steps (the next iteration)
+        continue;
+      }
+      --budget;  // a coarse test that found cloud and its first fine step count as one, as they always have
+      h = span;
+      p = q;
+      d = densityFromShape(column, ph, local, max(shape, 0.0), lod);
       if (d <= 0.0) {
         ++emptyRun;
         t += h;
@@ -294,6 +283,21 @@ void main() {
       break;
     }
     if (!found) break;
+    if (segmentLayer[s] != phaseLayer) {
+      // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
+      phaseLayer = segmentLayer[s];
+      float a = cloud.layers[5 * phaseLayer + 2].w;
+      float b = cloud.layers[5 * phaseLayer + 3].w;
+      float c = cloud.layers[5 * phaseLayer + 4].w;
+      diffusion = cloud.layerLighting[phaseLayer].x;
+      for (int o = 0; o < octaves; ++o) {
+        phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
+                                    cloud.phase.z, cloud.phaseLight.x, nu);
+        octaveScale[o] = cloudOctaveExtinctionScale(a, o);
+        octaveWeight[o] = cloudOctaveWeight(b, o);
+        octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
+      }
+    }
 
     // (b) The sample's light.
     {
