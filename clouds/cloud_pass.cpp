@@ -105,6 +105,18 @@ void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) { put(out, v.x, v
 
 }  // namespace
 
+uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
+  const CloudMarchSettings& m = settings.march;
+  if (!m.specializeMarch) return 0xffffffffu;
+  uint32_t features = 0;
+  if (m.lightThroughOtherLayers && settings.layers.size() > 1) features |= 1u;
+  if (m.beerShadowMap) features |= 2u;
+  if (weatherReach) features |= 4u;
+  if (m.lightStepsFalloff > 0.0) features |= 8u;
+  if (m.lightCone > 0.0) features |= 16u;
+  return features;
+}
+
 CloudPass::CloudPass(gpu::Context& context)
     : context_(context),
       noise_(context),
@@ -401,8 +413,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   shadowBaked_ = false;
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
-  if (!pipelines_[variant])
-    pipelines_[variant] = std::make_unique<gpu::ComputePipeline>(
+  const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0);
+  std::unique_ptr<gpu::ComputePipeline>& pipeline = pipelines_[{int(variant), features}];
+  if (!pipeline)
+    pipeline = std::make_unique<gpu::ComputePipeline>(
         context_, gpu::PipelineDesc{kVariants[variant],
                                     {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
@@ -411,13 +425,14 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                                      gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage},
-                                    sizeof(Push)});
+                                    sizeof(Push),
+                                    {features}});
   if (!volume && !aerialPlaceholder_)
     aerialPlaceholder_ = gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
     const AtmosphereLuts::Batch& lut = luts.batch(batch);
     const gpu::Image& aerialImage = volume ? *aerial->volumes[batch] : aerialPlaceholder_;
-    commands.bind(*pipelines_[variant], {lut.block,
+    commands.bind(*pipeline, {lut.block,
                                          {lut.transmittance, luts.linearClamp()},
                                          {lut.multipleScattering, luts.linearClamp()},
                                          {*skyIrradiance[batch], luts.linearClamp()},

@@ -2,7 +2,9 @@
 // The cloud ray-march pass (shaders/clouds/render_clouds.comp): cloud layers lit by the sun through the
 // atmosphere's transmittance table and by the sky irradiance table, composited over a rendered sky
 // image in place (docs/clouds.md). One dispatch per spectral batch of the atmosphere tables.
+#include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -37,6 +39,12 @@ struct CloudAerialVolume {
   std::vector<const gpu::Image*> volumes;
   double maxDistance_m = 0.0;
 };
+
+// The march's specialization constant kMarchFeatures (shaders/clouds/render_clouds.glsl): a bit per
+// option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
+// shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
+// light cone. All bits with march.specializeMarch off.
+uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
 
 class CloudPass {
  public:
@@ -100,9 +108,10 @@ class CloudPass {
 
   gpu::Context& context_;
   CloudNoise noise_;
-  // clouds/render_clouds (volume), render_clouds_ap_march, render_clouds_ap_off: created on first use
-  // (indexed by AerialPerspective).
-  std::unique_ptr<gpu::ComputePipeline> pipelines_[3];
+  // clouds/render_clouds (volume), render_clouds_ap_march, render_clouds_ap_off, each specialized for
+  // the options a frame uses (cloudMarchFeatures): created on first use, keyed by AerialPerspective and
+  // the features.
+  std::map<std::pair<int, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> pipelines_;
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)

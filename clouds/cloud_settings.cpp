@@ -124,6 +124,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (emptySpaceMargin) march.emptySpaceMargin = *emptySpaceMargin;
   if (deltaScaling) march.deltaScaling = *deltaScaling;
   if (jitter) march.jitter = *jitter;
+  if (specializeMarch) march.specializeMarch = *specializeMarch;
   if (resolutionDivisor) march.resolutionDivisor = *resolutionDivisor;
   if (temporalUpdate) march.temporalUpdate = *temporalUpdate;
   if (temporalClamp) march.temporalClamp = *temporalClamp;

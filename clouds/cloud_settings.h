@@ -121,6 +121,11 @@ struct CloudMarchSettings {
   int shadowMapSize = 256;            // texels per side
   int shadowMapSteps = 128;           // march steps per texel
   double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
+  // Compile out of the march the options this frame does not use (clouds/cloud_pass.cpp
+  // cloudMarchFeatures; a specialization constant of render_clouds.glsl): lavapipe runs every branch
+  // under a mask, so unused options cost time. Off: one general pipeline, the same image bit for bit
+  // (test CloudRender.SpecializedMarchMatchesTheGeneralOne).
+  bool specializeMarch = true;
   bool jitter = true;              // blue-noise jitter of the sample positions
   // Noise LOD by distance (the "LOD mips"): a view sample and its light marches read the shape
   // and detail textures' mip level log2(s h / texel) (the nearest level, at least 0), h the view step
@@ -223,6 +228,7 @@ struct CloudOverrides {
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;
+  std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };
 

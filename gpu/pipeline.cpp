@@ -68,6 +68,12 @@ ComputePipeline::ComputePipeline(Context& context, const PipelineDesc& desc) : c
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < desc.specialization.size(); ++i)
+      entries.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
+    VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), desc.specialization.size() * sizeof(uint32_t),
+                                        desc.specialization.data()};
+    if (!entries.empty()) info.stage.pSpecializationInfo = &specialization;
     info.layout = layout_;
     FIRMAMENT_VK(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &info, nullptr, &pipeline_));
     context.pipelineCache().markDirty();

@@ -1,7 +1,7 @@
 #pragma once
 // A compute pipeline made from a registered shader, the kinds of its descriptor bindings (set 0,
 // bindings 0..n-1 in order, filled with push descriptors at record time) and its push-constant size.
-// Built through the Context's on-disk pipeline cache.
+// Built through the Context's on-disk pipeline cache, optionally with specialization constants.
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -24,6 +24,10 @@ struct PipelineDesc {
   std::string shader;                 // registry name, "atmosphere/transmittance"
   std::vector<BindingType> bindings;  // binding i of set 0 has type bindings[i]
   uint32_t pushConstantSize = 0;      // bytes, a multiple of 4, at most 128
+  // Specialization constants: value i for `layout(constant_id = i)` (32-bit each: uint, int, bool or
+  // float bits). The driver compiles the shader with them as constants, so code they switch off is
+  // removed; a shader's constants not listed keep their defaults.
+  std::vector<uint32_t> specialization;
 };
 
 class ComputePipeline {

@@ -141,8 +141,12 @@ float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
 float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, float length_m, float cone, vec2 lod) {
   const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
                                  vec2(0.95, 0.05), vec2(-0.45, 0.62));
-  vec3 t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
-  vec3 t2 = cross(sun, t1);
+  // Without a cone (a compile-time 0 in the march's specialization) the sideways part is compiled out.
+  vec3 t1 = vec3(0.0), t2 = vec3(0.0);
+  if (cone > 0.0) {
+    t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
+    t2 = cross(sun, t1);
+  }
   m = clamp(m, 1, n);
   int q = n / m;
   int r = n - q * m;  // the last r groups take q + 1 steps
@@ -154,8 +158,12 @@ float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m,
     float f = float(last) / float(n);
     float next = length_m * f * f;
     float mid = 0.5 * (previous + next);
-    vec2 k = kernel[g % 6] * cone * mid;
-    tau += layer.extinction * densityAt(layer, p + sun * mid + t1 * k.x + t2 * k.y, lod) * (next - previous);
+    vec3 q = p + sun * mid;
+    if (cone > 0.0) {
+      vec2 k = kernel[g % 6] * cone * mid;
+      q = q + t1 * k.x + t2 * k.y;
+    }
+    tau += layer.extinction * densityAt(layer, q, lod) * (next - previous);
     previous = next;
   }
   return tau;

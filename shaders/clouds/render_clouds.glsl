@@ -66,6 +66,18 @@ layout(push_constant) uniform Push {
 } push;
 
 const int kMaxSegments = 16;  // two stretches per layer, 8 layers
+
+// The frame's features (clouds/cloud_pass.cpp, cloudMarchFeatures), a specialization constant: the
+// code of an option the frame does not use is compiled out. lavapipe runs both sides of every branch
+// under a mask and a loop's body at least once, so a single-layer frame without a shadow map still paid
+// for the light through the other layers and the shadow-map lookup (docs/gpu.md). The runtime flags
+// stay: a feature compiled in but switched off by them behaves as before. Default: everything.
+layout(constant_id = 0) const uint kMarchFeatures = 0xffffffffu;
+const bool kOtherLayers = (kMarchFeatures & 1u) != 0u;  // light through the other layers (flag 256, layers > 1)
+const bool kShadowMap = (kMarchFeatures & 2u) != 0u;    // the Beer shadow map
+const bool kWeatherReach = (kMarchFeatures & 4u) != 0u; // empty-space skipping by the coverage reach map
+const bool kLightFalloff = (kMarchFeatures & 8u) != 0u; // light samples by transmittance
+const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's cone
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -167,17 +179,17 @@ void main() {
   float earlyExit = cloud.march.y;
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
-  float cone = cloud.march.w;
+  float cone = kLightCone ? cloud.march.w : 0.0;
   bool uniformSteps = (cloud.steps.w & 8) != 0;
   bool lightToExit = (cloud.steps.w & 16) != 0;
   bool msZenith = (cloud.steps.w & 32) != 0;
   bool msScattered = (cloud.steps.w & 64) != 0;
   bool lightScaled = (cloud.steps.w & 128) != 0;
-  bool throughOthers = (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
+  bool throughOthers = kOtherLayers && (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
   bool exitRemainder = (cloud.steps.w & 512) != 0;
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
   float lightFalloffStart = cloud.aerial.w;  // CloudMarchSettings::lightStepsFalloffStart T0
-  float lightFalloff = cloud.phaseLight.z;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
+  float lightFalloff = kLightFalloff ? cloud.phaseLight.z : 0.0;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -248,7 +260,7 @@ void main() {
       // coverage: a span is skipped only where no coverage lies within its reach (the span no longer
       // than the block's bound, so that all its points lie within the reach).
       bool coarseStep = emptyRun >= coarse && coarse > 1;
-      bool byReach = coarseStep && cloud.weatherReach.x > 0.0;
+      bool byReach = kWeatherReach && coarseStep && cloud.weatherReach.x > 0.0;
       float span = !coarseStep ? min(dt, end - t) : byReach ? min(min(float(coarse) * dt, end - t), cloud.weatherReach.y)
                                                              : min(float(coarse) * dt, end - t);
       vec3 q = origin + dir * (t + xi * span);
@@ -313,9 +325,14 @@ void main() {
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       if (sunVisible) {
         // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
-        vec3 shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
-                                            cloud.shadowCentre.w, cloud.shadowAxisU.w);
-        if (cloud.shadowSize.z != 0 && cloudShadowCovers(shadow)) {
+        vec3 shadow = vec3(0.0);
+        bool onShadowMap = false;
+        if (kShadowMap) {
+          shadow = cloudShadowCoordinate(p, cloud.shadowCentre.xyz, cloud.shadowAxisU.xyz, cloud.shadowAxisV.xyz, sun,
+                                         cloud.shadowCentre.w, cloud.shadowAxisU.w);
+          onShadowMap = cloud.shadowSize.z != 0 && cloudShadowCovers(shadow);
+        }
+        if (onShadowMap) {
           tau = cloudShadowOpticalDepth(textureLod(shadowMap, shadow.xy, 0.0), shadow.z);
           lightCount += 1u;
         } else {

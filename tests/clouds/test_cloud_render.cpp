@@ -8,6 +8,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image_metrics.h"
+#include "clouds/cloud_pass.h"
 #include "sky/render_plan.h"
 #include "tests/clouds/cloud_test_support.h"
 #include "tests/support/test_paths.h"
@@ -136,6 +137,54 @@ TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
         }
       }
   EXPECT_GT(darker, 0);  // the other layer does shadow somewhere (the check can fail)
+}
+
+// The march compiled for the options a frame uses (cloudMarchFeatures, a specialization constant)
+// gives the same image, bit for bit, as the general one with every option compiled in: single layer,
+// two layers (light through the other one), the Beer shadow map, light samples by transmittance, the
+// light cone, and a weather simulation's map (the coverage reach).
+TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
+  SkyRenderOptions base = test::smallCloudOptions();
+  base.clouds.viewSteps = 32;
+  base.clouds.lightSteps = 4;
+  const std::string twoLayers = test::cloudSceneText(
+      R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.7}, {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6})");
+  struct Case {
+    std::string name;
+    Scene scene;
+    SkyRenderOptions options;
+    uint32_t features;
+  };
+  std::vector<Case> cases;
+  const Scene single = test::cloudScene({"/camera/width=32", "/camera/height=18"});
+  cases.push_back({"single layer", single, base, 0u});
+  cases.push_back({"two layers", test::cloudScene({"/camera/width=32", "/camera/height=18"}, twoLayers), base, 1u});
+  SkyRenderOptions shadow = base;
+  shadow.clouds.beerShadowMap = true;
+  cases.push_back({"shadow map", single, shadow, 2u});
+  SkyRenderOptions falloff = base;
+  falloff.clouds.lightStepsFalloff = 1.0;
+  cases.push_back({"light falloff", single, falloff, 8u});
+  SkyRenderOptions cone = base;
+  cone.clouds.lightCone = 0.15;
+  cases.push_back({"light cone", single, cone, 16u});
+  cases.push_back({"weather map", Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
+                                              {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=40", "/camera/height=23"}),
+                   base, 4u});
+  for (Case& c : cases) {
+    CloudSettings settings = CloudSettings::fromScene(c.scene);
+    c.options.clouds.apply(settings.march);
+    EXPECT_EQ(cloudMarchFeatures(settings, c.features == 4u), c.features) << c.name;
+    c.options.clouds.specializeMarch = true;
+    const RenderResult specialized = test::cloudRenderer().render(c.scene, c.options);
+    c.options.clouds.specializeMarch = false;
+    const RenderResult general = test::cloudRenderer().render(c.scene, c.options);
+    size_t cloudy = 0;
+    for (size_t i = 0; i < general.clouds.pixelCount(); ++i) cloudy += general.clouds.pixels[4 * i + 3] < 0.95f;
+    EXPECT_GT(cloudy, general.clouds.pixelCount() / 10) << c.name;  // there is cloud to compare
+    ASSERT_EQ(specialized.clouds.pixels, general.clouds.pixels) << c.name;
+    ASSERT_EQ(specialized.image.pixels, general.image.pixels) << c.name;
+  }
 }
 
 // Relative RMS luminance difference of two cloud layers.

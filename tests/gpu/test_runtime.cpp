@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -150,6 +151,35 @@ struct FillPush {
   float offset;
   uint32_t count;
 };
+
+// Specialization constants reach the shader: the defaults without any, the given values with them
+// (a float by its bits, an int, a bool), and two pipelines of one shader keep their own.
+TEST_F(GpuRuntimeTest, SpecializationConstantsReachTheShader) {
+  Context& gpu = context();
+  const uint32_t count = 1000;
+  auto run = [&](std::vector<uint32_t> constants) {
+    ComputePipeline kernel(gpu, {.shader = "gpu/specialization_test", .bindings = {BindingType::StorageBuffer},
+                                 .pushConstantSize = sizeof(uint32_t), .specialization = std::move(constants)});
+    Buffer values(gpu, count * 4, BufferUsage::Storage, MemoryLocation::Device, "specialized");
+    CommandList list(gpu);
+    list.bind(kernel, {values});
+    list.pushConstants(count);
+    list.dispatch((count + 63) / 64, 1, 1, "specialized");
+    list.submitAndWait();
+    return values.download<float>();
+  };
+  const float scale = 0.25f;
+  uint32_t scaleBits = 0;
+  std::memcpy(&scaleBits, &scale, sizeof(scaleBits));
+  const std::vector<float> defaults = run({});
+  const std::vector<float> scaled = run({scaleBits, uint32_t(int32_t(-7))});
+  const std::vector<float> negated = run({scaleBits, 3u, 1u});
+  for (uint32_t i = 0; i < count; i += 37) {
+    ASSERT_EQ(defaults[i], float(i)) << i;
+    ASSERT_EQ(scaled[i], float(i) * 0.25f - 7.0f) << i;
+    ASSERT_EQ(negated[i], -(float(i) * 0.25f + 3.0f)) << i;
+  }
+}
 
 TEST_F(GpuRuntimeTest, FillKernelAndTimestamps) {
   Context& gpu = context();
