@@ -114,6 +114,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
   if (weatherReach) features |= 4u;
   if (m.lightStepsFalloff > 0.0) features |= 8u;
   if (m.lightCone > 0.0) features |= 16u;
+  if (settings.layers.size() > 1) features |= 32u;
   return features;
 }
 

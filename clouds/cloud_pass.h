@@ -43,7 +43,7 @@ struct CloudAerialVolume {
 // The march's specialization constant kMarchFeatures (shaders/clouds/render_clouds.glsl): a bit per
 // option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
 // shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
-// light cone. All bits with march.specializeMarch off.
+// light cone, 32 more than one layer. All bits with march.specializeMarch off.
 uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
 
 class CloudPass {

@@ -78,6 +78,7 @@ const bool kShadowMap = (kMarchFeatures & 2u) != 0u;    // the Beer shadow map
 const bool kWeatherReach = (kMarchFeatures & 4u) != 0u; // empty-space skipping by the coverage reach map
 const bool kLightFalloff = (kMarchFeatures & 8u) != 0u; // light samples by transmittance
 const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's cone
+const bool kSeveralLayers = (kMarchFeatures & 32u) != 0u;  // more than one layer (else layer 0 throughout)
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -228,6 +229,7 @@ void main() {
   float t = 0.0, end = 0.0;    // the march's distance along the ray, and where the segment ends
   int emptyRun = coarse;       // fine steps without cloud since the last cloud (>= coarse: coarse mode)
   CloudLayer layer = layerAt(0);
+  if (!kSeveralLayers) texels = noiseTexels(layer);
   while (true) {
     // (a) The next sample with cloud: its step h, point p, density d and noise LOD.
     bool found = false;
@@ -240,8 +242,10 @@ void main() {
     while (lightTransmittance > earlyExit && budget > 0) {
       if (!(t < end)) {  // the next segment
         if (++s >= count) break;
-        layer = layerAt(segmentLayer[s]);
-        texels = noiseTexels(layer);
+        if (kSeveralLayers) {
+          layer = layerAt(segmentLayer[s]);
+          texels = noiseTexels(layer);
+        }
         t = segments[s].x;
         end = segments[s].y;
         emptyRun = coarse;  // start in coarse mode
@@ -295,9 +299,9 @@ void main() {
       break;
     }
     if (!found) break;
-    if (segmentLayer[s] != phaseLayer) {
+    if ((kSeveralLayers ? segmentLayer[s] : 0) != phaseLayer) {
       // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
-      phaseLayer = segmentLayer[s];
+      phaseLayer = kSeveralLayers ? segmentLayer[s] : 0;
       float a = cloud.layers[5 * phaseLayer + 2].w;
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
@@ -372,9 +376,15 @@ void main() {
         sunAttenuation[o] = cloudOctaveTransmittance(octaveScale[o], tau, msScattered);
         if (topWeight * octaveTopBound[o] > sunAttenuation[o]) upCanWin = true;
       }
-      if (msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin) {
-        vec3 up = p / rp;
-        int upSteps = max(lightSteps / 2, 2);
+      // One march straight up serves the way from the top (lightSteps / 2 samples, at least 2, where it
+      // can win) and the diffusion floor below (2 samples, where only the floor needs it): lavapipe runs
+      // a loop's body at least once even where no lane needs it, so two such loops cost more than one.
+      vec3 up = p / rp;
+      bool wantTop = msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin;
+      bool wantFloor = diffusion > 0.0 && octaves > 1 && sunVisible && muS > 0.0;
+      const int floorSteps = 2;
+      int upSteps = wantTop ? max(lightSteps / 2, 2) : wantFloor ? floorSteps : 0;
+      if (upSteps > 0) {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
       }
@@ -382,19 +392,14 @@ void main() {
       for (int o = 1; o < octaves; ++o) {
         float attenuation = sunAttenuation[o];
         // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
-        if (tauUp >= 0.0) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered));
+        if (wantTop) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
       // through p, straight up and down, its weight the layer's ms_d; the better of it and the octaves.
-      if (diffusion > 0.0 && octaves > 1 && sunVisible && muS > 0.0) {
-        // Two samples each way: the floor is a smooth function of the depths (linear in them when thick).
-        vec3 up = p / rp;
-        const int floorSteps = 2;
-        if (tauUp < 0.0) {
-          tauUp = transportScale * opticalDepthToSun(layer, p, up, floorSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
-          lightCount += uint(floorSteps);
-        }
+      if (wantFloor) {
+        // Two samples down (and tau_up above): the floor is a smooth function of the depths (linear in
+        // them when thick).
         float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
         lightCount += uint(floorSteps);
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a

@@ -78,11 +78,21 @@ SHARED_INLINE Real cloudHeightFraction(CloudLayer layer, Real r) {
 //   stratocumulus: a slab with a 10 % base ramp and a top fading over the upper 40 % (lumpy tops);
 //   cirrus:        a thin sheet with soft edges over the middle of its shell.
 // The slab and sheet gradients follow Schneider 2015's per-type height gradients.
+//
+// Every type's profile is a base ramp over [0, rampTop] times a fade over [fadeFrom, 1]; the types differ
+// only in the two bounds, so they are picked as numbers rather than by branches (lavapipe runs every
+// branch of a shader, whichever its lanes take).
+SHARED_INLINE Real cloudShapeRamps(Real ph, Real rampTop, Real fadeFrom) {
+  return cloudSaturate(cloudRemap(ph, 0.0, rampTop, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, fadeFrom, 1.0, 1.0, 0.0));
+}
+// The stratiform profiles alone (stratus, or stratocumulus for kind == kCloudStratocumulus).
+SHARED_INLINE Real cloudSlabShapeProfile(int kind, Real ph) {
+  return cloudShapeRamps(ph, 0.1, kind == kCloudStratocumulus ? 0.6 : 0.9);
+}
 SHARED_INLINE Real cloudShapeProfile(int kind, Real ph, Real coverage, Real anvil) {
-  if (kind == kCloudStratus) return cloudSaturate(cloudRemap(ph, 0.0, 0.1, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
-  if (kind == kCloudStratocumulus) return cloudSaturate(cloudRemap(ph, 0.0, 0.1, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, 0.6, 1.0, 1.0, 0.0));
-  if (kind == kCloudCirrus) return cloudSaturate(cloudRemap(ph, 0.0, 0.3, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, 0.7, 1.0, 1.0, 0.0));
-  Real sa = cloudSaturate(cloudRemap(ph, 0.0, 0.07, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, 0.2, 1.0, 1.0, 0.0));
+  Real rampTop = kind == kCloudCirrus ? 0.3 : (kind == kCloudStratus || kind == kCloudStratocumulus) ? 0.1 : 0.07;
+  Real fadeFrom = kind == kCloudStratus ? 0.9 : kind == kCloudStratocumulus ? 0.6 : kind == kCloudCirrus ? 0.7 : 0.2;
+  Real sa = cloudShapeRamps(ph, rampTop, fadeFrom);
   if (kind == kCloudCumulonimbus) {
     Real exponent = cloudSaturate(cloudRemap(ph, 0.65, 0.95, 1.0, 1.0 - anvil * coverage));  // eq. 17
     sa = sa > 0.0 ? pow(sa, exponent) : 0.0;
@@ -96,14 +106,16 @@ SHARED_INLINE Real cloudShapeProfile(int kind, Real ph, Real coverage, Real anvi
 //     wispy at the base, dense towards the top; the cumulonimbus anvil is thinned by eq. 18,
 //       DA_anvil = DA L_i(1, SAT(R(sqrt(p_h), 0.4, 0.95, 1, 0.2)), a_a);
 //   stratus, stratocumulus, cirrus: nearly uniform (0.6 at the base rising to 1 over 20 %), soft top.
-SHARED_INLINE Real cloudDensityProfile(int kind, Real ph, Real anvil) {
-  if (kind == kCloudCumulus || kind == kCloudCumulonimbus) {
-    Real da = ph * cloudSaturate(cloudRemap(ph, 0.0, 0.15, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
-    if (kind == kCloudCumulonimbus)
-      da *= mix(1.0, cloudSaturate(cloudRemap(sqrt(max(ph, 0.0)), 0.4, 0.95, 1.0, 0.2)), anvil);  // eq. 18
-    return da;
-  }
+// The stratiform (and cirrus) profile alone.
+SHARED_INLINE Real cloudSlabDensityProfile(Real ph) {
   return cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0)) * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
+}
+SHARED_INLINE Real cloudDensityProfile(int kind, Real ph, Real anvil) {
+  bool convective = kind == kCloudCumulus || kind == kCloudCumulonimbus;
+  Real base = convective ? ph * cloudSaturate(cloudRemap(ph, 0.0, 0.15, 0.0, 1.0)) : cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0));
+  Real da = base * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
+  if (kind == kCloudCumulonimbus) da *= mix(1.0, cloudSaturate(cloudRemap(sqrt(max(ph, 0.0)), 0.4, 0.95, 1.0, 0.2)), anvil);  // eq. 18
+  return da;
 }
 
 // The column's profiles: the kind's, blended towards the stratiform kind's by the weather map's type
@@ -111,12 +123,12 @@ SHARED_INLINE Real cloudDensityProfile(int kind, Real ph, Real anvil) {
 SHARED_INLINE Real cloudLayerShapeProfile(CloudLayer layer, Real ph) {
   Real sa = layer.stratiform < 1.0 ? cloudShapeProfile(layer.kind, ph, layer.coverage, layer.anvil) : 0.0;
   if (layer.stratiform <= 0.0) return sa;
-  return mix(sa, cloudShapeProfile(layer.stratiform_kind, ph, layer.coverage, 0.0), layer.stratiform);
+  return mix(sa, cloudSlabShapeProfile(layer.stratiform_kind, ph), layer.stratiform);
 }
 SHARED_INLINE Real cloudLayerDensityProfile(CloudLayer layer, Real ph) {
   Real da = layer.stratiform < 1.0 ? cloudDensityProfile(layer.kind, ph, layer.anvil) : 0.0;
   if (layer.stratiform <= 0.0) return da;
-  return mix(da, cloudDensityProfile(layer.stratiform_kind, ph, 0.0), layer.stratiform);
+  return mix(da, cloudSlabDensityProfile(ph), layer.stratiform);
 }
 
 // Position (planet-centred, m) -> shape texture coordinate (in periods; the sampler repeats). The

@@ -158,7 +158,7 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   std::vector<Case> cases;
   const Scene single = test::cloudScene({"/camera/width=32", "/camera/height=18"});
   cases.push_back({"single layer", single, base, 0u});
-  cases.push_back({"two layers", test::cloudScene({"/camera/width=32", "/camera/height=18"}, twoLayers), base, 1u});
+  cases.push_back({"two layers", test::cloudScene({"/camera/width=32", "/camera/height=18"}, twoLayers), base, 33u});
   SkyRenderOptions shadow = base;
   shadow.clouds.beerShadowMap = true;
   cases.push_back({"shadow map", single, shadow, 2u});
