@@ -174,15 +174,6 @@ float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_
   return opticalDepthToSunGrouped(layer, p, sun, n, n, length_m, cone, lod);
 }
 
-// Optical depth along the unit direction `dir` from p over the stretch [t0, t1] (distances along it)
-// of `layer`: n equal steps, sampled at their midpoints.
-float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, int n, vec2 lod) {
-  float h = (stretch.y - stretch.x) / float(n);
-  float sum = 0.0;
-  for (int j = 0; j < n; ++j) sum += densityAt(layer, p + dir * (stretch.x + (float(j) + 0.5) * h), lod);
-  return layer.extinction * h * sum;
-}
-
 // Optical depth of every layer but `own` along the sun ray from p (radius r, mu_s = cos of the sun's
 // zenith at p), up to maxLength: a deck above shadows the one below (docs/clouds.md "Light through
 // other layers"). Each stretch the ray spends in another shell gets lightSteps equal steps per layer
@@ -192,19 +183,31 @@ float opticalDepthOnStretch(CloudLayer layer, vec3 p, vec3 dir, vec2 stretch, in
 float opticalDepthThroughOtherLayers(int own, vec3 p, float r, float muS, vec3 sun, int lightSteps, float maxLength,
                                      vec2 lod, inout uint count) {
   float tau = 0.0;
-  for (int i = 0; i < cloud.image.w; ++i) {
-    if (i == own) continue;
+  // The other layers in order, without an iteration for `own`, and both stretches of a layer in one
+  // loop: lavapipe runs a skipped iteration's code and an empty loop's body once anyway (docs/gpu.md).
+  for (int j = 0; j + 1 < cloud.image.w; ++j) {
+    int i = j < own ? j : j + 1;
     CloudLayer other = layerAt(i);
     vec2 first, second;
     cloudShellSegments(r, muS, other.bottom_radius, other.top_radius, maxLength, first, second);
-    for (int k = 0; k < 2; ++k) {
-      vec2 stretch = k == 0 ? first : second;
-      float length_m = stretch.y - stretch.x;
-      if (!(length_m > 0.0)) continue;
-      int n = lightStepsForLength(lightSteps, length_m, other.top_radius - other.bottom_radius, 2);
-      tau += opticalDepthOnStretch(other, p, sun, stretch, n, lod);
-      count += uint(n);
+    float thickness = other.top_radius - other.bottom_radius;
+    float length1 = first.y - first.x, length2 = second.y - second.x;
+    int n1 = length1 > 0.0 ? lightStepsForLength(lightSteps, length1, thickness, 2) : 0;
+    int n2 = length2 > 0.0 ? lightStepsForLength(lightSteps, length2, thickness, 2) : 0;
+    // n equal steps over each stretch, sampled at their midpoints.
+    float h1 = n1 > 0 ? length1 / float(n1) : 0.0;
+    float h2 = n2 > 0 ? length2 / float(n2) : 0.0;
+    float sum1 = 0.0, sum2 = 0.0;
+    for (int k = 0; k < n1 + n2; ++k) {
+      bool inFirst = k < n1;
+      float along = inFirst ? first.x + (float(k) + 0.5) * h1 : second.x + (float(k - n1) + 0.5) * h2;
+      float density = densityAt(other, p + sun * along, lod);
+      if (inFirst) sum1 += density;
+      else sum2 += density;
     }
+    if (n1 > 0) tau += other.extinction * h1 * sum1;
+    if (n2 > 0) tau += other.extinction * h2 * sum2;
+    count += uint(n1 + n2);
   }
   return tau;
 }
