@@ -85,14 +85,20 @@ SHARED_INLINE Real cloudHeightFraction(CloudLayer layer, Real r) {
 SHARED_INLINE Real cloudShapeRamps(Real ph, Real rampTop, Real fadeFrom) {
   return cloudSaturate(cloudRemap(ph, 0.0, rampTop, 0.0, 1.0)) * cloudSaturate(cloudRemap(ph, fadeFrom, 1.0, 1.0, 0.0));
 }
-// The stratiform profiles alone (stratus, or stratocumulus for kind == kCloudStratocumulus).
+// The two bounds per type (cumulonimbus: cumulus's, before its anvil exponent).
+SHARED_INLINE Real cloudShapeRampTop(int kind) {
+  return kind == kCloudCirrus ? 0.3 : (kind == kCloudStratus || kind == kCloudStratocumulus) ? 0.1 : 0.07;
+}
+SHARED_INLINE Real cloudShapeFadeFrom(int kind) {
+  return kind == kCloudStratus ? 0.9 : kind == kCloudStratocumulus ? 0.6 : kind == kCloudCirrus ? 0.7 : 0.2;
+}
+// A profile without the cumulonimbus anvil: the stratiform blend's (stratus or stratocumulus), whose
+// kind never has one.
 SHARED_INLINE Real cloudSlabShapeProfile(int kind, Real ph) {
-  return cloudShapeRamps(ph, 0.1, kind == kCloudStratocumulus ? 0.6 : 0.9);
+  return cloudShapeRamps(ph, cloudShapeRampTop(kind), cloudShapeFadeFrom(kind));
 }
 SHARED_INLINE Real cloudShapeProfile(int kind, Real ph, Real coverage, Real anvil) {
-  Real rampTop = kind == kCloudCirrus ? 0.3 : (kind == kCloudStratus || kind == kCloudStratocumulus) ? 0.1 : 0.07;
-  Real fadeFrom = kind == kCloudStratus ? 0.9 : kind == kCloudStratocumulus ? 0.6 : kind == kCloudCirrus ? 0.7 : 0.2;
-  Real sa = cloudShapeRamps(ph, rampTop, fadeFrom);
+  Real sa = cloudSlabShapeProfile(kind, ph);
   if (kind == kCloudCumulonimbus) {
     Real exponent = cloudSaturate(cloudRemap(ph, 0.65, 0.95, 1.0, 1.0 - anvil * coverage));  // eq. 17
     sa = sa > 0.0 ? pow(sa, exponent) : 0.0;
@@ -106,14 +112,15 @@ SHARED_INLINE Real cloudShapeProfile(int kind, Real ph, Real coverage, Real anvi
 //     wispy at the base, dense towards the top; the cumulonimbus anvil is thinned by eq. 18,
 //       DA_anvil = DA L_i(1, SAT(R(sqrt(p_h), 0.4, 0.95, 1, 0.2)), a_a);
 //   stratus, stratocumulus, cirrus: nearly uniform (0.6 at the base rising to 1 over 20 %), soft top.
-// The stratiform (and cirrus) profile alone.
-SHARED_INLINE Real cloudSlabDensityProfile(Real ph) {
-  return cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0)) * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
-}
+// Every type: a base part times the soft top SAT(R(p_h, 0.9, 1, 1, 0)), chosen by select (as above).
+SHARED_INLINE Real cloudDensityTopFade(Real ph) { return cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0)); }
+SHARED_INLINE Real cloudSlabDensityBase(Real ph) { return cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0)); }
+// The stratiform (and cirrus) profile alone: the stratiform blend's.
+SHARED_INLINE Real cloudSlabDensityProfile(Real ph) { return cloudSlabDensityBase(ph) * cloudDensityTopFade(ph); }
 SHARED_INLINE Real cloudDensityProfile(int kind, Real ph, Real anvil) {
   bool convective = kind == kCloudCumulus || kind == kCloudCumulonimbus;
-  Real base = convective ? ph * cloudSaturate(cloudRemap(ph, 0.0, 0.15, 0.0, 1.0)) : cloudSaturate(cloudRemap(ph, 0.0, 0.2, 0.6, 1.0));
-  Real da = base * cloudSaturate(cloudRemap(ph, 0.9, 1.0, 1.0, 0.0));
+  Real base = convective ? ph * cloudSaturate(cloudRemap(ph, 0.0, 0.15, 0.0, 1.0)) : cloudSlabDensityBase(ph);
+  Real da = base * cloudDensityTopFade(ph);
   if (kind == kCloudCumulonimbus) da *= mix(1.0, cloudSaturate(cloudRemap(sqrt(max(ph, 0.0)), 0.4, 0.95, 1.0, 0.2)), anvil);  // eq. 18
   return da;
 }
