@@ -33,8 +33,33 @@ struct CloudBlock {
   float layers[kMaxLayers * 5][4];
   float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
   float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m), unused x2
+  float otherLayerMap[4];              // the other layers' map: extent E (m), rho0 (m), texels per side, tiles (0: none)
+  float otherLayerOrigin[4];           // its plane's origin (cloud frame, m); w = the first row this bake writes
+  float otherLayerAxisU[4];            // its axis u; w = the bake writes every w-th row from there
+  float otherLayerAxisV[4];            // its axis v
+  float otherLayerSun[4];              // the sun direction its lines follow
 };
-static_assert(sizeof(CloudBlock) == (19 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (24 + kMaxLayers * 6) * 16);
+
+// The other layers' map (clouds/other_layer_map.glsl): its log warp's rho0, the distance from the camera
+// within which texels shrink no further (a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
+constexpr double kOtherLayerMapRho0_m = 1000.0;
+// In a sequence the map is re-baked a quarter of its rows per frame (interleaved), so a texel is at most
+// 4 frames old, while the clouds' drift over those frames stays under kOtherLayerMapDrift_m, the sun
+// within kOtherLayerMapSunMove_rad of the map's (a line's crossing ~10 km away moves ~1 m) and the camera
+// within kOtherLayerMapCameraMove_m of its origin (the extent E is the march's reach plus that);
+// otherwise, and for every still, all of it.
+constexpr int kOtherLayerMapRowStride = 4;
+constexpr double kOtherLayerMapDrift_m = 4.0;
+constexpr double kOtherLayerMapSunMove_rad = 1e-4;
+constexpr double kOtherLayerMapCameraMove_m = 1000.0;
+
+// Whether this frame bakes the other layers' map: light through the other layers, from the map, with
+// more than one layer.
+bool usesOtherLayerMap(const CloudSettings& settings) {
+  const CloudMarchSettings& m = settings.march;
+  return m.lightThroughOtherLayers && m.otherLayerMap && settings.layers.size() > 1;
+}
 
 struct Push {
   gpu::TileDispatch tiles;
@@ -109,7 +134,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
   const CloudMarchSettings& m = settings.march;
   if (!m.specializeMarch) return 0xffffffffu;
   uint32_t features = 0;
-  if (m.lightThroughOtherLayers && settings.layers.size() > 1) features |= 1u;
+  if (m.lightThroughOtherLayers && settings.layers.size() > 1) features |= 1u | (m.otherLayerMap ? 64u : 128u);
   if (m.beerShadowMap) features |= 2u;
   if (weatherReach) features |= 4u;
   if (m.lightStepsFalloff > 0.0) features |= 8u;
@@ -128,6 +153,13 @@ CloudPass::CloudPass(gpu::Context& context)
                              gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
                             0}),
+      bakeOtherLayers_(context, {"clouds/bake_other_layers",
+                                 {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                                  gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
+                                 0}),
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
@@ -268,6 +300,12 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
+  put(b.otherLayerMap, m.maxDistance_m + kOtherLayerMapCameraMove_m, kOtherLayerMapRho0_m, double(std::max(m.otherLayerMapSize, 1)),
+      usesOtherLayerMap(settings) ? double((layers.size() + 3) / 4) : 0.0);
+  put(b.otherLayerOrigin, otherLayerMap_.origin, double(otherLayerMap_.firstRow));
+  put(b.otherLayerAxisU, otherLayerMap_.u, double(otherLayerMap_.rowStride));
+  put(b.otherLayerAxisV, otherLayerMap_.v);
+  put(b.otherLayerSun, otherLayerMap_.sun);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
@@ -281,6 +319,10 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     std::fill(k.sunDirection, k.sunDirection + 3, 0.0f);
     std::fill(std::begin(k.shadowAxisU), std::end(k.shadowAxisU), 0.0f);
     std::fill(std::begin(k.shadowAxisV), std::end(k.shadowAxisV), 0.0f);
+    std::fill(std::begin(k.otherLayerOrigin), std::end(k.otherLayerOrigin), 0.0f);
+    std::fill(std::begin(k.otherLayerAxisU), std::end(k.otherLayerAxisU), 0.0f);
+    std::fill(std::begin(k.otherLayerAxisV), std::end(k.otherLayerAxisV), 0.0f);
+    std::fill(std::begin(k.otherLayerSun), std::end(k.otherLayerSun), 0.0f);
     for (size_t i = 0; i < layers.size(); ++i) std::fill(k.layers[5 * i + 3], k.layers[5 * i + 3] + 3, 0.0f);
     const auto* bytes = reinterpret_cast<const uint8_t*>(&k);
     settingsKey.assign(bytes, bytes + sizeof(k));
@@ -317,6 +359,39 @@ void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const g
                               shadowImage_});
   const uint32_t groups = (shadowSize + 7) / 8;
   commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
+  commands.barrier();
+}
+
+void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                                    const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                                    gpu::CommandList& commands) {
+  const bool bake = usesOtherLayerMap(settings);
+  const int size = settings.march.otherLayerMapSize;
+  if (bake && (size < 8 || size > 4096))
+    throw InputError("clouds: other_layer_map_size " + std::to_string(size) + "; allowed: 8 to 4096 texels");
+  const uint32_t width = bake ? uint32_t(size) : 1u;
+  const uint32_t height = bake ? uint32_t(size) * uint32_t((settings.layers.size() + 3) / 4) : 1u;
+  if (!otherLayerImage_ || otherLayerImage_.width() != width || otherLayerImage_.height() != height)
+    otherLayerImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
+  if (!bake) return;
+  // The same first 13 bindings as the shadow bake (the frames bound, unread); the 14th is the map.
+  const AtmosphereLuts::Batch& lut = luts.batch(0);
+  commands.bind(bakeOtherLayers_, {lut.block,
+                                   {lut.transmittance, luts.linearClamp()},
+                                   {lut.multipleScattering, luts.linearClamp()},
+                                   {*skyIrradiance[0], luts.linearClamp()},
+                                   {noise_.shape(), noise_.linearRepeat()},
+                                   {noise_.detail(), noise_.linearRepeat()},
+                                   {noise_.curl(), noise_.linearRepeat()},
+                                   {noise_.blueNoise(), noise_.nearestRepeat()},
+                                   skyFrame,
+                                   cloudFrames_[current_],
+                                   block_,
+                                   counters_,
+                                   {weatherImage_, noise_.linearRepeat()},
+                                   otherLayerImage_});
+  const uint32_t rows = (height - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
+  commands.dispatch((width + 7) / 8, (rows + 7) / 8, 1, "clouds/bake_other_layers");
   commands.barrier();
 }
 
@@ -387,6 +462,30 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const bool sameWeather = history_.weather == weatherHash_ ||
                            weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
   reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
+  // The other layers' map: a quarter of its rows when the frame continues one that baked it with the
+  // same settings and the clouds, the sun and the camera moved little (kOtherLayerMapRowStride); else
+  // all of it, placed at the camera and the sun of this frame.
+  if (usesOtherLayerMap(settings)) {
+    const glm::dvec3 sun = glm::normalize(view.sunDirection);
+    const double sunMove = std::acos(std::clamp(glm::dot(sun, otherLayerMap_.sun), -1.0, 1.0));
+    const bool partial = continueSequence && otherLayerMap_.baked && history_.settings == settingsKey && sameWeather &&
+                         sunMove < kOtherLayerMapSunMove_rad &&
+                         glm::length(view.cameraPosition - otherLayerMap_.origin) < kOtherLayerMapCameraMove_m &&
+                         glm::length(windOffset - history_.windOffset) * kOtherLayerMapRowStride < kOtherLayerMapDrift_m;
+    if (partial) {
+      otherLayerMap_.firstRow = (otherLayerMap_.firstRow + 1) % kOtherLayerMapRowStride;
+      otherLayerMap_.rowStride = kOtherLayerMapRowStride;
+    } else {
+      otherLayerMap_.origin = view.cameraPosition;
+      otherLayerMap_.sun = sun;
+      otherLayerMap_.u = glm::normalize(std::abs(sun.z) < 0.9 ? glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(sun, glm::dvec3(1.0, 0.0, 0.0)));
+      otherLayerMap_.v = glm::cross(sun, otherLayerMap_.u);
+      otherLayerMap_.firstRow = 0;
+      otherLayerMap_.rowStride = 1;
+    }
+    uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
+  }
+  otherLayerMap_.baked = usesOtherLayerMap(settings);
   int offset[2] = {0, 0};
   if (reprojected_) {
     const int n = int(temporalFrame_ % uint32_t(k * k));
@@ -412,6 +511,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   allocateShadowImage(m);
   if (m.beerShadowMap && !shadowBaked_) recordBake(luts, skyIrradiance, skyFrame, commands);
   shadowBaked_ = false;
+  recordOtherLayerMap(settings, luts, skyIrradiance, skyFrame, commands);
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
   const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0);
@@ -425,7 +525,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                                      gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::SampledImage},
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                                     sizeof(Push),
                                     {features}});
   if (!volume && !aerialPlaceholder_)
@@ -450,7 +550,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          {lut.multipleScatteringAnisotropy, luts.linearClamp()},
                                          {aerialImage, luts.linearClamp()},
                                          depth_,
-                                         {weatherReach_, noise_.linearRepeat()}});
+                                         {weatherReach_, noise_.linearRepeat()},
+                                         {otherLayerImage_, luts.linearClamp()}});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
     Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,

@@ -43,7 +43,8 @@ struct CloudAerialVolume {
 // The march's specialization constant kMarchFeatures (shaders/clouds/render_clouds.glsl): a bit per
 // option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
 // shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
-// light cone, 32 more than one layer. All bits with march.specializeMarch off.
+// light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
+// crossings (one of the two with bit 1). All bits with march.specializeMarch off.
 uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
 
 class CloudPass {
@@ -103,6 +104,11 @@ class CloudPass {
   std::vector<uint8_t> uploadBlock(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                                    double aerialDistance_m);
   void allocateShadowImage(const CloudMarchSettings& march);
+  // Bakes the other layers' map when the frame uses it (clouds/other_layer_map.glsl; a 1x1 placeholder
+  // otherwise), a barrier after.
+  void recordOtherLayerMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                           const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                           gpu::CommandList& commands);
   void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                   gpu::CommandList& commands);
 
@@ -114,10 +120,12 @@ class CloudPass {
   std::map<std::pair<int, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> pipelines_;
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
+  gpu::ComputePipeline bakeOtherLayers_;  // clouds/bake_other_layers
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
   gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)
   gpu::ComputePipeline resolve_;        // clouds/temporal_resolve (step 2)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
+  gpu::Image otherLayerImage_;  // the other layers' map (1x1 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
@@ -147,6 +155,12 @@ class CloudPass {
   std::vector<float> weatherTexels_;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
+  // The other layers' map's placement (clouds/other_layer_map.glsl) and the rows the coming bake writes.
+  struct OtherLayerMap {
+    bool baked = false;  // the last record() baked it (all or some rows)
+    glm::dvec3 origin{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, sun{0.0, 0.0, 1.0};
+    int firstRow = 0, rowStride = 1;
+  } otherLayerMap_;
   bool shadowBaked_ = false;  // recordShadowMap() ran for the coming record()
   ShadowPlacement shadowPlacement_;
 };

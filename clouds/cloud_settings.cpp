@@ -146,6 +146,8 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lowTransmittanceStepStart) march.lowTransmittanceStepStart = *lowTransmittanceStepStart;
   if (lowTransmittanceStepMax) march.lowTransmittanceStepMax = *lowTransmittanceStepMax;
   if (otherLayerLightStepsScale) march.otherLayerLightStepsScale = *otherLayerLightStepsScale;
+  if (otherLayerMap) march.otherLayerMap = *otherLayerMap;
+  if (otherLayerMapSize) march.otherLayerMapSize = *otherLayerMapSize;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

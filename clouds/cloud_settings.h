@@ -80,6 +80,13 @@ struct CloudMarchSettings {
   // The other layers' crossings take lightSteps x this scale per layer thickness of each (2 to 4 times
   // that); bench rows measure 2 (docs/clouds.md "Light through other layers").
   double otherLayerLightStepsScale = 1.0;
+  // The other layers' crossings from a map baked once per frame (clouds/other_layer_map.glsl): every
+  // point on one line along the sun shares its crossing of a layer above, so a 2D map of the lines
+  // (a plane through the camera, perpendicular to the sun, log-warped out to maxDistance_m) holds them
+  // all, marched with the same steps. Off: each lit sample marches the crossings itself (sessions
+  // 9-14). docs/clouds.md "The other layers' map".
+  bool otherLayerMap = true;
+  int otherLayerMapSize = 256;  // texels per side
   double lightMaxLength_m = 40000.0;
   // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
   // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
@@ -225,6 +232,8 @@ struct CloudOverrides {
   std::optional<double> lowTransmittanceStepStart;
   std::optional<double> lowTransmittanceStepMax;
   std::optional<double> otherLayerLightStepsScale;
+  std::optional<bool> otherLayerMap;
+  std::optional<int> otherLayerMapSize;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

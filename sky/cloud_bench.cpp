@@ -89,6 +89,9 @@ std::vector<Scenario> scenarios(bool quick) {
   return list;
 }
 
+// The scenario's cloud layers (rows about the other layers are left out with one).
+size_t scenarioLayerCount(const Scenario& sc) { return Scene::parse(sc.text, "<bench " + sc.name + ">").at("/clouds/layers").size(); }
+
 // The scenarios a run covers (CloudBenchConfig::scenario: one of them; InputError for another name).
 std::vector<Scenario> selectedScenarios(const CloudBenchConfig& config) {
   std::vector<Scenario> kept;
@@ -121,6 +124,7 @@ struct KnobValue {
   // tracer over the row's own scene.
   bool ownReference = false;
   bool everyScenario = false;  // also for the scenarios without the full sweep (Scenario::fullSweep)
+  bool severalLayers = false;  // only for scenarios with more than one layer (the same image otherwise)
 };
 
 // A sequence at 30 frames per second ending exactly at the scenario's view: the camera turns 7.5
@@ -293,6 +297,14 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"single_scattering", "1 octave, 2x samples across the other layers", {"/clouds/lighting/ms_octaves=1"},
                  [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, true});
   }
+  // The other layers' map (clouds/other_layer_map.glsl): off (each lit sample marches the crossings,
+  // sessions 9-14) and its size. Only for scenarios with another layer (two_layers).
+  if (!quick) {
+    v.push_back({"other_layer_map", "off (crossings marched)", {}, [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }});
+    for (int size : {128, 512})
+      v.push_back({"other_layer_map", std::to_string(size) + " texels", {}, [size](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = size; }});
+    for (size_t i = v.size() - 3; i < v.size(); ++i) v[i].severalLayers = true;
+  }
   v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
   v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }, true});
@@ -349,7 +361,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"light_through_other_layers", "2x samples across the other layers"},
       {"single_scattering", "1 octave, 2x samples across the other layers"},
-      {"single_scattering", "1 octave, own layer only"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
+      {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
+      {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
       {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
@@ -369,7 +382,8 @@ double cloudPassMs(const RenderResult& r) {
   double ms = 0.0;
   for (const auto& t : r.timings)
     if (t.label == "clouds/render_clouds" || t.label == "clouds/upsample_clouds" || t.label == "clouds/temporal_resolve" ||
-        t.label == "sky/aerial_perspective_volume" || t.label == "clouds/bake_shadow_map" || t.label == "sky/cloud_light_shafts")
+        t.label == "sky/aerial_perspective_volume" || t.label == "clouds/bake_shadow_map" || t.label == "sky/cloud_light_shafts" ||
+        t.label == "clouds/bake_other_layers")
       ms += t.milliseconds;
   return ms;
 }
@@ -463,6 +477,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
     for (const KnobValue& k : knobValues(config.quick)) {
       if (!sc.fullSweep && !k.everyScenario) continue;
+      if (k.severalLayers && scenarioLayerCount(sc) < 2) continue;
       SkyRenderOptions o = base;
       k.apply(o);
       TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + k.knob + " " + k.value + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats,
@@ -531,6 +546,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
     int temporalUpdate = 1;  // > 1: the reprojected frames of a sequence ending at the view (sequenceOf)
     bool everyScenario = false;  // also for the scenarios without the full sweep
     bool quick = true;           // also in --quick runs
+    bool severalLayers = false;  // only for scenarios with more than one layer
   };
   const std::vector<Setting> settings = {
       {"default", [](SkyRenderOptions&) {}, 1, true},
@@ -551,7 +567,13 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
-      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false},
+      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false, true},
+      {"other_layer_map off (crossings marched)", [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }, 1, true, false, true},
+      {"other_layer_map off (crossings marched), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }, 16, true, false, true},
+      {"other_layer_map 128 texels", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 128; }, 1, true, false, true},
+      {"other_layer_map 128 texels, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 128; }, 16, true, false, true},
+      {"other_layer_map 512 texels", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 512; }, 1, true, false, true},
+      {"other_layer_map 512 texels, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 512; }, 16, true, false, true},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},
@@ -571,6 +593,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
     for (const Setting& setting : settings) {
       if (!sc.fullSweep && !setting.everyScenario) continue;
       if (config.quick && !setting.quick) continue;
+      if (setting.severalLayers && scenarioLayerCount(sc) < 2) continue;
       SkyRenderOptions o;
       setting.apply(o);
       const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + setting.name + ">", sizeOverrides, o, setting.temporalUpdate,
@@ -609,7 +632,7 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       " renders after a warm-up (one render on a CPU device, 0.5 s of renders on a GPU so its clocks are up); temporal_update rows: the median of the 2 N reprojected frames of a sequence of 2 N + 1 at 30 "
       "frames per second ending at the view (the camera turning 7.5 deg/s, the wind 10 m/s; its first frame marches every "
       "pixel), compared at its last frame. cloud ms: clouds/render_clouds + clouds/upsample_clouds + clouds/temporal_resolve + "
-      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts; the light_shafts row's difference "
+      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers; the light_shafts row's difference "
       "from the defaults is the shafts' effect (no reference has them); "
       "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "

@@ -1,4 +1,6 @@
 #include "sky/render_plan.h"
+
+#include "clouds/cloud_settings.h"
 #include "sky/scene_cloud_medium.h"
 
 namespace firmament {
@@ -95,6 +97,16 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                "the light march reads the sun's optical depth through all layers from it", true});
       else
         plan.omitted.push_back({"clouds/bake_shadow_map", "/clouds/shadow_map off: the light march alone"});
+      const size_t layerCount = scene.at("/clouds/layers").size();
+      const CloudMarchSettings defaults;
+      const bool throughOthers = options.cloudLightThroughOtherLayers.value_or(defaults.lightThroughOtherLayers);
+      if (layerCount > 1 && throughOthers && options.cloudOtherLayerMap.value_or(defaults.otherLayerMap))
+        plan.passes.push_back({"clouds/bake_other_layers", "the other layers' optical depth to the sun along each sun line (a quarter of its rows per frame in a sequence)",
+                               "a layer above shadows the one below: the light march reads the crossings from it", true});
+      else
+        plan.omitted.push_back({"clouds/bake_other_layers", layerCount < 2      ? "one layer: no other layer shadows it"
+                                                            : !throughOthers ? "light through the other layers off"
+                                                                             : "the other layers' map off: the light march crosses them"});
       const bool shafts = options.cloudLightShafts ? *options.cloudLightShafts : scene.boolean("/clouds/light_shafts");
       if (shadowMap && shafts && aerial == AerialPerspective::Volume)
         plan.passes.push_back({"sky/cloud_light_shafts", "the sky image with the clouds' shadows in the air (light shafts)",

@@ -32,6 +32,9 @@ struct PlanOptions {
   std::optional<bool> cloudLightShafts;
   // Replaces the scene's /clouds/temporal_update (SkyRenderOptions::clouds.temporalUpdate).
   std::optional<int> cloudTemporalUpdate;
+  // The march's defaults unless set (SkyRenderOptions::clouds.lightThroughOtherLayers, .otherLayerMap).
+  std::optional<bool> cloudLightThroughOtherLayers;
+  std::optional<bool> cloudOtherLayerMap;
 };
 
 struct PlannedPass {

@@ -85,6 +85,8 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.cloudShadowMap = options.clouds.beerShadowMap;
   plan.cloudLightShafts = options.clouds.lightShafts;
   plan.cloudTemporalUpdate = options.clouds.temporalUpdate;
+  plan.cloudLightThroughOtherLayers = options.clouds.lightThroughOtherLayers;
+  plan.cloudOtherLayerMap = options.clouds.otherLayerMap;
   return plan;
 }
 

@@ -39,6 +39,7 @@
 #include "common/dispatch.glsl"
 #include "clouds/cloud_sampling.glsl"
 #include "common/cloud_shadow.glsl"
+#include "clouds/other_layer_map.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
@@ -79,6 +80,8 @@ const bool kWeatherReach = (kMarchFeatures & 4u) != 0u; // empty-space skipping 
 const bool kLightFalloff = (kMarchFeatures & 8u) != 0u; // light samples by transmittance
 const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's cone
 const bool kSeveralLayers = (kMarchFeatures & 32u) != 0u;  // more than one layer (else layer 0 throughout)
+const bool kOtherLayerMap = (kMarchFeatures & 64u) != 0u;     // the other layers' light from their map (when baked)
+const bool kOtherLayerMarch = (kMarchFeatures & 128u) != 0u;  // the other layers' light by marching their crossings
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -86,6 +89,9 @@ layout(set = 0, binding = 15) uniform sampler3D aerialVolume;  // the aerial-per
 // The largest map coverage within cloud.weatherReach.x metres (clouds/cloud_weather_map.h
 // coverageReach), for a map with sharp coverage (linear, repeat; 1x1 and unread otherwise).
 layout(set = 0, binding = 17) uniform sampler2D weatherReachMap;
+// The other layers' optical depth to the sun (clouds/other_layer_map.glsl; linear, clamp; 1x1 and unread
+// without it).
+layout(set = 0, binding = 18) uniform sampler2D otherLayerMap;
 
 // Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
 // integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
@@ -355,7 +361,12 @@ void main() {
           tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, cone, lod);
           lightCount += uint(m);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
-          if (throughOthers) tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherLayerSteps, lightLength, lod, lightCount);
+          if (throughOthers) {
+            if (kOtherLayerMap && cloud.otherLayerMap.w > 0.0)  // baked this frame (its samples counted by the bake)
+              tauOther = otherLayerMapOpticalDepth(otherLayerMap, segmentLayer[s], p, rp);
+            else if (kOtherLayerMarch)
+              tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherLayerSteps, lightLength, lod, lightCount);
+          }
         }
         tauOther *= transportScale;
         tau = transportScale * tau + tauOther;

@@ -1,0 +1,74 @@
+// other_layer_map.glsl: the other layers' optical depth towards the sun, baked once per frame
+// (clouds/bake_other_layers.comp) and read by the march (render_clouds.glsl) in place of marching
+// every other layer's crossing for every lit sample (docs/clouds.md "The other layers' map").
+//
+// Why it can be a 2D map: the sun's rays are parallel, so every point on one line along the sun shares
+// that line. A point p below layer j's base (r_p < R_b) leaves the sphere R_b once along +sun; from
+// there on its radius only grows (past the line's periapsis), so its way to the sun crosses layer j
+// exactly once and wholly: from radius R_b to R_t on the line's sunward side. That optical depth
+// depends on the line alone. A layer below p is left out: its shadow needs the sun below p's horizon,
+// where the marched crossings (lightMaxLength_m, 40 km) found it only within a few hundred metres of a
+// layer's top at the edge of twilight.
+//
+// Where: a plane through c, the camera of its last full bake, perpendicular to that bake's sun, axes u
+// and v (cloud.otherLayerOrigin, AxisU, AxisV, Sun: a sequence re-bakes a quarter of the rows per frame
+// on the same placement, clouds/cloud_pass.cpp). A point's line is where it projects on the plane,
+// (a_u, a_v) = ((p - c).u, (p - c).v). Each axis maps to the texel coordinate s in [-1, 1] by a log warp,
+//   s = sign(a) ln(1 + |a| / rho0) / ln(1 + E / rho0),
+// so a texel's side grows like (|a| + rho0): in proportion to the distance, as a pixel's footprint
+// does, out to E, the march's largest distance plus the camera's largest move from c (no point the march
+// reaches projects farther). Texels
+// hold up to 4 layers (rgba = layers 4t .. 4t + 3 in tile t); the tiles are stacked in v.
+#ifndef FIRMAMENT_OTHER_LAYER_MAP_GLSL
+#define FIRMAMENT_OTHER_LAYER_MAP_GLSL
+
+// cloud.otherLayerMap: x = E (m), y = rho0 (m), z = texels per side N, w = tiles (0: no map).
+
+// The plane coordinate a (m, per axis) of texel coordinate s in [-1, 1].
+vec2 otherLayerMapPlanePoint(vec2 s) {
+  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
+  return sign(s) * rho0 * (exp(abs(s) * log(1.0 + E / rho0)) - 1.0);
+}
+
+// The texel coordinate s in [-1, 1] (clamped) of plane coordinate a (m).
+vec2 otherLayerMapTexelCoordinate(vec2 a) {
+  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
+  return clamp(sign(a) * log(1.0 + abs(a) / rho0) / log(1.0 + E / rho0), -1.0, 1.0);
+}
+
+// The side of texel s in metres (the larger axis): |da/ds| 2 / N = (|a| + rho0) ln(1 + E / rho0) 2 / N.
+float otherLayerMapTexelSize(vec2 a) {
+  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
+  return (max(abs(a.x), abs(a.y)) + rho0) * log(1.0 + E / rho0) * 2.0 / cloud.otherLayerMap.z;
+}
+
+// The sunward crossing of the shell [inner, outer] by the line through b along `sun`, b the line's
+// periapsis (b.sun = 0, |b| = r_c): the distances along the line from b, (t0, t1); t1 <= t0 when the
+// line misses the shell. The roots are written as sqrt((R - r_c)(R + r_c)) to keep their precision.
+vec2 otherLayerMapCrossing(float rc, float inner, float outer) {
+  if (!(rc < outer)) return vec2(0.0);
+  float t0 = rc < inner ? sqrt((inner - rc) * (inner + rc)) : 0.0;
+  return vec2(t0, sqrt((outer - rc) * (outer + rc)));
+}
+
+// The optical depth towards the sun from p (radius r) through every layer but `own` whose base lies
+// above p, read from the map (linear, clamp).
+float otherLayerMapOpticalDepth(sampler2D map, int own, vec3 p, float r) {
+  vec3 d = p - cloud.otherLayerOrigin.xyz;
+  vec2 s = otherLayerMapTexelCoordinate(vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz)));
+  float size = cloud.otherLayerMap.z;
+  int tiles = int(cloud.otherLayerMap.w + 0.5);
+  // Within the tile: texel centres from 0.5 / N to 1 - 0.5 / N, so no tile reads its neighbour's.
+  vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  float tau = 0.0;
+  for (int t = 0; t < tiles; ++t) {
+    vec4 depth = textureLod(map, vec2(uv.x, (float(t) + uv.y) / float(tiles)), 0.0);
+    for (int c = 0; c < 4; ++c) {
+      int j = 4 * t + c;
+      if (j < cloud.image.w && j != own && r < cloud.layers[5 * j].x) tau += depth[c];
+    }
+  }
+  return tau;
+}
+
+#endif  // FIRMAMENT_OTHER_LAYER_MAP_GLSL
