@@ -78,8 +78,10 @@ struct CloudMarchSettings {
   // covers the sample (the map has every layer). docs/clouds.md "Light through other layers".
   bool lightThroughOtherLayers = true;
   // The other layers' crossings take lightSteps x this scale per layer thickness of each (2 to 4 times
-  // that); bench rows measure 2 (docs/clouds.md "Light through other layers").
-  double otherLayerLightStepsScale = 1.0;
+  // that). 1 until session 14; 2 since the crossings come from a map baked once per frame
+  // (otherLayerMap): it halves their Jensen bias (two_layers' single scattering +15 % -> +7 %) for one
+  // more bake's samples, not more per lit sample (docs/clouds.md "Light through other layers").
+  double otherLayerLightStepsScale = 2.0;
   // The other layers' crossings from a map baked once per frame (clouds/other_layer_map.glsl): every
   // point on one line along the sun shares its crossing of a layer above, so a 2D map of the lines
   // (a plane through the camera, perpendicular to the sun, log-warped out to maxDistance_m) holds them

@@ -287,15 +287,22 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.back().everyScenario = true;
   }
   v.push_back({"light_through_other_layers", "off (own layer only)", {}, [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }});
+  v.back().severalLayers = true;
   v.push_back({"single_scattering", "1 octave, own layer only", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.lightThroughOtherLayers = false; }, true});
-  // The other layers' crossings with twice the light samples (Jensen's bias of a few samples across a
-  // patchy deck; docs/clouds.md "Light through other layers"). Only two_layers has another layer.
+  v.back().severalLayers = true;
+  // The other layers' crossings with fewer and more light samples than the default 2x (Jensen's bias of
+  // a few samples across a patchy deck; docs/clouds.md "Light through other layers"). Only for
+  // scenarios with another layer (two_layers).
   if (!quick) {
-    v.push_back({"light_through_other_layers", "2x samples across the other layers", {},
-                 [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }});
-    v.push_back({"single_scattering", "1 octave, 2x samples across the other layers", {"/clouds/lighting/ms_octaves=1"},
-                 [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, true});
+    for (double scale : {1.0, 4.0}) {
+      const std::string label = scale == 1.0 ? "1x samples across the other layers (sessions 9-14)" : "4x samples across the other layers";
+      const auto apply = [scale](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = scale; };
+      v.push_back({"light_through_other_layers", label, {}, apply});
+      v.back().severalLayers = true;
+      v.push_back({"single_scattering", "1 octave, " + label, {"/clouds/lighting/ms_octaves=1"}, apply, true});
+      v.back().severalLayers = true;
+    }
   }
   // The other layers' map (clouds/other_layer_map.glsl): off (each lit sample marches the crossings,
   // sessions 9-14) and its size. Only for scenarios with another layer (two_layers).
@@ -359,8 +366,10 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
-      {"light_through_other_layers", "2x samples across the other layers"},
-      {"single_scattering", "1 octave, 2x samples across the other layers"},
+      {"light_through_other_layers", "1x samples across the other layers (sessions 9-14)"},
+      {"single_scattering", "1 octave, 1x samples across the other layers (sessions 9-14)"},
+      {"light_through_other_layers", "4x samples across the other layers"},
+      {"single_scattering", "1 octave, 4x samples across the other layers"},
       {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
       {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
       {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
@@ -567,7 +576,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
-      {"2x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 2.0; }, 1, true, false, true},
+      {"1x light samples across the other layers (sessions 9-14)", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 1.0; }, 1, true, false, true},
+      {"1x light samples across the other layers (sessions 9-14), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 1.0; }, 16, true, false, true},
+      {"4x light samples across the other layers", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 4.0; }, 1, true, false, true},
       {"other_layer_map off (crossings marched)", [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }, 1, true, false, true},
       {"other_layer_map off (crossings marched), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }, 16, true, false, true},
       {"other_layer_map 128 texels", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 128; }, 1, true, false, true},

@@ -65,9 +65,10 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
     EXPECT_EQ(milestone, 1) << scenario;
-    EXPECT_EQ(single, 6) << scenario;
-    // One layer: no other layer to cross, so the same image; without the early exit the march goes on.
-    EXPECT_EQ(ownLayerOnlyError, defaultError) << scenario;
+    EXPECT_EQ(single, 5) << scenario;
+    // One layer: the rows about the other layers would give the same image, so they are left out
+    // (session 15); without the early exit the march goes on.
+    EXPECT_LT(ownLayerOnlyError, 0.0) << scenario;
     EXPECT_GT(noEarlyExitSpp, defaultSpp) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
     // The air in front of the clouds matters (leaving it out is the largest error), and both ways of
