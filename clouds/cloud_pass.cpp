@@ -38,8 +38,12 @@ struct CloudBlock {
   float otherLayerAxisU[4];            // its axis u; w = the bake writes every w-th row from there
   float otherLayerAxisV[4];            // its axis v
   float otherLayerSun[4];              // the sun direction its lines follow
+  float columnMap[4];                  // the column map: extent E (m), rho0 (m), texels per side, levels K (0: none)
+  float columnOrigin[4];               // its unit normal c; w = the first row this bake writes
+  float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
+  float columnAxisV[4];                // its axis v; w = the planet radius R (m)
 };
-static_assert(sizeof(CloudBlock) == (24 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (28 + kMaxLayers * 6) * 16);
 
 // The other layers' map (clouds/other_layer_map.glsl): its log warp's rho0, the distance from the camera
 // within which texels shrink no further (a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
@@ -53,6 +57,10 @@ constexpr int kOtherLayerMapRowStride = 4;
 constexpr double kOtherLayerMapDrift_m = 4.0;
 constexpr double kOtherLayerMapSunMove_rad = 1e-4;
 constexpr double kOtherLayerMapCameraMove_m = 1000.0;
+
+// Whether this frame bakes the column map (clouds/column_map.glsl): the octaves' way from the top and
+// the diffusion floor need the vertical optical depths only with more than one octave.
+bool usesColumnMap(const CloudSettings& settings) { return settings.march.columnMap && settings.lighting.octaves > 1; }
 
 // Whether this frame bakes the other layers' map: light through the other layers, from the map, with
 // more than one layer.
@@ -140,6 +148,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
   if (m.lightStepsFalloff > 0.0) features |= 8u;
   if (m.lightCone > 0.0) features |= 16u;
   if (settings.layers.size() > 1) features |= 32u;
+  features |= m.columnMap ? 256u : 512u;
   return features;
 }
 
@@ -160,6 +169,13 @@ CloudPass::CloudPass(gpu::Context& context)
                                   gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                   gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
                                  0}),
+      bakeColumns_(context, {"clouds/bake_columns",
+                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                              gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
+                             0}),
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
@@ -173,7 +189,7 @@ CloudPass::CloudPass(gpu::Context& context)
                           gpu::BindingType::StorageBuffer},
                          sizeof(ResolvePush)}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
-      counters_(context, 2 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters"),
+      counters_(context, 3 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters"),
       temporalBlock_(context, sizeof(TemporalBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud temporal block") {}
 
 void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
@@ -219,10 +235,10 @@ bool weatherEvolvedLittle(const std::vector<float>& before, glm::dvec4 regionBef
 }  // namespace
 
 CloudSampleCounts CloudPass::sampleCounts() const {
-  uint32_t c[2] = {0, 0};
+  uint32_t c[3] = {0, 0, 0};
   counters_.download(c, sizeof(c));
   const double pixels = double(std::max<size_t>(cloudPixels_, 1));
-  return {c[0] / pixels, c[1] / pixels};
+  return {c[0] / pixels, c[1] / pixels, c[2] / pixels};
 }
 
 bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands) {
@@ -306,6 +322,11 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.otherLayerAxisU, otherLayerMap_.u, double(otherLayerMap_.rowStride));
   put(b.otherLayerAxisV, otherLayerMap_.v);
   put(b.otherLayerSun, otherLayerMap_.sun);
+  put(b.columnMap, m.maxDistance_m + kOtherLayerMapCameraMove_m, kOtherLayerMapRho0_m, double(std::max(m.columnMapSize, 1)),
+      usesColumnMap(settings) ? double(std::max(m.columnMapLevels, 1)) : 0.0);
+  put(b.columnOrigin, otherLayerMap_.column, double(otherLayerMap_.firstRow));
+  put(b.columnAxisU, otherLayerMap_.columnU, double(otherLayerMap_.rowStride));
+  put(b.columnAxisV, otherLayerMap_.columnV, luts.parameters().bottom_radius);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
@@ -323,6 +344,9 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     std::fill(std::begin(k.otherLayerAxisU), std::end(k.otherLayerAxisU), 0.0f);
     std::fill(std::begin(k.otherLayerAxisV), std::end(k.otherLayerAxisV), 0.0f);
     std::fill(std::begin(k.otherLayerSun), std::end(k.otherLayerSun), 0.0f);
+    std::fill(std::begin(k.columnOrigin), std::end(k.columnOrigin), 0.0f);
+    std::fill(std::begin(k.columnAxisU), std::end(k.columnAxisU), 0.0f);
+    std::fill(std::begin(k.columnAxisV), std::end(k.columnAxisV), 0.0f);
     for (size_t i = 0; i < layers.size(); ++i) std::fill(k.layers[5 * i + 3], k.layers[5 * i + 3] + 3, 0.0f);
     const auto* bytes = reinterpret_cast<const uint8_t*>(&k);
     settingsKey.assign(bytes, bytes + sizeof(k));
@@ -395,6 +419,40 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
   commands.barrier();
 }
 
+void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                                const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                                gpu::CommandList& commands) {
+  const bool bake = usesColumnMap(settings);
+  const int size = settings.march.columnMapSize, levels = settings.march.columnMapLevels;
+  if (bake && (size < 8 || size > 4096))
+    throw InputError("clouds: column_map_size " + std::to_string(size) + "; allowed: 8 to 4096 texels");
+  if (bake && (levels < 1 || levels > 64))
+    throw InputError("clouds: column_map_levels " + std::to_string(levels) + "; allowed: 1 to 64");
+  const uint32_t width = bake ? uint32_t(size) : 1u;
+  const uint32_t depth = bake ? uint32_t(settings.layers.size()) * uint32_t(levels + 1) : 2u;
+  if (!columnImage_ || columnImage_.width() != width || columnImage_.depth() != depth)
+    columnImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud column map"});
+  if (!bake) return;
+  const AtmosphereLuts::Batch& lut = luts.batch(0);
+  commands.bind(bakeColumns_, {lut.block,
+                               {lut.transmittance, luts.linearClamp()},
+                               {lut.multipleScattering, luts.linearClamp()},
+                               {*skyIrradiance[0], luts.linearClamp()},
+                               {noise_.shape(), noise_.linearRepeat()},
+                               {noise_.detail(), noise_.linearRepeat()},
+                               {noise_.curl(), noise_.linearRepeat()},
+                               {noise_.blueNoise(), noise_.nearestRepeat()},
+                               skyFrame,
+                               cloudFrames_[current_],
+                               block_,
+                               counters_,
+                               {weatherImage_, noise_.linearRepeat()},
+                               columnImage_});
+  const uint32_t rows = (width - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
+  commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_columns");
+  commands.barrier();
+}
+
 void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                                 const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                                 double aerialDistance_m, gpu::CommandList& commands) {
@@ -423,7 +481,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     throw std::logic_error("CloudPass: aerial perspective 'volume' needs one volume per spectral batch");
   std::vector<uint8_t> settingsKey = uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
   const auto layers = sharedCloudLayers(settings, luts.parameters().bottom_radius);
-  const uint32_t zero[2] = {0, 0};
+  const uint32_t zero[3] = {0, 0, 0};
   counters_.upload(zero, sizeof(zero));
 
   const uint32_t width = uint32_t(view.camera.width), height = uint32_t(view.camera.height);
@@ -465,7 +523,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   // The other layers' map: a quarter of its rows when the frame continues one that baked it with the
   // same settings and the clouds, the sun and the camera moved little (kOtherLayerMapRowStride); else
   // all of it, placed at the camera and the sun of this frame.
-  if (usesOtherLayerMap(settings)) {
+  if (usesOtherLayerMap(settings) || usesColumnMap(settings)) {
     const glm::dvec3 sun = glm::normalize(view.sunDirection);
     const double sunMove = std::acos(std::clamp(glm::dot(sun, otherLayerMap_.sun), -1.0, 1.0));
     const bool partial = continueSequence && otherLayerMap_.baked && history_.settings == settingsKey && sameWeather &&
@@ -480,12 +538,16 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
       otherLayerMap_.sun = sun;
       otherLayerMap_.u = glm::normalize(std::abs(sun.z) < 0.9 ? glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(sun, glm::dvec3(1.0, 0.0, 0.0)));
       otherLayerMap_.v = glm::cross(sun, otherLayerMap_.u);
+      const glm::dvec3 c = glm::normalize(view.cameraPosition);
+      otherLayerMap_.column = c;
+      otherLayerMap_.columnU = glm::normalize(std::abs(c.z) < 0.9 ? glm::cross(c, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(c, glm::dvec3(1.0, 0.0, 0.0)));
+      otherLayerMap_.columnV = glm::cross(c, otherLayerMap_.columnU);
       otherLayerMap_.firstRow = 0;
       otherLayerMap_.rowStride = 1;
     }
     uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
   }
-  otherLayerMap_.baked = usesOtherLayerMap(settings);
+  otherLayerMap_.baked = usesOtherLayerMap(settings) || usesColumnMap(settings);
   int offset[2] = {0, 0};
   if (reprojected_) {
     const int n = int(temporalFrame_ % uint32_t(k * k));
@@ -512,6 +574,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   if (m.beerShadowMap && !shadowBaked_) recordBake(luts, skyIrradiance, skyFrame, commands);
   shadowBaked_ = false;
   recordOtherLayerMap(settings, luts, skyIrradiance, skyFrame, commands);
+  recordColumnMap(settings, luts, skyIrradiance, skyFrame, commands);
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
   const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0);
@@ -525,7 +588,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                                      gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                                     sizeof(Push),
                                     {features}});
   if (!volume && !aerialPlaceholder_)
@@ -551,7 +614,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          {aerialImage, luts.linearClamp()},
                                          depth_,
                                          {weatherReach_, noise_.linearRepeat()},
-                                         {otherLayerImage_, luts.linearClamp()}});
+                                         {otherLayerImage_, luts.linearClamp()},
+                                         {columnImage_, luts.linearClamp()}});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
     Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,

@@ -30,6 +30,9 @@ struct CloudView {
 struct CloudSampleCounts {
   double viewPerPixel = 0.0;   // view march: coarse (shape-only) and fine samples
   double lightPerPixel = 0.0;  // light march samples
+  // The per-frame maps' bakes (the other layers' map, the column map): a fixed cost per frame whatever
+  // the image size, which they save many times over in the light march at useful sizes.
+  double mapPerPixel = 0.0;
 };
 
 // The aerial-perspective volume that the march reads with AerialPerspective::Volume: one image per
@@ -44,7 +47,8 @@ struct CloudAerialVolume {
 // option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
 // shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
 // light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
-// crossings (one of the two with bit 1). All bits with march.specializeMarch off.
+// crossings (one of the two with bit 1), 256 the vertical optical depths from the column map, 512 by
+// marching up and down (one of the two). All bits with march.specializeMarch off.
 uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
 
 class CloudPass {
@@ -109,6 +113,10 @@ class CloudPass {
   void recordOtherLayerMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                            const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                            gpu::CommandList& commands);
+  // Bakes the column map when the frame uses it (clouds/column_map.glsl; a placeholder otherwise), a
+  // barrier after.
+  void recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                   gpu::CommandList& commands);
 
@@ -121,11 +129,13 @@ class CloudPass {
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline bakeOtherLayers_;  // clouds/bake_other_layers
+  gpu::ComputePipeline bakeColumns_;      // clouds/bake_columns
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
   gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)
   gpu::ComputePipeline resolve_;        // clouds/temporal_resolve (step 2)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Image otherLayerImage_;  // the other layers' map (1x1 placeholder while off)
+  gpu::Image columnImage_;      // the column map (1x1x2 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
@@ -155,10 +165,12 @@ class CloudPass {
   std::vector<float> weatherTexels_;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
-  // The other layers' map's placement (clouds/other_layer_map.glsl) and the rows the coming bake writes.
+  // The other layers' map's placement (clouds/other_layer_map.glsl), the column map's
+  // (clouds/column_map.glsl), and the rows the coming bakes write (the same for both).
   struct OtherLayerMap {
-    bool baked = false;  // the last record() baked it (all or some rows)
+    bool baked = false;  // the last record() baked them (all or some rows)
     glm::dvec3 origin{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, sun{0.0, 0.0, 1.0};
+    glm::dvec3 column{0.0, 0.0, 1.0}, columnU{1.0, 0.0, 0.0}, columnV{0.0, 1.0, 0.0};
     int firstRow = 0, rowStride = 1;
   } otherLayerMap_;
   bool shadowBaked_ = false;  // recordShadowMap() ran for the coming record()

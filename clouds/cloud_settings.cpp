@@ -148,6 +148,9 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (otherLayerLightStepsScale) march.otherLayerLightStepsScale = *otherLayerLightStepsScale;
   if (otherLayerMap) march.otherLayerMap = *otherLayerMap;
   if (otherLayerMapSize) march.otherLayerMapSize = *otherLayerMapSize;
+  if (columnMap) march.columnMap = *columnMap;
+  if (columnMapSize) march.columnMapSize = *columnMapSize;
+  if (columnMapLevels) march.columnMapLevels = *columnMapLevels;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

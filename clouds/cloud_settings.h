@@ -89,6 +89,14 @@ struct CloudMarchSettings {
   // 9-14). docs/clouds.md "The other layers' map".
   bool otherLayerMap = true;
   int otherLayerMapSize = 256;  // texels per side
+  // The vertical optical depths (the octaves' way down from the layer top, the diffusion floor) from a
+  // map baked once per frame (clouds/column_map.glsl): per column (a direction from the planet centre,
+  // log-warped around the camera as the other layers' map) and layer, the optical depth from K + 1
+  // levels up to the top. Off: each lit sample marches up (lightSteps / 2 samples) and down (2).
+  // docs/clouds.md "The column map".
+  bool columnMap = true;
+  int columnMapSize = 256;    // texels per side
+  int columnMapLevels = 8;    // K: levels per layer (K samples per column)
   double lightMaxLength_m = 40000.0;
   // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
   // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
@@ -236,6 +244,9 @@ struct CloudOverrides {
   std::optional<double> otherLayerLightStepsScale;
   std::optional<bool> otherLayerMap;
   std::optional<int> otherLayerMapSize;
+  std::optional<bool> columnMap;
+  std::optional<int> columnMapSize;
+  std::optional<int> columnMapLevels;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

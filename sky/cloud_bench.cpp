@@ -137,11 +137,12 @@ constexpr double kSequenceWind_m_s = 10.0;
 constexpr double kSequenceFrameInterval_s = 1.0 / 30.0;
 
 // A row's renders: its last frame, the cloud passes' and all per-frame passes' ms of each timed frame,
-// and the mean density samples per pixel (view + light) over them.
+// and the mean density samples per pixel (view + light + the per-frame maps' bakes) over them.
 struct TimedRuns {
   RenderResult last;
   std::vector<double> cloudMs, frameMs;
   double samplesPerPixel = 0.0;
+  double mapSamplesPerPixel = 0.0;  // the part of it the per-frame maps' bakes took
 };
 
 double cloudPassMs(const RenderResult& r);
@@ -210,9 +211,11 @@ TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::s
     if (i + 1 == frames) requireFinite(run.last, name, overrides);
     run.cloudMs.push_back(cloudPassMs(run.last));
     run.frameMs.push_back(frameMs(run.last));
-    run.samplesPerPixel += run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel;
+    run.samplesPerPixel += run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel + run.last.cloudSamples.mapPerPixel;
+    run.mapSamplesPerPixel += run.last.cloudSamples.mapPerPixel;
   }
   run.samplesPerPixel /= double(run.cloudMs.size());
+  run.mapSamplesPerPixel /= double(run.cloudMs.size());
   return run;
 }
 
@@ -304,6 +307,16 @@ std::vector<KnobValue> knobValues(bool quick) {
       v.back().severalLayers = true;
     }
   }
+  // The column map (clouds/column_map.glsl): off (each lit sample marches up and down, sessions 1-14),
+  // its size and its levels.
+  v.push_back({"column_map", "off (vertical marches)", {}, [](SkyRenderOptions& o) { o.clouds.columnMap = false; }});
+  v.push_back({"single_scattering", "1 octave, column_map off", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.columnMap = false; }, true});
+  if (!quick) {
+    v.push_back({"column_map", "128 texels", {}, [](SkyRenderOptions& o) { o.clouds.columnMapSize = 128; }});
+    v.push_back({"column_map", "4 levels", {}, [](SkyRenderOptions& o) { o.clouds.columnMapLevels = 4; }});
+    v.push_back({"column_map", "16 levels", {}, [](SkyRenderOptions& o) { o.clouds.columnMapLevels = 16; }});
+  }
   // The other layers' map (clouds/other_layer_map.glsl): off (each lit sample marches the crossings,
   // sessions 9-14) and its size. Only for scenarios with another layer (two_layers).
   if (!quick) {
@@ -371,7 +384,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"light_through_other_layers", "4x samples across the other layers"},
       {"single_scattering", "1 octave, 4x samples across the other layers"},
       {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
-      {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
+      {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"column_map", "off (vertical marches)"},
+      {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
       {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
       {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
@@ -392,7 +406,7 @@ double cloudPassMs(const RenderResult& r) {
   for (const auto& t : r.timings)
     if (t.label == "clouds/render_clouds" || t.label == "clouds/upsample_clouds" || t.label == "clouds/temporal_resolve" ||
         t.label == "sky/aerial_perspective_volume" || t.label == "clouds/bake_shadow_map" || t.label == "sky/cloud_light_shafts" ||
-        t.label == "clouds/bake_other_layers")
+        t.label == "clouds/bake_other_layers" || t.label == "clouds/bake_columns")
       ms += t.milliseconds;
   return ms;
 }
@@ -534,6 +548,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       row.precomputeMs = bakeMs;
       row.frameMs = median(run.cloudMs);
       row.samplesPerPixel = run.samplesPerPixel;
+      row.mapSamplesPerPixel = run.mapSamplesPerPixel;
       row.device = context.description();
       rows.push_back(row);
       char line[256];
@@ -585,6 +600,10 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"other_layer_map 128 texels, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 128; }, 16, true, false, true},
       {"other_layer_map 512 texels", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 512; }, 1, true, false, true},
       {"other_layer_map 512 texels, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = 512; }, 16, true, false, true},
+      {"column_map off (vertical marches)", [](SkyRenderOptions& o) { o.clouds.columnMap = false; }, 1, true, false},
+      {"column_map off (vertical marches), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.columnMap = false; }, 16, true, false},
+      {"column_map 128 texels", [](SkyRenderOptions& o) { o.clouds.columnMapSize = 128; }, 1, false, false},
+      {"column_map 16 levels", [](SkyRenderOptions& o) { o.clouds.columnMapLevels = 16; }, 1, false, false},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},
       {"resolution_divisor 4", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 4; }},
       {"shadow_map", [](SkyRenderOptions& o) { o.clouds.beerShadowMap = true; o.clouds.lightShafts = false; }},
@@ -643,7 +662,7 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       " renders after a warm-up (one render on a CPU device, 0.5 s of renders on a GPU so its clocks are up); temporal_update rows: the median of the 2 N reprojected frames of a sequence of 2 N + 1 at 30 "
       "frames per second ending at the view (the camera turning 7.5 deg/s, the wind 10 m/s; its first frame marches every "
       "pixel), compared at its last frame. cloud ms: clouds/render_clouds + clouds/upsample_clouds + clouds/temporal_resolve + "
-      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers; the light_shafts row's difference "
+      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers + clouds/bake_columns; the light_shafts row's difference "
       "from the defaults is the shafts' effect (no reference has them); "
       "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "

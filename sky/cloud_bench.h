@@ -48,7 +48,8 @@ struct CloudBenchRow {
   double precomputeMs = 0.0;      // the noise bake of the scenario's first render (once per seed)
   double frameMs = 0.0;           // median GPU time of clouds/render_clouds
   double relRmse = 0.0, psnrDb = 0.0, maxRelErr = 0.0;  // luminance of the clouds' light vs the path tracer
-  double samplesPerPixel = 0.0;   // density evaluations per pixel (view + light march)
+  double samplesPerPixel = 0.0;   // density evaluations per pixel (view + light march + the per-frame maps' bakes)
+  double mapSamplesPerPixel = 0.0;  // the per-frame maps' bakes' part of samplesPerPixel (a fixed cost per frame)
   // Over the cloud pixels (reference transmittance < 0.95; clouds/reference_clouds.h
   // compareWithCloudReference): the error with the reference's Monte Carlo noise subtracted, the noise
   // alone (the rel RMSE of a perfect fast path), and mean(fast) / mean(reference) - 1.

@@ -107,6 +107,14 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
         plan.omitted.push_back({"clouds/bake_other_layers", layerCount < 2      ? "one layer: no other layer shadows it"
                                                             : !throughOthers ? "light through the other layers off"
                                                                              : "the other layers' map off: the light march crosses them"});
+      const bool columnMap = options.cloudColumnMap.value_or(defaults.columnMap);
+      const bool octaves = scene.integer("/clouds/lighting/ms_octaves") > 1;
+      if (columnMap && octaves)
+        plan.passes.push_back({"clouds/bake_columns", "each layer's optical depth from K levels up to its top, per column (a quarter of its rows per frame in a sequence)",
+                               "the octaves' way from the layer top and the diffusion floor read the vertical optical depths from it", true});
+      else
+        plan.omitted.push_back({"clouds/bake_columns", !octaves ? "one octave: no way from the top, no diffusion floor"
+                                                                : "the column map off: the light march goes up and down"});
       const bool shafts = options.cloudLightShafts ? *options.cloudLightShafts : scene.boolean("/clouds/light_shafts");
       if (shadowMap && shafts && aerial == AerialPerspective::Volume)
         plan.passes.push_back({"sky/cloud_light_shafts", "the sky image with the clouds' shadows in the air (light shafts)",

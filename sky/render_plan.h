@@ -35,6 +35,7 @@ struct PlanOptions {
   // The march's defaults unless set (SkyRenderOptions::clouds.lightThroughOtherLayers, .otherLayerMap).
   std::optional<bool> cloudLightThroughOtherLayers;
   std::optional<bool> cloudOtherLayerMap;
+  std::optional<bool> cloudColumnMap;  // SkyRenderOptions::clouds.columnMap
 };
 
 struct PlannedPass {

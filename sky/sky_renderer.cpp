@@ -87,6 +87,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.cloudTemporalUpdate = options.clouds.temporalUpdate;
   plan.cloudLightThroughOtherLayers = options.clouds.lightThroughOtherLayers;
   plan.cloudOtherLayerMap = options.clouds.otherLayerMap;
+  plan.cloudColumnMap = options.clouds.columnMap;
   return plan;
 }
 

@@ -9,7 +9,7 @@
 #include "clouds/other_layer_map.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
+layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; uint mapSamples; } counters;
 layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D otherLayerImage;
 
 void main() {
@@ -31,7 +31,7 @@ void main() {
   int crossingSteps = max(int(float(lightSteps) * cloud.weatherPlanet.w + 0.5), 1);
   float footprint = cloud.aerial.z * otherLayerMapTexelSize(a);
   vec4 tau = vec4(0.0);
-  uint samples = 0u;  // counted with the light samples (the frame's cost, as the marched crossings were)
+  uint samples = 0u;  // the maps' samples (CloudSampleCounts::mapPerPixel)
   for (int c = 0; c < 4; ++c) {
     int j = 4 * tile + c;
     if (j >= cloud.image.w) break;
@@ -48,6 +48,6 @@ void main() {
     tau[c] = layer.extinction * h * sum;
     samples += uint(n);
   }
-  if (samples > 0u) atomicAdd(counters.lightSamples, samples);
+  if (samples > 0u) atomicAdd(counters.mapSamples, samples);
   imageStore(otherLayerImage, texel, tau);
 }

@@ -37,6 +37,10 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 otherLayerAxisU;  // its axis u; w: the bake writes every w-th row from the first
   vec4 otherLayerAxisV;  // its axis v
   vec4 otherLayerSun;    // the sun direction its lines follow (the sun of its last full bake)
+  vec4 columnMap;        // the column map (clouds/column_map.glsl): extent E (m), rho0 (m), texels per side, levels K (0: none)
+  vec4 columnOrigin;     // its unit normal c at the camera's ground point; w: the first row the bake writes
+  vec4 columnAxisU;      // its axis u; w: the bake writes every w-th row from the first
+  vec4 columnAxisV;      // its axis v; w: the planet radius R of its projection (m)
 } cloud;
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)

@@ -40,6 +40,7 @@
 #include "clouds/cloud_sampling.glsl"
 #include "common/cloud_shadow.glsl"
 #include "clouds/other_layer_map.glsl"
+#include "clouds/column_map.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
@@ -50,8 +51,9 @@ layout(set = 0, binding = 7) uniform sampler2D blueNoise;    // read with texelF
 layout(std430, set = 0, binding = 8) buffer SkyFrame { vec4 pixels[]; } skyFrame;      // read, composited, written
 layout(std430, set = 0, binding = 9) buffer CloudFrame { vec4 pixels[]; } cloudFrame;  // rgb: cloud light L; a: T_cloud
 // Sample counters (summed over the pixels by the first batch): view-march density evaluations (coarse
-// and fine), light-march density evaluations.
-layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; } counters;
+// and fine), light-march density evaluations, and the maps' bakes' (clouds/bake_other_layers,
+// bake_columns).
+layout(std430, set = 0, binding = 11) buffer CloudCounters { uint viewSamples; uint lightSamples; uint mapSamples; } counters;
 // The cloud's depth per pixel of the march's grid (m along the ray): the transmittance-weighted mean
 // depth where there is cloud, else where the ray enters the first shell (the march limit if none).
 // Temporal reprojection (clouds/temporal_resolve.comp) moves each pixel's history with it.
@@ -82,6 +84,8 @@ const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's con
 const bool kSeveralLayers = (kMarchFeatures & 32u) != 0u;  // more than one layer (else layer 0 throughout)
 const bool kOtherLayerMap = (kMarchFeatures & 64u) != 0u;     // the other layers' light from their map (when baked)
 const bool kOtherLayerMarch = (kMarchFeatures & 128u) != 0u;  // the other layers' light by marching their crossings
+const bool kColumnMap = (kMarchFeatures & 256u) != 0u;    // the vertical optical depths from the column map (when baked)
+const bool kColumnMarch = (kMarchFeatures & 512u) != 0u;  // the vertical optical depths by marching up and down
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -92,6 +96,9 @@ layout(set = 0, binding = 17) uniform sampler2D weatherReachMap;
 // The other layers' optical depth to the sun (clouds/other_layer_map.glsl; linear, clamp; 1x1 and unread
 // without it).
 layout(set = 0, binding = 18) uniform sampler2D otherLayerMap;
+// Each layer's optical depth up and down from any point (clouds/column_map.glsl; linear, clamp; 1x1x1
+// and unread without it).
+layout(set = 0, binding = 19) uniform sampler3D columnMap;
 
 // Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
 // integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
@@ -362,7 +369,7 @@ void main() {
           lightCount += uint(m);
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
           if (throughOthers) {
-            if (kOtherLayerMap && cloud.otherLayerMap.w > 0.0)  // baked this frame (its samples counted by the bake)
+            if (kOtherLayerMap && cloud.otherLayerMap.w > 0.0)  // baked this frame (its samples counted as the maps')
               tauOther = otherLayerMapOpticalDepth(otherLayerMap, segmentLayer[s], p, rp);
             else if (kOtherLayerMarch)
               tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherLayerSteps, lightLength, lod, lightCount);
@@ -394,7 +401,15 @@ void main() {
       bool wantTop = msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin;
       bool wantFloor = diffusion > 0.0 && octaves > 1 && sunVisible && muS > 0.0;
       const int floorSteps = 2;
-      int upSteps = wantTop ? max(lightSteps / 2, 2) : wantFloor ? floorSteps : 0;
+      // From the column map when baked (both ways in two lookups; its samples counted as the maps').
+      bool columnsFromMap = kColumnMap && cloud.columnMap.w > 0.0;
+      float tauDown = 0.0;
+      if (columnsFromMap && (wantTop || wantFloor)) {
+        vec2 depths = transportScale * columnMapOpticalDepths(columnMap, kSeveralLayers ? segmentLayer[s] : 0, layer, p, rp);
+        tauUp = depths.x;
+        tauDown = depths.y;
+      }
+      int upSteps = !kColumnMarch || columnsFromMap ? 0 : wantTop ? max(lightSteps / 2, 2) : wantFloor ? floorSteps : 0;
       if (upSteps > 0) {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
@@ -411,8 +426,10 @@ void main() {
       if (wantFloor) {
         // Two samples down (and tau_up above): the floor is a smooth function of the depths (linear in
         // them when thick).
-        float tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
-        lightCount += uint(floorSteps);
+        if (kColumnMarch && !columnsFromMap) {
+          tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
+          lightCount += uint(floorSteps);
+        }
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.

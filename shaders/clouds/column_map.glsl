@@ -1,0 +1,60 @@
+// column_map.glsl: each layer's optical depth straight up and straight down from any point, baked once
+// per frame (clouds/bake_columns.comp) and read by the march (render_clouds.glsl) in place of the two
+// vertical marches each lit sample made: the way down from the layer top for the octaves i >= 1 and
+// the diffusion floor (docs/clouds.md "The column map").
+//
+// Why it can be a map: "straight up" from p is the radial line through p, so all points of one column
+// (one direction from the planet centre) share it. Per layer and column the map holds the optical depth
+// from K + 1 levels r_k = R_b + k H / K (k = 0 .. K) up to the top,
+//   T(k) = sum over the segments above r_k of sigma(midpoint) H / K,   T(K) = 0,
+// so a point at height fraction z reads T(z), linear between the levels, for its way up and T(0) - T(z)
+// for its way down to the base.
+//
+// Where: the columns' directions q, placed by the gnomonic projection at the camera's ground point
+// (unit normal c, axes u and v, planet radius R): a = R (q.u, q.v) / (q.c), each axis log-warped to the
+// texel coordinate as the other layers' map is (clouds/other_layer_map.glsl): a texel's side grows like
+// (|a| + rho0) out to E. Slices: layer j's levels are slices j (K + 1) .. j (K + 1) + K of a 3D map.
+#ifndef FIRMAMENT_COLUMN_MAP_GLSL
+#define FIRMAMENT_COLUMN_MAP_GLSL
+
+// cloud.columnMap: x = E (m), y = rho0 (m), z = texels per side N, w = levels K (0: no map).
+// cloud.columnOrigin.xyz = c, cloud.columnAxisU.xyz = u, cloud.columnAxisV.xyz = v, cloud.columnAxisV.w = R.
+
+// The plane coordinate a (m, per axis) of texel coordinate s in [-1, 1].
+vec2 columnMapPlanePoint(vec2 s) {
+  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y;
+  return sign(s) * rho0 * (exp(abs(s) * log(1.0 + E / rho0)) - 1.0);
+}
+
+// The side of the texel at plane point a in metres (the larger axis).
+float columnMapTexelSize(vec2 a) {
+  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y;
+  return (max(abs(a.x), abs(a.y)) + rho0) * log(1.0 + E / rho0) * 2.0 / cloud.columnMap.z;
+}
+
+// The unit direction of the column at plane point a.
+vec3 columnMapDirection(vec2 a) {
+  float R = cloud.columnAxisV.w;
+  return normalize(cloud.columnOrigin.xyz + (a.x / R) * cloud.columnAxisU.xyz + (a.y / R) * cloud.columnAxisV.xyz);
+}
+
+// The optical depths from p (radius r, in `layer`, index j) straight up to the top (x) and straight down
+// to the base (y), read from the map (linear, clamp).
+vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, float r) {
+  vec3 q = p / r;
+  float R = cloud.columnAxisV.w;
+  float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
+  vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
+  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y, size = cloud.columnMap.z;
+  vec2 s = clamp(sign(a) * log(1.0 + abs(a) / rho0) / log(1.0 + E / rho0), -1.0, 1.0);
+  vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  float K = cloud.columnMap.w;
+  float slices = float(cloud.image.w) * (K + 1.0);
+  float z = clamp((r - layer.bottom_radius) / max(layer.top_radius - layer.bottom_radius, 1.0), 0.0, 1.0);
+  float base = float(j) * (K + 1.0);
+  float above = textureLod(map, vec3(uv, (base + z * K + 0.5) / slices), 0.0).r;
+  float total = textureLod(map, vec3(uv, (base + 0.5) / slices), 0.0).r;
+  return vec2(above, max(total - above, 0.0));
+}
+
+#endif  // FIRMAMENT_COLUMN_MAP_GLSL
