@@ -136,6 +136,23 @@ void put(float (&out)[4], double x, double y, double z, double w) {
 }
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) { put(out, v.x, v.y, v.z, w); }
 
+// A unit axis perpendicular to the unit vector d (the second is cross(d, axis)): the maps' placements.
+glm::dvec3 perpendicularAxis(const glm::dvec3& d) {
+  return glm::normalize(std::abs(d.z) < 0.9 ? glm::cross(d, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(d, glm::dvec3(1.0, 0.0, 0.0)));
+}
+
+// The bakes that share the march's first 13 bindings and write the 14th (an image): the Beer shadow
+// map, the other layers' map, the column map.
+gpu::PipelineDesc cloudBakeDesc(const char* shader) {
+  return {shader,
+          {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+           gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+           gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+           gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
+          0};
+}
+
 }  // namespace
 
 uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
@@ -155,27 +172,9 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
 CloudPass::CloudPass(gpu::Context& context)
     : context_(context),
       noise_(context),
-      bakeShadow_(context, {"clouds/bake_shadow_map",
-                            {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                             gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                             gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                             gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
-                            0}),
-      bakeOtherLayers_(context, {"clouds/bake_other_layers",
-                                 {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                  gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
-                                 0}),
-      bakeColumns_(context, {"clouds/bake_columns",
-                             {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                              gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                              gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                              gpu::BindingType::SampledImage, gpu::BindingType::StorageImage},
-                             0}),
+      bakeShadow_(context, cloudBakeDesc("clouds/bake_shadow_map")),
+      bakeOtherLayers_(context, cloudBakeDesc("clouds/bake_other_layers")),
+      bakeColumns_(context, cloudBakeDesc("clouds/bake_columns")),
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
@@ -305,7 +304,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     const double mid = 0.5 * (lowest + highest);
     const glm::dvec3 centre(0.0, 0.0, ground + mid);
     const glm::dvec3 sun = glm::normalize(view.sunDirection);
-    const glm::dvec3 u = glm::normalize(std::abs(sun.z) < 0.9 ? glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(sun, glm::dvec3(1.0, 0.0, 0.0)));
+    const glm::dvec3 u = perpendicularAxis(sun);
     const glm::dvec3 v = glm::cross(sun, u);
     const double start = (highest - mid) / std::max(sun.z, 0.05) + 1000.0;
     put(b.shadowCentre, centre, m.shadowMapExtent_m);
@@ -360,27 +359,32 @@ void CloudPass::allocateShadowImage(const CloudMarchSettings& m) {
     shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
 }
 
+void CloudPass::bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
+                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands) {
+  const AtmosphereLuts::Batch& lut = luts.batch(0);
+  commands.bind(pipeline, {lut.block,
+                           {lut.transmittance, luts.linearClamp()},
+                           {lut.multipleScattering, luts.linearClamp()},
+                           {*skyIrradiance[0], luts.linearClamp()},
+                           {noise_.shape(), noise_.linearRepeat()},
+                           {noise_.detail(), noise_.linearRepeat()},
+                           {noise_.curl(), noise_.linearRepeat()},
+                           {noise_.blueNoise(), noise_.nearestRepeat()},
+                           skyFrame,
+                           cloudFrames_[current_],
+                           block_,
+                           counters_,
+                           {weatherImage_, noise_.linearRepeat()},
+                           target});
+}
+
 void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                            gpu::CommandList& commands) {
   const uint32_t shadowSize = shadowImage_.width();
   // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
   // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
   // air march) and the aerial-perspective volume.
-  const AtmosphereLuts::Batch& lut = luts.batch(0);
-  commands.bind(bakeShadow_, {lut.block,
-                              {lut.transmittance, luts.linearClamp()},
-                              {lut.multipleScattering, luts.linearClamp()},
-                              {*skyIrradiance[0], luts.linearClamp()},
-                              {noise_.shape(), noise_.linearRepeat()},
-                              {noise_.detail(), noise_.linearRepeat()},
-                              {noise_.curl(), noise_.linearRepeat()},
-                              {noise_.blueNoise(), noise_.nearestRepeat()},
-                              skyFrame,
-                              cloudFrames_[current_],
-                              block_,
-                              counters_,
-                              {weatherImage_, noise_.linearRepeat()},
-                              shadowImage_});
+  bindBake(bakeShadow_, shadowImage_, luts, skyIrradiance, skyFrame, commands);
   const uint32_t groups = (shadowSize + 7) / 8;
   commands.dispatch(groups, groups, 1, "clouds/bake_shadow_map");
   commands.barrier();
@@ -398,22 +402,7 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
   if (!otherLayerImage_ || otherLayerImage_.width() != width || otherLayerImage_.height() != height)
     otherLayerImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
   if (!bake) return;
-  // The same first 13 bindings as the shadow bake (the frames bound, unread); the 14th is the map.
-  const AtmosphereLuts::Batch& lut = luts.batch(0);
-  commands.bind(bakeOtherLayers_, {lut.block,
-                                   {lut.transmittance, luts.linearClamp()},
-                                   {lut.multipleScattering, luts.linearClamp()},
-                                   {*skyIrradiance[0], luts.linearClamp()},
-                                   {noise_.shape(), noise_.linearRepeat()},
-                                   {noise_.detail(), noise_.linearRepeat()},
-                                   {noise_.curl(), noise_.linearRepeat()},
-                                   {noise_.blueNoise(), noise_.nearestRepeat()},
-                                   skyFrame,
-                                   cloudFrames_[current_],
-                                   block_,
-                                   counters_,
-                                   {weatherImage_, noise_.linearRepeat()},
-                                   otherLayerImage_});
+  bindBake(bakeOtherLayers_, otherLayerImage_, luts, skyIrradiance, skyFrame, commands);
   const uint32_t rows = (height - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, 1, "clouds/bake_other_layers");
   commands.barrier();
@@ -433,21 +422,7 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
   if (!columnImage_ || columnImage_.width() != width || columnImage_.depth() != depth)
     columnImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud column map"});
   if (!bake) return;
-  const AtmosphereLuts::Batch& lut = luts.batch(0);
-  commands.bind(bakeColumns_, {lut.block,
-                               {lut.transmittance, luts.linearClamp()},
-                               {lut.multipleScattering, luts.linearClamp()},
-                               {*skyIrradiance[0], luts.linearClamp()},
-                               {noise_.shape(), noise_.linearRepeat()},
-                               {noise_.detail(), noise_.linearRepeat()},
-                               {noise_.curl(), noise_.linearRepeat()},
-                               {noise_.blueNoise(), noise_.nearestRepeat()},
-                               skyFrame,
-                               cloudFrames_[current_],
-                               block_,
-                               counters_,
-                               {weatherImage_, noise_.linearRepeat()},
-                               columnImage_});
+  bindBake(bakeColumns_, columnImage_, luts, skyIrradiance, skyFrame, commands);
   const uint32_t rows = (width - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_columns");
   commands.barrier();
@@ -536,11 +511,11 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     } else {
       otherLayerMap_.origin = view.cameraPosition;
       otherLayerMap_.sun = sun;
-      otherLayerMap_.u = glm::normalize(std::abs(sun.z) < 0.9 ? glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(sun, glm::dvec3(1.0, 0.0, 0.0)));
+      otherLayerMap_.u = perpendicularAxis(sun);
       otherLayerMap_.v = glm::cross(sun, otherLayerMap_.u);
       const glm::dvec3 c = glm::normalize(view.cameraPosition);
       otherLayerMap_.column = c;
-      otherLayerMap_.columnU = glm::normalize(std::abs(c.z) < 0.9 ? glm::cross(c, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(c, glm::dvec3(1.0, 0.0, 0.0)));
+      otherLayerMap_.columnU = perpendicularAxis(c);
       otherLayerMap_.columnV = glm::cross(c, otherLayerMap_.columnU);
       otherLayerMap_.firstRow = 0;
       otherLayerMap_.rowStride = 1;

@@ -117,6 +117,10 @@ class CloudPass {
   // barrier after.
   void recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                        const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+  // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
+  // unread) and `target`, the image it writes.
+  void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
+                const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                   gpu::CommandList& commands);
 
