@@ -12,25 +12,18 @@
 //
 // Where: the columns' directions q, placed by the gnomonic projection at the camera's ground point
 // (unit normal c, axes u and v, planet radius R): a = R (q.u, q.v) / (q.c), each axis log-warped to the
-// texel coordinate as the other layers' map is (clouds/other_layer_map.glsl): a texel's side grows like
+// texel coordinate as the other layers' map is (clouds/log_warp.glsl): a texel's side grows like
 // (|a| + rho0) out to E. Slices: layer j's levels are slices j (K + 1) .. j (K + 1) + K of a 3D map.
 #ifndef FIRMAMENT_COLUMN_MAP_GLSL
 #define FIRMAMENT_COLUMN_MAP_GLSL
 
+#include "clouds/log_warp.glsl"
+
 // cloud.columnMap: x = E (m), y = rho0 (m), z = texels per side N, w = levels K (0: no map).
 // cloud.columnOrigin.xyz = c, cloud.columnAxisU.xyz = u, cloud.columnAxisV.xyz = v, cloud.columnAxisV.w = R.
 
-// The plane coordinate a (m, per axis) of texel coordinate s in [-1, 1].
-vec2 columnMapPlanePoint(vec2 s) {
-  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y;
-  return sign(s) * rho0 * (exp(abs(s) * log(1.0 + E / rho0)) - 1.0);
-}
-
-// The side of the texel at plane point a in metres (the larger axis).
-float columnMapTexelSize(vec2 a) {
-  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y;
-  return (max(abs(a.x), abs(a.y)) + rho0) * log(1.0 + E / rho0) * 2.0 / cloud.columnMap.z;
-}
+vec2 columnMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.columnMap.x, cloud.columnMap.y); }
+float columnMapTexelSize(vec2 a) { return logWarpTexelSize(a, cloud.columnMap.x, cloud.columnMap.y, cloud.columnMap.z); }
 
 // The unit direction of the column at plane point a.
 vec3 columnMapDirection(vec2 a) {
@@ -45,8 +38,8 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
   float R = cloud.columnAxisV.w;
   float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
   vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
-  float E = cloud.columnMap.x, rho0 = cloud.columnMap.y, size = cloud.columnMap.z;
-  vec2 s = clamp(sign(a) * log(1.0 + abs(a) / rho0) / log(1.0 + E / rho0), -1.0, 1.0);
+  float size = cloud.columnMap.z;
+  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
   vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
   float K = cloud.columnMap.w;
   float slices = float(cloud.image.w) * (K + 1.0);

@@ -22,25 +22,13 @@
 #ifndef FIRMAMENT_OTHER_LAYER_MAP_GLSL
 #define FIRMAMENT_OTHER_LAYER_MAP_GLSL
 
+#include "clouds/log_warp.glsl"
+
 // cloud.otherLayerMap: x = E (m), y = rho0 (m), z = texels per side N, w = tiles (0: no map).
 
-// The plane coordinate a (m, per axis) of texel coordinate s in [-1, 1].
-vec2 otherLayerMapPlanePoint(vec2 s) {
-  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
-  return sign(s) * rho0 * (exp(abs(s) * log(1.0 + E / rho0)) - 1.0);
-}
-
-// The texel coordinate s in [-1, 1] (clamped) of plane coordinate a (m).
-vec2 otherLayerMapTexelCoordinate(vec2 a) {
-  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
-  return clamp(sign(a) * log(1.0 + abs(a) / rho0) / log(1.0 + E / rho0), -1.0, 1.0);
-}
-
-// The side of texel s in metres (the larger axis): |da/ds| 2 / N = (|a| + rho0) ln(1 + E / rho0) 2 / N.
-float otherLayerMapTexelSize(vec2 a) {
-  float E = cloud.otherLayerMap.x, rho0 = cloud.otherLayerMap.y;
-  return (max(abs(a.x), abs(a.y)) + rho0) * log(1.0 + E / rho0) * 2.0 / cloud.otherLayerMap.z;
-}
+vec2 otherLayerMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.otherLayerMap.x, cloud.otherLayerMap.y); }
+vec2 otherLayerMapTexelCoordinate(vec2 a) { return logWarpTexelCoordinate(a, cloud.otherLayerMap.x, cloud.otherLayerMap.y); }
+float otherLayerMapTexelSize(vec2 a) { return logWarpTexelSize(a, cloud.otherLayerMap.x, cloud.otherLayerMap.y, cloud.otherLayerMap.z); }
 
 // The sunward crossing of the shell [inner, outer] by the line through b along `sun`, b the line's
 // periapsis (b.sun = 0, |b| = r_c): the distances along the line from b, (t0, t1); t1 <= t0 when the

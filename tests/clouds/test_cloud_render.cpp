@@ -206,6 +206,18 @@ double relativeRmsLuminance(const Image& img, const Image& truth) {
   return std::sqrt(sum2 / std::max(ref2, 1e-30));
 }
 
+// The per-frame maps' test views (64x36): the sun high and low, looking up and towards the horizon.
+std::vector<std::pair<std::string, Scene>> mapTestViews(const std::string& layers) {
+  std::vector<std::pair<std::string, Scene>> views;
+  for (double sunZenith : {35.0, 80.0})
+    for (double pitch : {30.0, 5.0})
+      views.emplace_back("sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch),
+                         test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
+                                           "/camera/width=64", "/camera/height=36"},
+                                          layers));
+  return views;
+}
+
 // The column map (clouds/column_map.glsl) against marching up and down from each lit sample: cumulus,
 // the sun high and low, looking up and towards the horizon, 64x36. Both converge to the same vertical
 // optical depths: the fine map (1024 texels, 64 levels) and the fine march (64 light steps: 32 up; the
@@ -216,11 +228,7 @@ double relativeRmsLuminance(const Image& img, const Image& truth) {
 TEST_F(CloudRender, ColumnMapMatchesTheVerticalMarches) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 32;
-  for (double sunZenith : {35.0, 80.0})
-    for (double pitch : {30.0, 5.0}) {
-      Scene s = test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
-                                  "/camera/width=64", "/camera/height=36"});
-      const std::string what = "sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
+  for (const auto& [what, s] : mapTestViews(test::cloudSceneText())) {
       o.clouds.lightSteps = 64;
       o.clouds.columnMap = false;
       const RenderResult marchedFine = test::cloudRenderer().render(s, o);
@@ -245,20 +253,15 @@ TEST_F(CloudRender, ColumnMapMatchesTheVerticalMarches) {
 // The other layers' light from their map (clouds/other_layer_map.glsl) against marching each lit
 // sample's crossings: cumulus under stratocumulus, the sun high and low, looking up and towards the
 // horizon. The map loses only the detail finer than its texels: its error falls as it grows (measured
-// relative RMS over the image's luminance, 64x36: 7-16 % at 64 texels, 1.7-3.0 % at the default 256,
-// 0.4-0.5 % at 1024), under 4 % at the default, and the shadow is there (the check can fail).
+// relative RMS over the image's luminance, 64x36: 8-16 % at 64 texels, 1.7-3.5 % at the default 256,
+// 0.4-0.5 % at 1024), under 5 % at the default, and the shadow is there (the check can fail).
 TEST_F(CloudRender, OtherLayerMapMatchesTheMarchedCrossings) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 32;
   o.clouds.lightSteps = 6;
   const std::string layers = test::cloudSceneText(
       R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.6}, {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6})");
-  for (double sunZenith : {35.0, 80.0})
-    for (double pitch : {30.0, 5.0}) {
-      Scene s = test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
-                                  "/camera/width=64", "/camera/height=36"},
-                                 layers);
-      const std::string what = "sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
+  for (const auto& [what, s] : mapTestViews(layers)) {
       o.clouds.otherLayerMap = false;
       const RenderResult marched = test::cloudRenderer().render(s, o);
       o.clouds.lightThroughOtherLayers = false;
@@ -277,7 +280,7 @@ TEST_F(CloudRender, OtherLayerMapMatchesTheMarchedCrossings) {
       o.clouds.otherLayerMapSize = 256;
       std::printf("%s: the map against the marched crossings %.4f (64 texels), %.4f (256), %.4f (1024); the other layer's effect %.4f\n",
                   what.c_str(), error[64], error[256], error[1024], shadow);
-      EXPECT_LT(error[256], 0.04) << what;
+      EXPECT_LT(error[256], 0.05) << what;
       EXPECT_LT(error[1024], error[256]) << what;
       EXPECT_LT(error[256], error[64]) << what;
     }
