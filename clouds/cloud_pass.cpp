@@ -33,30 +33,35 @@ struct CloudBlock {
   float layers[kMaxLayers * 5][4];
   float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, unused x3
   float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m), unused x2
-  float otherLayerMap[4];              // the other layers' map: extent E (m), rho0 (m), texels per side, tiles (0: none)
+  float otherLayerMap[4];              // the other layers' map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   float otherLayerOrigin[4];           // its plane's origin (cloud frame, m); w = the first row this bake writes
   float otherLayerAxisU[4];            // its axis u; w = the bake writes every w-th row from there
   float otherLayerAxisV[4];            // its axis v
   float otherLayerSun[4];              // the sun direction its lines follow
-  float columnMap[4];                  // the column map: extent E (m), rho0 (m), texels per side, levels K (0: none)
+  float columnMap[4];                  // the column map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, levels K (0: none)
   float columnOrigin[4];               // its unit normal c; w = the first row this bake writes
   float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
   float columnAxisV[4];                // its axis v; w = the planet radius R (m)
 };
 static_assert(sizeof(CloudBlock) == (28 + kMaxLayers * 6) * 16);
 
-// The other layers' map (clouds/other_layer_map.glsl): its log warp's rho0, the distance from the camera
-// within which texels shrink no further (a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
-constexpr double kOtherLayerMapRho0_m = 1000.0;
-// In a sequence the map is re-baked a quarter of its rows per frame (interleaved), so a texel is at most
-// 4 frames old, while the clouds' drift over those frames stays under kOtherLayerMapDrift_m, the sun
-// within kOtherLayerMapSunMove_rad of the map's (a line's crossing ~10 km away moves ~1 m) and the camera
-// within kOtherLayerMapCameraMove_m of its origin (the extent E is the march's reach plus that);
-// otherwise, and for every still, all of it.
-constexpr int kOtherLayerMapRowStride = 4;
-constexpr double kOtherLayerMapDrift_m = 4.0;
-constexpr double kOtherLayerMapSunMove_rad = 1e-4;
-constexpr double kOtherLayerMapCameraMove_m = 1000.0;
+// The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
+// clouds/column_map.glsl). Their log warp's rho0: the distance from the map's origin within which
+// texels shrink no further (clouds/log_warp.glsl: a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
+constexpr double kMapRho0_m = 1000.0;
+// In a sequence the maps are re-baked a quarter of their rows per frame (interleaved), so a texel is at
+// most 4 frames old, while the clouds' drift over those frames stays under kMapDrift_m, the sun within
+// kMapSunMove_rad of the maps' (a sun line's crossing ~10 km away moves ~1 m) and the camera within
+// kMapCameraMove_m of their origin (the extent E is the march's reach plus that); otherwise, and for
+// every still, all of them.
+constexpr int kMapRowStride = 4;
+constexpr double kMapDrift_m = 4.0;
+constexpr double kMapSunMove_rad = 1e-4;
+constexpr double kMapCameraMove_m = 1000.0;
+
+// The log warp's scale ln(1 + E / rho0) for a map reaching E = the march's reach + kMapCameraMove_m
+// (clouds/log_warp.glsl; once per frame here rather than per lookup).
+double mapLogWarpScale(const CloudMarchSettings& m) { return std::log(1.0 + (m.maxDistance_m + kMapCameraMove_m) / kMapRho0_m); }
 
 // Whether this frame bakes the column map (clouds/column_map.glsl): the octaves' way from the top and
 // the diffusion floor need the vertical optical depths only with more than one octave.
@@ -315,17 +320,17 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
   }
-  put(b.otherLayerMap, m.maxDistance_m + kOtherLayerMapCameraMove_m, kOtherLayerMapRho0_m, double(std::max(m.otherLayerMapSize, 1)),
+  put(b.otherLayerMap, mapLogWarpScale(m), kMapRho0_m, double(std::max(m.otherLayerMapSize, 1)),
       usesOtherLayerMap(settings) ? double((layers.size() + 3) / 4) : 0.0);
-  put(b.otherLayerOrigin, otherLayerMap_.origin, double(otherLayerMap_.firstRow));
-  put(b.otherLayerAxisU, otherLayerMap_.u, double(otherLayerMap_.rowStride));
-  put(b.otherLayerAxisV, otherLayerMap_.v);
-  put(b.otherLayerSun, otherLayerMap_.sun);
-  put(b.columnMap, m.maxDistance_m + kOtherLayerMapCameraMove_m, kOtherLayerMapRho0_m, double(std::max(m.columnMapSize, 1)),
+  put(b.otherLayerOrigin, maps_.origin, double(maps_.firstRow));
+  put(b.otherLayerAxisU, maps_.u, double(maps_.rowStride));
+  put(b.otherLayerAxisV, maps_.v);
+  put(b.otherLayerSun, maps_.sun);
+  put(b.columnMap, mapLogWarpScale(m), kMapRho0_m, double(std::max(m.columnMapSize, 1)),
       usesColumnMap(settings) ? double(std::max(m.columnMapLevels, 1)) : 0.0);
-  put(b.columnOrigin, otherLayerMap_.column, double(otherLayerMap_.firstRow));
-  put(b.columnAxisU, otherLayerMap_.columnU, double(otherLayerMap_.rowStride));
-  put(b.columnAxisV, otherLayerMap_.columnV, luts.parameters().bottom_radius);
+  put(b.columnOrigin, maps_.column, double(maps_.firstRow));
+  put(b.columnAxisU, maps_.columnU, double(maps_.rowStride));
+  put(b.columnAxisV, maps_.columnV, luts.parameters().bottom_radius);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
@@ -403,7 +408,7 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
     otherLayerImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
   if (!bake) return;
   bindBake(bakeOtherLayers_, otherLayerImage_, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (height - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
+  const uint32_t rows = (height - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, 1, "clouds/bake_other_layers");
   commands.barrier();
 }
@@ -423,7 +428,7 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
     columnImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud column map"});
   if (!bake) return;
   bindBake(bakeColumns_, columnImage_, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (width - uint32_t(otherLayerMap_.firstRow) + uint32_t(otherLayerMap_.rowStride) - 1) / uint32_t(otherLayerMap_.rowStride);
+  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_columns");
   commands.barrier();
 }
@@ -495,34 +500,34 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const bool sameWeather = history_.weather == weatherHash_ ||
                            weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
   reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
-  // The other layers' map: a quarter of its rows when the frame continues one that baked it with the
-  // same settings and the clouds, the sun and the camera moved little (kOtherLayerMapRowStride); else
-  // all of it, placed at the camera and the sun of this frame.
+  // The per-frame maps: a quarter of their rows when the frame continues one that baked them with the
+  // same settings and the clouds, the sun and the camera moved little (kMapRowStride); else all of
+  // them, placed at the camera and the sun of this frame.
   if (usesOtherLayerMap(settings) || usesColumnMap(settings)) {
     const glm::dvec3 sun = glm::normalize(view.sunDirection);
-    const double sunMove = std::acos(std::clamp(glm::dot(sun, otherLayerMap_.sun), -1.0, 1.0));
-    const bool partial = continueSequence && otherLayerMap_.baked && history_.settings == settingsKey && sameWeather &&
-                         sunMove < kOtherLayerMapSunMove_rad &&
-                         glm::length(view.cameraPosition - otherLayerMap_.origin) < kOtherLayerMapCameraMove_m &&
-                         glm::length(windOffset - history_.windOffset) * kOtherLayerMapRowStride < kOtherLayerMapDrift_m;
+    const double sunMove = std::acos(std::clamp(glm::dot(sun, maps_.sun), -1.0, 1.0));
+    const bool partial = continueSequence && maps_.baked && history_.settings == settingsKey && sameWeather &&
+                         sunMove < kMapSunMove_rad &&
+                         glm::length(view.cameraPosition - maps_.origin) < kMapCameraMove_m &&
+                         glm::length(windOffset - history_.windOffset) * kMapRowStride < kMapDrift_m;
     if (partial) {
-      otherLayerMap_.firstRow = (otherLayerMap_.firstRow + 1) % kOtherLayerMapRowStride;
-      otherLayerMap_.rowStride = kOtherLayerMapRowStride;
+      maps_.firstRow = (maps_.firstRow + 1) % kMapRowStride;
+      maps_.rowStride = kMapRowStride;
     } else {
-      otherLayerMap_.origin = view.cameraPosition;
-      otherLayerMap_.sun = sun;
-      otherLayerMap_.u = perpendicularAxis(sun);
-      otherLayerMap_.v = glm::cross(sun, otherLayerMap_.u);
+      maps_.origin = view.cameraPosition;
+      maps_.sun = sun;
+      maps_.u = perpendicularAxis(sun);
+      maps_.v = glm::cross(sun, maps_.u);
       const glm::dvec3 c = glm::normalize(view.cameraPosition);
-      otherLayerMap_.column = c;
-      otherLayerMap_.columnU = perpendicularAxis(c);
-      otherLayerMap_.columnV = glm::cross(c, otherLayerMap_.columnU);
-      otherLayerMap_.firstRow = 0;
-      otherLayerMap_.rowStride = 1;
+      maps_.column = c;
+      maps_.columnU = perpendicularAxis(c);
+      maps_.columnV = glm::cross(c, maps_.columnU);
+      maps_.firstRow = 0;
+      maps_.rowStride = 1;
     }
     uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
   }
-  otherLayerMap_.baked = usesOtherLayerMap(settings) || usesColumnMap(settings);
+  maps_.baked = usesOtherLayerMap(settings) || usesColumnMap(settings);
   int offset[2] = {0, 0};
   if (reprojected_) {
     const int n = int(temporalFrame_ % uint32_t(k * k));

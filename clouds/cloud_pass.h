@@ -169,14 +169,14 @@ class CloudPass {
   std::vector<float> weatherTexels_;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
-  // The other layers' map's placement (clouds/other_layer_map.glsl), the column map's
-  // (clouds/column_map.glsl), and the rows the coming bakes write (the same for both).
-  struct OtherLayerMap {
+  // The per-frame maps' placements (the other layers' map, clouds/other_layer_map.glsl; the column map,
+  // clouds/column_map.glsl) and the rows the coming bakes write (the same for both).
+  struct MapPlacement {
     bool baked = false;  // the last record() baked them (all or some rows)
     glm::dvec3 origin{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, sun{0.0, 0.0, 1.0};
     glm::dvec3 column{0.0, 0.0, 1.0}, columnU{1.0, 0.0, 0.0}, columnV{0.0, 1.0, 0.0};
     int firstRow = 0, rowStride = 1;
-  } otherLayerMap_;
+  } maps_;
   bool shadowBaked_ = false;  // recordShadowMap() ran for the coming record()
   ShadowPlacement shadowPlacement_;
 };

@@ -321,9 +321,11 @@ std::vector<KnobValue> knobValues(bool quick) {
   // sessions 9-14) and its size. Only for scenarios with another layer (two_layers).
   if (!quick) {
     v.push_back({"other_layer_map", "off (crossings marched)", {}, [](SkyRenderOptions& o) { o.clouds.otherLayerMap = false; }});
-    for (int size : {128, 512})
+    v.back().severalLayers = true;
+    for (int size : {128, 512}) {
       v.push_back({"other_layer_map", std::to_string(size) + " texels", {}, [size](SkyRenderOptions& o) { o.clouds.otherLayerMapSize = size; }});
-    for (size_t i = v.size() - 3; i < v.size(); ++i) v[i].severalLayers = true;
+      v.back().severalLayers = true;
+    }
   }
   v.push_back({"light_steps_per_thickness", "off (6 whatever the length)", {}, [](SkyRenderOptions& o) { o.clouds.lightStepsPerThickness = false; }});
   v.push_back({"single_scattering", "1 octave, 6 light steps flat", {"/clouds/lighting/ms_octaves=1"},

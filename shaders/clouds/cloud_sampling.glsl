@@ -32,12 +32,12 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
   vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), yzw unused
   vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: the longest coarse span on it (m)
-  vec4 otherLayerMap;    // the other layers' map (clouds/other_layer_map.glsl): extent E (m), rho0 (m), texels per side, tiles (0: none)
+  vec4 otherLayerMap;    // the other layers' map (clouds/other_layer_map.glsl): log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   vec4 otherLayerOrigin; // its plane's origin c (cloud frame, m); w: the first row the bake writes
   vec4 otherLayerAxisU;  // its axis u; w: the bake writes every w-th row from the first
   vec4 otherLayerAxisV;  // its axis v
   vec4 otherLayerSun;    // the sun direction its lines follow (the sun of its last full bake)
-  vec4 columnMap;        // the column map (clouds/column_map.glsl): extent E (m), rho0 (m), texels per side, levels K (0: none)
+  vec4 columnMap;        // the column map (clouds/column_map.glsl): log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, levels K (0: none)
   vec4 columnOrigin;     // its unit normal c at the camera's ground point; w: the first row the bake writes
   vec4 columnAxisU;      // its axis u; w: the bake writes every w-th row from the first
   vec4 columnAxisV;      // its axis v; w: the planet radius R of its projection (m)

@@ -19,7 +19,7 @@
 
 #include "clouds/log_warp.glsl"
 
-// cloud.columnMap: x = E (m), y = rho0 (m), z = texels per side N, w = levels K (0: no map).
+// cloud.columnMap: x = the log warp's scale ln(1 + E / rho0), y = rho0 (m), z = texels per side N, w = levels K (0: no map).
 // cloud.columnOrigin.xyz = c, cloud.columnAxisU.xyz = u, cloud.columnAxisV.xyz = v, cloud.columnAxisV.w = R.
 
 vec2 columnMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.columnMap.x, cloud.columnMap.y); }

@@ -7,24 +7,23 @@
 // there on its radius only grows (past the line's periapsis), so its way to the sun crosses layer j
 // exactly once and wholly: from radius R_b to R_t on the line's sunward side. That optical depth
 // depends on the line alone. A layer below p is left out: its shadow needs the sun below p's horizon,
-// where the marched crossings (lightMaxLength_m, 40 km) found it only within a few hundred metres of a
-// layer's top at the edge of twilight.
+// and while the sun still clears the planet (mu_s > -0.035 at 4 km) the marched crossings' 40 km
+// (lightMaxLength_m) dropped at most 40 km x 0.035 - (40 km)^2 / 2R ~ 1.3 km below p: only a layer within
+// that of p, at the edge of twilight.
 //
 // Where: a plane through c, the camera of its last full bake, perpendicular to that bake's sun, axes u
 // and v (cloud.otherLayerOrigin, AxisU, AxisV, Sun: a sequence re-bakes a quarter of the rows per frame
 // on the same placement, clouds/cloud_pass.cpp). A point's line is where it projects on the plane,
-// (a_u, a_v) = ((p - c).u, (p - c).v). Each axis maps to the texel coordinate s in [-1, 1] by a log warp,
-//   s = sign(a) ln(1 + |a| / rho0) / ln(1 + E / rho0),
-// so a texel's side grows like (|a| + rho0): in proportion to the distance, as a pixel's footprint
-// does, out to E, the march's largest distance plus the camera's largest move from c (no point the march
-// reaches projects farther). Texels
-// hold up to 4 layers (rgba = layers 4t .. 4t + 3 in tile t); the tiles are stacked in v.
+// (a_u, a_v) = ((p - c).u, (p - c).v). Each axis is log-warped to the texel coordinate
+// (clouds/log_warp.glsl) out to E, the march's largest distance plus the camera's largest move from c
+// (no point the march reaches projects farther). Texels hold up to 4 layers (rgba = layers 4t .. 4t + 3
+// in tile t); the tiles are stacked in v.
 #ifndef FIRMAMENT_OTHER_LAYER_MAP_GLSL
 #define FIRMAMENT_OTHER_LAYER_MAP_GLSL
 
 #include "clouds/log_warp.glsl"
 
-// cloud.otherLayerMap: x = E (m), y = rho0 (m), z = texels per side N, w = tiles (0: no map).
+// cloud.otherLayerMap: x = the log warp's scale ln(1 + E / rho0), y = rho0 (m), z = texels per side N, w = tiles (0: no map).
 
 vec2 otherLayerMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.otherLayerMap.x, cloud.otherLayerMap.y); }
 vec2 otherLayerMapTexelCoordinate(vec2 a) { return logWarpTexelCoordinate(a, cloud.otherLayerMap.x, cloud.otherLayerMap.y); }
