@@ -42,19 +42,21 @@ struct CloudBlock {
   float columnOrigin[4];               // its unit normal c; w = the first row this bake writes
   float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
   float columnAxisV[4];                // its axis v; w = the planet radius R (m)
+  float deepShadowMap[4];              // the deep shadow map (the other layers' map's placement): texels per side, levels K, near steps, baked (0: none)
 };
-static_assert(sizeof(CloudBlock) == (28 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (29 + kMaxLayers * 6) * 16);
 
 // The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
-// clouds/column_map.glsl). Their log warp's rho0: the distance from the map's origin within which
+// clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from the map's origin within which
 // texels shrink no further (clouds/log_warp.glsl: a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
 constexpr double kMapRho0_m = 1000.0;
-// In a sequence the maps are re-baked a quarter of their rows per frame (interleaved), so a texel is at
-// most 4 frames old, while the clouds' drift over those frames stays under kMapDrift_m, the sun within
+// In a sequence the maps are re-baked one in w of their rows per frame (interleaved), so a texel is at
+// most w frames old, while the clouds' drift over those frames stays under kMapDrift_m, the sun within
 // kMapSunMove_rad of the maps' (a sun line's crossing ~10 km away moves ~1 m) and the camera within
 // kMapCameraMove_m of their origin (the extent E is the march's reach plus that); otherwise, and for
-// every still, all of them.
-constexpr int kMapRowStride = 4;
+// every still, all of them. w is the largest of kMapRowStrides that keeps the drift under the bound
+// (10 m/s of wind at 30 frames per second: 8; no wind: 16), and a change of w re-bakes all rows.
+constexpr int kMapRowStrides[3] = {16, 8, 4};
 constexpr double kMapDrift_m = 4.0;
 constexpr double kMapSunMove_rad = 1e-4;
 constexpr double kMapCameraMove_m = 1000.0;
@@ -72,6 +74,19 @@ bool usesColumnMap(const CloudSettings& settings) { return settings.march.column
 bool usesOtherLayerMap(const CloudSettings& settings) {
   const CloudMarchSettings& m = settings.march;
   return m.lightThroughOtherLayers && m.otherLayerMap && settings.layers.size() > 1;
+}
+
+// Whether this frame bakes the deep shadow map: on, the light march runs to the layer's exit (the map
+// holds the way to the top), and it keeps fewer steps than it may take (lightStepsForLength: up to 4
+// lightSteps).
+bool usesDeepShadowMap(const CloudSettings& settings) {
+  const CloudMarchSettings& m = settings.march;
+  return m.deepShadowMap && m.lightMarchToExit && m.deepShadowNearSteps < 4 * std::max(m.lightSteps, 1);
+}
+
+// Whether this frame bakes any of the per-frame maps (they share a placement).
+bool usesMaps(const CloudSettings& settings) {
+  return usesOtherLayerMap(settings) || usesColumnMap(settings) || usesDeepShadowMap(settings);
 }
 
 struct Push {
@@ -147,7 +162,7 @@ glm::dvec3 perpendicularAxis(const glm::dvec3& d) {
 }
 
 // The bakes that share the march's first 13 bindings and write the 14th (an image): the Beer shadow
-// map, the other layers' map, the column map.
+// map, the other layers' map, the column map, the deep shadow map.
 gpu::PipelineDesc cloudBakeDesc(const char* shader) {
   return {shader,
           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
@@ -171,6 +186,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach) {
   if (m.lightCone > 0.0) features |= 16u;
   if (settings.layers.size() > 1) features |= 32u;
   features |= m.columnMap ? 256u : 512u;
+  if (m.deepShadowMap) features |= 1024u;
   return features;
 }
 
@@ -180,6 +196,7 @@ CloudPass::CloudPass(gpu::Context& context)
       bakeShadow_(context, cloudBakeDesc("clouds/bake_shadow_map")),
       bakeOtherLayers_(context, cloudBakeDesc("clouds/bake_other_layers")),
       bakeColumns_(context, cloudBakeDesc("clouds/bake_columns")),
+      bakeDeepShadow_(context, cloudBakeDesc("clouds/bake_deep_shadow")),
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
                           sizeof(UpsamplePush)}),
@@ -331,6 +348,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.columnOrigin, maps_.column, double(maps_.firstRow));
   put(b.columnAxisU, maps_.columnU, double(maps_.rowStride));
   put(b.columnAxisV, maps_.columnV, luts.parameters().bottom_radius);
+  put(b.deepShadowMap, double(std::max(m.deepShadowMapSize, 1)), double(std::max(m.deepShadowMapLevels, 1)),
+      double(std::max(m.deepShadowNearSteps, 0)), usesDeepShadowMap(settings) ? 1.0 : 0.0);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
@@ -433,6 +452,29 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
   commands.barrier();
 }
 
+void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                                    const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                                    gpu::CommandList& commands) {
+  const bool bake = usesDeepShadowMap(settings);
+  const CloudMarchSettings& m = settings.march;
+  const int size = m.deepShadowMapSize, levels = m.deepShadowMapLevels;
+  if (m.deepShadowMap && (size < 8 || size > 4096))
+    throw InputError("clouds: deep_shadow_map_size " + std::to_string(size) + "; allowed: 8 to 4096 texels");
+  if (m.deepShadowMap && (levels < 1 || levels > 128))
+    throw InputError("clouds: deep_shadow_map_levels " + std::to_string(levels) + "; allowed: 1 to 128");
+  if (m.deepShadowMap && m.deepShadowNearSteps < 0)
+    throw InputError("clouds: deep_shadow_near_steps " + std::to_string(m.deepShadowNearSteps) + "; allowed: 0 or more");
+  const uint32_t width = bake ? uint32_t(size) : 1u;
+  const uint32_t depth = bake ? uint32_t(settings.layers.size()) * uint32_t(levels + 1) : 2u;
+  if (!deepShadowImage_ || deepShadowImage_.width() != width || deepShadowImage_.depth() != depth)
+    deepShadowImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud deep shadow map"});
+  if (!bake) return;
+  bindBake(bakeDeepShadow_, deepShadowImage_, luts, skyIrradiance, skyFrame, commands);
+  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+  commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_deep_shadow");
+  commands.barrier();
+}
+
 void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                                 const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                                 double aerialDistance_m, gpu::CommandList& commands) {
@@ -500,19 +542,23 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const bool sameWeather = history_.weather == weatherHash_ ||
                            weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
   reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
-  // The per-frame maps: a quarter of their rows when the frame continues one that baked them with the
-  // same settings and the clouds, the sun and the camera moved little (kMapRowStride); else all of
+  // The per-frame maps: one in w of their rows when the frame continues one that baked them with the
+  // same settings and the clouds, the sun and the camera moved little (kMapRowStrides); else all of
   // them, placed at the camera and the sun of this frame.
-  if (usesOtherLayerMap(settings) || usesColumnMap(settings)) {
+  if (usesMaps(settings)) {
     const glm::dvec3 sun = glm::normalize(view.sunDirection);
     const double sunMove = std::acos(std::clamp(glm::dot(sun, maps_.sun), -1.0, 1.0));
+    const double drift = glm::length(windOffset - history_.windOffset);
+    int stride = 0;
+    for (int w : kMapRowStrides)
+      if (stride == 0 && drift * w < kMapDrift_m) stride = w;
     const bool partial = continueSequence && maps_.baked && history_.settings == settingsKey && sameWeather &&
                          sunMove < kMapSunMove_rad &&
-                         glm::length(view.cameraPosition - maps_.origin) < kMapCameraMove_m &&
-                         glm::length(windOffset - history_.windOffset) * kMapRowStride < kMapDrift_m;
+                         glm::length(view.cameraPosition - maps_.origin) < kMapCameraMove_m && stride > 0 &&
+                         (maps_.rowStride == 1 || maps_.rowStride == stride);
     if (partial) {
-      maps_.firstRow = (maps_.firstRow + 1) % kMapRowStride;
-      maps_.rowStride = kMapRowStride;
+      maps_.firstRow = (maps_.firstRow + 1) % stride;
+      maps_.rowStride = stride;
     } else {
       maps_.origin = view.cameraPosition;
       maps_.sun = sun;
@@ -527,7 +573,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     }
     uploadBlock(settings, view, luts, volume ? aerial->maxDistance_m : 0.0);
   }
-  maps_.baked = usesOtherLayerMap(settings) || usesColumnMap(settings);
+  maps_.baked = usesMaps(settings);
   int offset[2] = {0, 0};
   if (reprojected_) {
     const int n = int(temporalFrame_ % uint32_t(k * k));
@@ -555,6 +601,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   shadowBaked_ = false;
   recordOtherLayerMap(settings, luts, skyIrradiance, skyFrame, commands);
   recordColumnMap(settings, luts, skyIrradiance, skyFrame, commands);
+  recordDeepShadowMap(settings, luts, skyIrradiance, skyFrame, commands);
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
   const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0);
@@ -568,7 +615,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                      gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
                                      gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
                                      gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                                     gpu::BindingType::SampledImage},
                                     sizeof(Push),
                                     {features}});
   if (!volume && !aerialPlaceholder_)
@@ -595,7 +643,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                                          depth_,
                                          {weatherReach_, noise_.linearRepeat()},
                                          {otherLayerImage_, luts.linearClamp()},
-                                         {columnImage_, luts.linearClamp()}});
+                                         {columnImage_, luts.linearClamp()},
+                                         {deepShadowImage_, luts.linearClamp()}});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
     Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,

@@ -48,7 +48,7 @@ struct CloudAerialVolume {
 // shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
 // light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
 // crossings (one of the two with bit 1), 256 the vertical optical depths from the column map, 512 by
-// marching up and down (one of the two). All bits with march.specializeMarch off.
+// marching up and down (one of the two), 1024 the own layer's far light from the deep shadow map. All bits with march.specializeMarch off.
 uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
 
 class CloudPass {
@@ -117,6 +117,10 @@ class CloudPass {
   // barrier after.
   void recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                        const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+  // Bakes the deep shadow map when the frame uses it (clouds/deep_shadow_map.glsl; a placeholder
+  // otherwise), a barrier after.
+  void recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
+                           const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
   // unread) and `target`, the image it writes.
   void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
@@ -134,12 +138,14 @@ class CloudPass {
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline bakeOtherLayers_;  // clouds/bake_other_layers
   gpu::ComputePipeline bakeColumns_;      // clouds/bake_columns
+  gpu::ComputePipeline bakeDeepShadow_;   // clouds/bake_deep_shadow
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
   gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)
   gpu::ComputePipeline resolve_;        // clouds/temporal_resolve (step 2)
   gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
   gpu::Image otherLayerImage_;  // the other layers' map (1x1 placeholder while off)
   gpu::Image columnImage_;      // the column map (1x1x2 placeholder while off)
+  gpu::Image deepShadowImage_;  // the deep shadow map (1x1x2 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
@@ -169,8 +175,9 @@ class CloudPass {
   std::vector<float> weatherTexels_;
   uint32_t temporalFrame_ = 0;  // counts reprojected frames: picks each block's pixel and the noise shift
   bool reprojected_ = false;
-  // The per-frame maps' placements (the other layers' map, clouds/other_layer_map.glsl; the column map,
-  // clouds/column_map.glsl) and the rows the coming bakes write (the same for both).
+  // The per-frame maps' placements (the other layers' map, clouds/other_layer_map.glsl, and the deep
+  // shadow map, clouds/deep_shadow_map.glsl, on one plane; the column map, clouds/column_map.glsl) and
+  // the rows the coming bakes write (the same for all).
   struct MapPlacement {
     bool baked = false;  // the last record() baked them (all or some rows)
     glm::dvec3 origin{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, sun{0.0, 0.0, 1.0};

@@ -151,6 +151,10 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (columnMap) march.columnMap = *columnMap;
   if (columnMapSize) march.columnMapSize = *columnMapSize;
   if (columnMapLevels) march.columnMapLevels = *columnMapLevels;
+  if (deepShadowMap) march.deepShadowMap = *deepShadowMap;
+  if (deepShadowMapSize) march.deepShadowMapSize = *deepShadowMapSize;
+  if (deepShadowMapLevels) march.deepShadowMapLevels = *deepShadowMapLevels;
+  if (deepShadowNearSteps) march.deepShadowNearSteps = *deepShadowNearSteps;
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;

@@ -97,6 +97,16 @@ struct CloudMarchSettings {
   bool columnMap = true;
   int columnMapSize = 256;    // texels per side
   int columnMapLevels = 8;    // K: levels per layer (K samples per column)
+  // The far part of each lit sample's light march through its own layer from a map baked once per frame
+  // (clouds/deep_shadow_map.glsl, a deep shadow map of optical depth): per sun line (the other layers'
+  // map's plane) and layer, the optical depth from K + 1 levels up to the top. The march takes the first
+  // deepShadowNearSteps of its n steps (the shadow's detail next to the sample, up to L (near / n)^2)
+  // and the rest of the way from the map in one lookup. Off: every step marched (sessions 1-15).
+  // docs/clouds.md "The deep shadow map".
+  bool deepShadowMap = true;
+  int deepShadowMapSize = 256;    // texels per side
+  int deepShadowMapLevels = 16;   // K: levels per layer (K samples per line)
+  int deepShadowNearSteps = 3;    // light-march steps marched before the map takes over
   double lightMaxLength_m = 40000.0;
   // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
   // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
@@ -247,6 +257,10 @@ struct CloudOverrides {
   std::optional<bool> columnMap;
   std::optional<int> columnMapSize;
   std::optional<int> columnMapLevels;
+  std::optional<bool> deepShadowMap;
+  std::optional<int> deepShadowMapSize;
+  std::optional<int> deepShadowMapLevels;
+  std::optional<int> deepShadowNearSteps;
   std::optional<double> lightCone;
   std::optional<bool> msZenithDepth;
   std::optional<bool> msScatteredOnly;

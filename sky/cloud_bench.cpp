@@ -226,6 +226,7 @@ std::vector<KnobValue> knobValues(bool quick) {
                  o.clouds.uniformSteps = true;
                  o.clouds.lightStepsPerThickness = false;
                  o.clouds.lowTransmittanceStepStart = 0.0;
+                 o.clouds.deepShadowMap = false;  // all 6 light steps marched
                }});
   // The first milestone's lighting, all of it: fixed-length light march, cone 0.15, plain octaves with
   // a = b = c = 0.5 (the "before" of docs/clouds.md).
@@ -263,16 +264,34 @@ std::vector<KnobValue> knobValues(bool quick) {
   for (double s : {0.0, 0.5, 2.0})
     v.push_back({"noise_lod", s == 0.0 ? std::string("0 (level 0)") : std::to_string(s).substr(0, 3), {},
                  [s](SkyRenderOptions& o) { o.clouds.noiseLodScale = s; }});
-  // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k).
+  // The deep shadow map (clouds/deep_shadow_map.glsl): off (every light step marched, sessions 1-15),
+  // its size, its levels and the steps marched before it.
+  v.push_back({"deep_shadow_map", "off (every light step marched)", {}, [](SkyRenderOptions& o) { o.clouds.deepShadowMap = false; }});
+  v.push_back({"single_scattering", "1 octave, deep_shadow_map off", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.deepShadowMap = false; }, true});
+  if (!quick) {
+    for (int size : {128, 512})
+      v.push_back({"deep_shadow_map", std::to_string(size) + " texels", {}, [size](SkyRenderOptions& o) { o.clouds.deepShadowMapSize = size; }});
+    for (int levels : {8, 32})
+      v.push_back({"deep_shadow_map", std::to_string(levels) + " levels", {}, [levels](SkyRenderOptions& o) { o.clouds.deepShadowMapLevels = levels; }});
+    for (int near : {1, 6})
+      v.push_back({"deep_shadow_map", std::to_string(near) + " near steps", {}, [near](SkyRenderOptions& o) { o.clouds.deepShadowNearSteps = near; }});
+  }
+  // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k), an
+  // alternative to the deep shadow map's savings, so measured with the map off.
   for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
-    v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3), {},
-                 [k](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = k; o.clouds.lightStepsFalloffStart = 1.0; }});
-  v.push_back({"single_scattering", "1 octave, light_steps_falloff 1", {"/clouds/lighting/ms_octaves=1"},
-               [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, true});
+    v.push_back({"light_steps_falloff", std::to_string(k).substr(0, 3) + ", deep_shadow_map off", {}, [k](SkyRenderOptions& o) {
+                   o.clouds.lightStepsFalloff = k;
+                   o.clouds.lightStepsFalloffStart = 1.0;
+                   o.clouds.deepShadowMap = false;
+                 }});
+  v.push_back({"single_scattering", "1 octave, light_steps_falloff 1, deep_shadow_map off", {"/clouds/lighting/ms_octaves=1"},
+               [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.deepShadowMap = false; }, true});
   for (double start : {0.3, 0.1})
-    v.push_back({"light_steps_falloff", "1 from T " + std::to_string(start).substr(0, 3), {}, [start](SkyRenderOptions& o) {
+    v.push_back({"light_steps_falloff", "1 from T " + std::to_string(start).substr(0, 3) + ", deep_shadow_map off", {}, [start](SkyRenderOptions& o) {
                    o.clouds.lightStepsFalloff = 1.0;
                    o.clouds.lightStepsFalloffStart = start;
+                   o.clouds.deepShadowMap = false;
                  }});
   // Longer view steps behind dense cloud (CloudMarchSettings::lowTransmittanceStep*: the step times
   // min(T1 / T, K) once the view ray's transmittance T < T1; the default T1 0.1, K 4).
@@ -389,9 +408,11 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"column_map", "off (vertical marches)"},
       {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
       {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
-      {"light_steps_falloff", "0.5"}, {"light_steps_falloff", "1.0"}, {"light_steps_falloff", "2.0"},
-      {"light_steps_falloff", "1 from T 0.3"}, {"light_steps_falloff", "1 from T 0.1"},
-      {"single_scattering", "1 octave, light_steps_falloff 1"}};
+      {"light_steps_falloff", "0.5, deep_shadow_map off"}, {"light_steps_falloff", "1.0, deep_shadow_map off"},
+      {"light_steps_falloff", "2.0, deep_shadow_map off"}, {"light_steps_falloff", "1 from T 0.3, deep_shadow_map off"},
+      {"light_steps_falloff", "1 from T 0.1, deep_shadow_map off"},
+      {"single_scattering", "1 octave, light_steps_falloff 1, deep_shadow_map off"},
+      {"deep_shadow_map", "off (every light step marched)"}, {"single_scattering", "1 octave, deep_shadow_map off"}};
   for (const auto& [knob, value] : everywhere) {
     bool found = false;
     for (KnobValue& k : v)
@@ -580,13 +601,25 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
          o.clouds.uniformSteps = true;
          o.clouds.lightStepsPerThickness = false;
          o.clouds.lowTransmittanceStepStart = 0.0;
+         o.clouds.deepShadowMap = false;  // all 6 light steps marched
        }, 1, true},
       {"noise_lod 0 (level 0)", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 0.0; }, 1, true},
       {"noise_lod 2", [](SkyRenderOptions& o) { o.clouds.noiseLodScale = 2.0; }, 1, true},
-      {"light_steps_falloff 0.5", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 0.5; }, 1, true},
-      {"light_steps_falloff 1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; }, 1, true},
-      {"light_steps_falloff 2", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; }, 1, true},
-      {"light_steps_falloff 1 from T 0.1", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.lightStepsFalloffStart = 0.1; }, 1, true},
+      {"deep_shadow_map off (every light step marched)", [](SkyRenderOptions& o) { o.clouds.deepShadowMap = false; }, 1, true},
+      {"deep_shadow_map off (every light step marched), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.deepShadowMap = false; }, 16, true, false},
+      {"deep_shadow_map 512 texels", [](SkyRenderOptions& o) { o.clouds.deepShadowMapSize = 512; }, 1, false, false},
+      {"deep_shadow_map 8 levels", [](SkyRenderOptions& o) { o.clouds.deepShadowMapLevels = 8; }, 1, false, false},
+      {"deep_shadow_map 8 levels, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.deepShadowMapLevels = 8; }, 16, false, false},
+      {"deep_shadow_map 6 near steps", [](SkyRenderOptions& o) { o.clouds.deepShadowNearSteps = 6; }, 1, false, false},
+      // Light samples by transmittance: an alternative to the deep shadow map's savings, with it off.
+      {"light_steps_falloff 0.5, deep_shadow_map off", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 0.5; o.clouds.deepShadowMap = false; }, 1, true},
+      {"light_steps_falloff 1, deep_shadow_map off", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 1.0; o.clouds.deepShadowMap = false; }, 1, true},
+      {"light_steps_falloff 2, deep_shadow_map off", [](SkyRenderOptions& o) { o.clouds.lightStepsFalloff = 2.0; o.clouds.deepShadowMap = false; }, 1, true},
+      {"light_steps_falloff 1 from T 0.1, deep_shadow_map off", [](SkyRenderOptions& o) {
+         o.clouds.lightStepsFalloff = 1.0;
+         o.clouds.lightStepsFalloffStart = 0.1;
+         o.clouds.deepShadowMap = false;
+       }, 1, true},
       {"low_transmittance_steps off (sessions 1-11)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 1, true, false},
       {"low_transmittance_steps from T 0.3 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.3; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
@@ -631,7 +664,8 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + setting.name + ">", sizeOverrides, o, setting.temporalUpdate,
                                       config.repeats, !sc.cameraInLayer);
       const RenderResult& r = run.last;
-      CloudTimingRow row{sc.name, setting.name, width, height, median(run.cloudMs), median(run.frameMs), run.samplesPerPixel};
+      CloudTimingRow row{sc.name, setting.name, width, height, median(run.cloudMs), median(run.frameMs), run.samplesPerPixel,
+                         run.mapSamplesPerPixel};
       row.device = context.description();
       if (defaultImage.pixels.empty()) {  // the first setting is the defaults
         defaultImage = r.image;

@@ -77,6 +77,7 @@ struct CloudTimingRow {
   double cloudMs = 0.0;   // clouds/render_clouds + clouds/upsample_clouds + sky/aerial_perspective_volume
   double frameMs = 0.0;   // every per-frame pass (sky included)
   double samplesPerPixel = 0.0;
+  double mapSamplesPerPixel = 0.0;  // the per-frame maps' bakes' share of samplesPerPixel (not in the CSV)
   // Luminance of the whole frame against the defaults' frame at the same size, over the defaults' cloud
   // pixels (T < 0.95): relative RMSE and mean(setting) / mean(default) - 1 (0 for the defaults). What a
   // setting changes at a realistic size, beside its error against the path tracer at the bench's small one.

@@ -101,7 +101,7 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       const CloudMarchSettings defaults;
       const bool throughOthers = options.cloudLightThroughOtherLayers.value_or(defaults.lightThroughOtherLayers);
       if (layerCount > 1 && throughOthers && options.cloudOtherLayerMap.value_or(defaults.otherLayerMap))
-        plan.passes.push_back({"clouds/bake_other_layers", "the other layers' optical depth to the sun along each sun line (a quarter of its rows per frame in a sequence)",
+        plan.passes.push_back({"clouds/bake_other_layers", "the other layers' optical depth to the sun along each sun line (1 in 4 to 16 of its rows per frame in a sequence)",
                                "a layer above shadows the one below: the light march reads the crossings from it", true});
       else
         plan.omitted.push_back({"clouds/bake_other_layers", layerCount < 2      ? "one layer: no other layer shadows it"
@@ -110,11 +110,16 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       const bool columnMap = options.cloudColumnMap.value_or(defaults.columnMap);
       const bool octaves = scene.integer("/clouds/lighting/ms_octaves") > 1;
       if (columnMap && octaves)
-        plan.passes.push_back({"clouds/bake_columns", "each layer's optical depth from K levels up to its top, per column (a quarter of its rows per frame in a sequence)",
+        plan.passes.push_back({"clouds/bake_columns", "each layer's optical depth from K levels up to its top, per column (1 in 4 to 16 of its rows per frame in a sequence)",
                                "the octaves' way from the layer top and the diffusion floor read the vertical optical depths from it", true});
       else
         plan.omitted.push_back({"clouds/bake_columns", !octaves ? "one octave: no way from the top, no diffusion floor"
                                                                 : "the column map off: the light march goes up and down"});
+      if (options.cloudDeepShadowMap.value_or(defaults.deepShadowMap))
+        plan.passes.push_back({"clouds/bake_deep_shadow", "each layer's optical depth from K levels up to its top along each sun line (1 in 4 to 16 of its rows per frame in a sequence)",
+                               "the light march takes its first steps and reads the rest of the way to the sun from it", true});
+      else
+        plan.omitted.push_back({"clouds/bake_deep_shadow", "the deep shadow map off: the light march takes every step"});
       const bool shafts = options.cloudLightShafts ? *options.cloudLightShafts : scene.boolean("/clouds/light_shafts");
       if (shadowMap && shafts && aerial == AerialPerspective::Volume)
         plan.passes.push_back({"sky/cloud_light_shafts", "the sky image with the clouds' shadows in the air (light shafts)",

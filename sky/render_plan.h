@@ -36,6 +36,7 @@ struct PlanOptions {
   std::optional<bool> cloudLightThroughOtherLayers;
   std::optional<bool> cloudOtherLayerMap;
   std::optional<bool> cloudColumnMap;  // SkyRenderOptions::clouds.columnMap
+  std::optional<bool> cloudDeepShadowMap;  // SkyRenderOptions::clouds.deepShadowMap
 };
 
 struct PlannedPass {

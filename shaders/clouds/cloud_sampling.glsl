@@ -41,6 +41,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 columnOrigin;     // its unit normal c at the camera's ground point; w: the first row the bake writes
   vec4 columnAxisU;      // its axis u; w: the bake writes every w-th row from the first
   vec4 columnAxisV;      // its axis v; w: the planet radius R of its projection (m)
+  vec4 deepShadowMap;    // the deep shadow map (clouds/deep_shadow_map.glsl; placed as the other layers' map): texels per side, levels K, near light steps, baked (0: no map)
 } cloud;
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)
@@ -147,7 +148,9 @@ float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
 // the step boundaries stay those of n, so going from m to m - 1 (for m >= n / 2) merges one pair of steps
 // and leaves the rest (CloudMarchSettings::lightStepsFalloff). Each sample is pushed sideways within a
 // cone of half-angle atan(cone) by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
-float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, float length_m, float cone, vec2 lod) {
+// Only the first `taken` groups are marched (m: all; fewer: the rest comes from the deep shadow map,
+// clouds/deep_shadow_map.glsl, from L (taken / m)^2 on when m = n).
+float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, int taken, float length_m, float cone, vec2 lod) {
   const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
                                  vec2(0.95, 0.05), vec2(-0.45, 0.62));
   // Without a cone (a compile-time 0 in the march's specialization) the sideways part is compiled out.
@@ -162,7 +165,8 @@ float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m,
   float tau = 0.0;
   float previous = 0.0;
   int last = 0;  // the last step of the group so far
-  for (int g = 0; g < m; ++g) {
+  taken = min(taken, m);
+  for (int g = 0; g < taken; ++g) {
     last += q + (g >= m - r ? 1 : 0);
     float f = float(last) / float(n);
     float next = length_m * f * f;
@@ -180,7 +184,7 @@ float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m,
 
 // The same with every one of the n steps sampled.
 float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone, vec2 lod) {
-  return opticalDepthToSunGrouped(layer, p, sun, n, n, length_m, cone, lod);
+  return opticalDepthToSunGrouped(layer, p, sun, n, n, n, length_m, cone, lod);
 }
 
 // Optical depth of every layer but `own` along the sun ray from p (radius r, mu_s = cos of the sun's

@@ -41,6 +41,7 @@
 #include "common/cloud_shadow.glsl"
 #include "clouds/other_layer_map.glsl"
 #include "clouds/column_map.glsl"
+#include "clouds/deep_shadow_map.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
@@ -86,6 +87,7 @@ const bool kOtherLayerMap = (kMarchFeatures & 64u) != 0u;     // the other layer
 const bool kOtherLayerMarch = (kMarchFeatures & 128u) != 0u;  // the other layers' light by marching their crossings
 const bool kColumnMap = (kMarchFeatures & 256u) != 0u;    // the vertical optical depths from the column map (when baked)
 const bool kColumnMarch = (kMarchFeatures & 512u) != 0u;  // the vertical optical depths by marching up and down
+const bool kDeepShadowMap = (kMarchFeatures & 1024u) != 0u;  // the own layer's far light from the deep shadow map (when baked)
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -99,6 +101,9 @@ layout(set = 0, binding = 18) uniform sampler2D otherLayerMap;
 // Each layer's optical depth up and down from any point (clouds/column_map.glsl; linear, clamp; 1x1x1
 // and unread without it).
 layout(set = 0, binding = 19) uniform sampler3D columnMap;
+// Each layer's optical depth along the sun from any point to its top (clouds/deep_shadow_map.glsl; linear,
+// clamp; 1x1x1 and unread without it).
+layout(set = 0, binding = 20) uniform sampler3D deepShadowMap;
 
 // Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
 // integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
@@ -365,8 +370,28 @@ void main() {
           // the midpoint of a group of the n steps, so the step boundaries stay those of n samples.
           int m = lightFalloff > 0.0 ? min(n, max(4, int(ceil(float(n) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff)))))
                                      : n;
-          tau = opticalDepthToSunGrouped(layer, p, sun, n, m, marchLength, cone, lod);
-          lightCount += uint(m);
+          // The deep shadow map where baked and p's sun ray climbs from p on (p.sun > 0): the first
+          // `near` of the n steps marched, the rest of the way to the top, from where they end, read
+          // from the map (the falloff's groups are not used then).
+          bool fromMap = kDeepShadowMap && cloud.deepShadowMap.w > 0.0 && lightToExit && muS > 0.0;
+          int taken = m;
+          if (fromMap) {
+            m = n;
+            // At least one of the map's level segments (H / (K mu_s) along the sun) is marched: a lit
+            // sample lies in cloud, so the density next to it is higher than its segment's mean, which
+            // the map's linear interpolation between levels assumes (with a low sun a segment is
+            // ~0.7 km long: reading it from the sample on made the single scattering +20 % too bright).
+            float segment = (layer.top_radius - layer.bottom_radius) / (cloud.deepShadowMap.y * max(muS, 1e-3));
+            int nearSegment = int(ceil(float(n) * sqrt(min(segment / max(marchLength, 1e-3), 1.0))));
+            taken = min(max(int(cloud.deepShadowMap.z + 0.5), nearSegment), n);
+          }
+          tau = opticalDepthToSunGrouped(layer, p, sun, n, m, taken, marchLength, cone, lod);
+          lightCount += uint(taken);
+          if (fromMap && taken < n) {
+            float f = float(taken) / float(n);
+            vec3 q = p + sun * (marchLength * f * f);
+            tau += deepShadowMapOpticalDepth(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, layer, q);
+          }
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
           if (throughOthers) {
             if (kOtherLayerMap && cloud.otherLayerMap.w > 0.0)  // baked this frame (its samples counted as the maps')
