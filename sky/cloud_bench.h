@@ -74,7 +74,7 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
 struct CloudTimingRow {
   std::string scenario, setting;
   int width = 0, height = 0;
-  double cloudMs = 0.0;   // clouds/render_clouds + clouds/upsample_clouds + sky/aerial_perspective_volume
+  double cloudMs = 0.0;   // the clouds' per-frame passes: the march, its upsampling or temporal resolve, the aerial-perspective volume, the per-frame maps' bakes (cloudPassMs)
   double frameMs = 0.0;   // every per-frame pass (sky included)
   double samplesPerPixel = 0.0;
   double mapSamplesPerPixel = 0.0;  // the per-frame maps' bakes' share of samplesPerPixel (not in the CSV)
