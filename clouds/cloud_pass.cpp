@@ -55,9 +55,10 @@ constexpr double kMapRho0_m = 1000.0;
 // kMapSunMove_rad of the maps' (a sun line's crossing ~10 km away moves ~1 m) and the camera within
 // kMapCameraMove_m of their origin (the extent E is the march's reach plus that); otherwise, and for
 // every still, all of them. w is the largest of kMapRowStrides that keeps the drift under the bound
-// (10 m/s of wind at 30 frames per second: 8; no wind: 16), and a change of w re-bakes all rows.
+// (10 m/s of wind at 30 frames per second, 0.33 m a frame: 16), and a change of w re-bakes all rows.
+// The bound, 8 m, is under a quarter of the smallest texel (34 m at the maps' origin, 256 texels).
 constexpr int kMapRowStrides[3] = {16, 8, 4};
-constexpr double kMapDrift_m = 4.0;
+constexpr double kMapDrift_m = 8.0;
 constexpr double kMapSunMove_rad = 1e-4;
 constexpr double kMapCameraMove_m = 1000.0;
 

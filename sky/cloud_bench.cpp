@@ -700,7 +700,7 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       " renders after a warm-up (one render on a CPU device, 0.5 s of renders on a GPU so its clocks are up); temporal_update rows: the median of the 2 N reprojected frames of a sequence of 2 N + 1 at 30 "
       "frames per second ending at the view (the camera turning 7.5 deg/s, the wind 10 m/s; its first frame marches every "
       "pixel), compared at its last frame. cloud ms: clouds/render_clouds + clouds/upsample_clouds + clouds/temporal_resolve + "
-      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers + clouds/bake_columns; the light_shafts row's difference "
+      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers + clouds/bake_columns + clouds/bake_deep_shadow; the light_shafts row's difference "
       "from the defaults is the shafts' effect (no reference has them); "
       "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "
@@ -713,7 +713,8 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
         "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& r : rows) {
     char line[512];
-    std::snprintf(line, sizeof(line), "%s,%s,%d,%d,%.3f,%.3f,%.2f,%.6g,%.6g,\"%s\"\n", r.scenario.c_str(), r.setting.c_str(),
+    // The setting is quoted (RFC 4180): many names hold commas ("view_steps 48, temporal_update 16 (sequence)").
+    std::snprintf(line, sizeof(line), "%s,\"%s\",%d,%d,%.3f,%.3f,%.2f,%.6g,%.6g,\"%s\"\n", r.scenario.c_str(), r.setting.c_str(),
                   r.width, r.height, r.cloudMs, r.frameMs, r.samplesPerPixel, r.relRmseVsDefault, r.biasVsDefault, r.device.c_str());
     csv += line;
     std::snprintf(line, sizeof(line), "| %s | %s | %dx%d | %.1f | %.1f | %.1f | %.4f | %+.4f |\n", r.scenario.c_str(),

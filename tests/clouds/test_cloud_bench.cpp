@@ -179,6 +179,19 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header, "scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,rel_rmse_vs_default,bias_vs_default,device");
+  // Every row has the header's 10 fields: settings with commas ("..., temporal_update 16 (sequence)")
+  // are quoted, as the device is.
+  int lines = 0;
+  for (std::string line; std::getline(csv, line); ++lines) {
+    int fields = 1;
+    bool quoted = false;
+    for (char ch : line) {
+      if (ch == '"') quoted = !quoted;
+      if (ch == ',' && !quoted) ++fields;
+    }
+    EXPECT_EQ(fields, 10) << line;
+  }
+  EXPECT_EQ(lines, int(rows.size()));
 }
 
 }  // namespace
