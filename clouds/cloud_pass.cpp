@@ -433,6 +433,21 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
   commands.barrier();
 }
 
+void CloudPass::recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels,
+                               size_t layers, const char* name, const char* pass, const AtmosphereLuts& luts,
+                               const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                               gpu::CommandList& commands) {
+  const uint32_t width = bake ? uint32_t(size) : 1u;
+  const uint32_t depth = bake ? uint32_t(layers) * uint32_t(levels + 1) : 2u;
+  if (!image || image.width() != width || image.depth() != depth)
+    image = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, name});
+  if (!bake) return;
+  bindBake(pipeline, image, luts, skyIrradiance, skyFrame, commands);
+  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+  commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(layers), pass);
+  commands.barrier();
+}
+
 void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                                 const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                                 gpu::CommandList& commands) {
@@ -442,21 +457,13 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
     throw InputError("clouds: column_map_size " + std::to_string(size) + "; allowed: 8 to 4096 texels");
   if (bake && (levels < 1 || levels > 64))
     throw InputError("clouds: column_map_levels " + std::to_string(levels) + "; allowed: 1 to 64");
-  const uint32_t width = bake ? uint32_t(size) : 1u;
-  const uint32_t depth = bake ? uint32_t(settings.layers.size()) * uint32_t(levels + 1) : 2u;
-  if (!columnImage_ || columnImage_.width() != width || columnImage_.depth() != depth)
-    columnImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud column map"});
-  if (!bake) return;
-  bindBake(bakeColumns_, columnImage_, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
-  commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_columns");
-  commands.barrier();
+  recordLevelMap(bakeColumns_, columnImage_, bake, size, levels, settings.layers.size(), "cloud column map", "clouds/bake_columns",
+                 luts, skyIrradiance, skyFrame, commands);
 }
 
 void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                                     const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                                     gpu::CommandList& commands) {
-  const bool bake = usesDeepShadowMap(settings);
   const CloudMarchSettings& m = settings.march;
   const int size = m.deepShadowMapSize, levels = m.deepShadowMapLevels;
   if (m.deepShadowMap && (size < 8 || size > 4096))
@@ -465,15 +472,8 @@ void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const Atmosph
     throw InputError("clouds: deep_shadow_map_levels " + std::to_string(levels) + "; allowed: 1 to 128");
   if (m.deepShadowMap && m.deepShadowNearSteps < 0)
     throw InputError("clouds: deep_shadow_near_steps " + std::to_string(m.deepShadowNearSteps) + "; allowed: 0 or more");
-  const uint32_t width = bake ? uint32_t(size) : 1u;
-  const uint32_t depth = bake ? uint32_t(settings.layers.size()) * uint32_t(levels + 1) : 2u;
-  if (!deepShadowImage_ || deepShadowImage_.width() != width || deepShadowImage_.depth() != depth)
-    deepShadowImage_ = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, "cloud deep shadow map"});
-  if (!bake) return;
-  bindBake(bakeDeepShadow_, deepShadowImage_, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
-  commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(settings.layers.size()), "clouds/bake_deep_shadow");
-  commands.barrier();
+  recordLevelMap(bakeDeepShadow_, deepShadowImage_, usesDeepShadowMap(settings), size, levels, settings.layers.size(),
+                 "cloud deep shadow map", "clouds/bake_deep_shadow", luts, skyIrradiance, skyFrame, commands);
 }
 
 void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,

@@ -121,6 +121,11 @@ class CloudPass {
   // otherwise), a barrier after.
   void recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
                            const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+  // Bakes a map of K + 1 levels per layer (the column map, the deep shadow map: 3D R32F, size x size x
+  // layers (K + 1); a 1x1x2 placeholder into `image` while off) on this frame's rows, a barrier after.
+  void recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels, size_t layers,
+                      const char* name, const char* pass, const AtmosphereLuts& luts,
+                      const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
   // unread) and `target`, the image it writes.
   void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,

@@ -424,8 +424,7 @@ std::vector<KnobValue> knobValues(bool quick) {
 }
 
 // The clouds' per-frame passes: the march, its upsampling or temporal resolve, the aerial-perspective
-// volume it reads (when it does), the light shafts, and the per-frame maps' bakes (the deep shadow
-// map's was left out of it in the session that added the map, until its timing run showed it).
+// volume it reads (when it does), the light shafts, and the per-frame maps' bakes.
 double cloudPassMs(const RenderResult& r) {
   double ms = 0.0;
   for (const auto& t : r.timings)

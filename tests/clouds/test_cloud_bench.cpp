@@ -17,6 +17,17 @@ namespace {
 
 class CloudBench : public test::GpuTest {};
 
+// The fields of a CSV line; commas inside quotes do not split (RFC 4180).
+int csvFieldCount(const std::string& line) {
+  int fields = 1;
+  bool quoted = false;
+  for (char ch : line) {
+    if (ch == '"') quoted = !quoted;
+    if (ch == ',' && !quoted) ++fields;
+  }
+  return fields;
+}
+
 TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   CloudBenchConfig config;
   config.quick = true;
@@ -91,15 +102,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   // Every row has the header's 14 fields (commas inside quotes do not split: values such as
   // "1 octave, no cone, 16 light" are quoted).
   int lines = 0;
-  for (std::string line; std::getline(csv, line); ++lines) {
-    int fields = 1;
-    bool quoted = false;
-    for (char ch : line) {
-      if (ch == '"') quoted = !quoted;
-      if (ch == ',' && !quoted) ++fields;
-    }
-    EXPECT_EQ(fields, 14) << line;
-  }
+  for (std::string line; std::getline(csv, line); ++lines) EXPECT_EQ(csvFieldCount(line), 14) << line;
   EXPECT_EQ(lines, int(rows.size()));
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
   // One error-against-time plot per scenario.
@@ -182,15 +185,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   // Every row has the header's 10 fields: settings with commas ("..., temporal_update 16 (sequence)")
   // are quoted, as the device is.
   int lines = 0;
-  for (std::string line; std::getline(csv, line); ++lines) {
-    int fields = 1;
-    bool quoted = false;
-    for (char ch : line) {
-      if (ch == '"') quoted = !quoted;
-      if (ch == ',' && !quoted) ++fields;
-    }
-    EXPECT_EQ(fields, 10) << line;
-  }
+  for (std::string line; std::getline(csv, line); ++lines) EXPECT_EQ(csvFieldCount(line), 10) << line;
   EXPECT_EQ(lines, int(rows.size()));
 }
 
