@@ -124,7 +124,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   config.outDir = test::scratchDir("cloud_timing");
   const std::vector<CloudTimingRow> rows = runCloudTiming(context(), config);
   writeCloudTimingOutputs(config, rows);
-  ASSERT_EQ(rows.size(), 30u);
+  ASSERT_EQ(rows.size(), 36u);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
     std::map<std::string, double> samples, marchSamples;  // all, and without the per-frame maps' bakes
     for (const auto& r : rows) {
@@ -148,7 +148,13 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
         EXPECT_LT(std::abs(r.biasVsDefault), shadowMap ? 0.6 : 0.25) << r.setting;
       }
     }
-    ASSERT_EQ(samples.size(), 15u) << scenario;
+    ASSERT_EQ(samples.size(), 18u) << scenario;
+    // The quality presets: low marches fewer samples than the default, high more; the octaves cost no
+    // samples (low's steps with 3 octaves march exactly what low does).
+    const std::string low = "quality low (32v/4l/2o)";
+    EXPECT_LT(marchSamples[low], 0.8 * marchSamples["default"]) << scenario;
+    EXPECT_GT(marchSamples["quality high (128v/8l/3o)"], 1.25 * marchSamples["default"]) << scenario;
+    EXPECT_EQ(samples["quality low's steps, 3 octaves (32v/4l/3o)"], samples[low]) << scenario;
     // The noise LOD changes which mip level a lookup reads, not how many lookups there are (the
     // empty-space test sees a blurred shape, hence a little slack).
     for (const char* lod : {"noise_lod 0 (level 0)", "noise_lod 2"})
