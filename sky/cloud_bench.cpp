@@ -246,13 +246,11 @@ std::vector<KnobValue> knobValues(bool quick) {
                  o.clouds.msZenithDepth = false;
                  o.clouds.msScatteredOnly = false;
                }});
-  // The scene's quality presets (/clouds/quality, clouds/cloud_settings.cpp): low caps the octaves at 2,
-  // although a, b, c are fitted for 3; the third row keeps low's steps with 3 octaves.
-  v.push_back({"quality", "low (32v/4l/2o)", {"/clouds/quality=low"}, [](SkyRenderOptions&) {}});
-  v.push_back({"quality", "low's steps, 3 octaves (32v/4l/3o)", {}, [](SkyRenderOptions& o) {
-                 o.clouds.viewSteps = 32;
-                 o.clouds.lightSteps = 4;
-               }});
+  // The scene's quality presets (/clouds/quality, clouds/cloud_settings.cpp), and low as it was until
+  // session 17, with the octaves capped at 2 (a, b, c are fitted for 3).
+  v.push_back({"quality", "low (32v/4l/3o)", {"/clouds/quality=low"}, [](SkyRenderOptions&) {}});
+  v.push_back({"quality", "low, 2 octaves (the preset until session 17)", {"/clouds/quality=low", "/clouds/lighting/ms_octaves=2"},
+               [](SkyRenderOptions&) {}});
   v.push_back({"quality", "high (128v/8l/3o)", {"/clouds/quality=high"}, [](SkyRenderOptions&) {}});
   v.push_back({"single_scattering", "1 octave vs order 1", {"/clouds/lighting/ms_octaves=1"}, [](SkyRenderOptions&) {}, true});
   v.push_back({"single_scattering", "1 octave, no cone, 16 light", {"/clouds/lighting/ms_octaves=1"},
@@ -407,7 +405,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"view_steps", "32"},        {"view_steps", "48"},                      {"view_steps", "128"},
       {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
-      {"quality", "low (32v/4l/2o)"}, {"quality", "low's steps, 3 octaves (32v/4l/3o)"}, {"quality", "high (128v/8l/3o)"},
+      {"quality", "low (32v/4l/3o)"}, {"quality", "low, 2 octaves (the preset until session 17)"}, {"quality", "high (128v/8l/3o)"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"light_through_other_layers", "1x samples across the other layers (sessions 9-14)"},
       {"single_scattering", "1 octave, 1x samples across the other layers (sessions 9-14)"},
@@ -651,11 +649,10 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"column_map 128 texels", [](SkyRenderOptions& o) { o.clouds.columnMapSize = 128; }, 1, false, false},
       {"column_map 16 levels", [](SkyRenderOptions& o) { o.clouds.columnMapLevels = 16; }, 1, false, false},
       // The scene's quality presets (/clouds/quality), stills and sequences.
-      {"quality low (32v/4l/2o)", [](SkyRenderOptions&) {}, 1, true, true, false, {"/clouds/quality=low"}},
-      {"quality low (32v/4l/2o), temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true, false, false, {"/clouds/quality=low"}},
-      {"quality low's steps, 3 octaves (32v/4l/3o)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 32; o.clouds.lightSteps = 4; }, 1, true},
-      {"quality low's steps, 3 octaves (32v/4l/3o), temporal_update 16 (sequence)",
-       [](SkyRenderOptions& o) { o.clouds.viewSteps = 32; o.clouds.lightSteps = 4; }, 16, true, false},
+      {"quality low (32v/4l/3o)", [](SkyRenderOptions&) {}, 1, true, true, false, {"/clouds/quality=low"}},
+      {"quality low (32v/4l/3o), temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true, false, false, {"/clouds/quality=low"}},
+      {"quality low, 2 octaves (until session 17)", [](SkyRenderOptions&) {}, 1, true, true, false,
+       {"/clouds/quality=low", "/clouds/lighting/ms_octaves=2"}},
       {"quality high (128v/8l/3o)", [](SkyRenderOptions&) {}, 1, true, true, false, {"/clouds/quality=high"}},
       {"quality high (128v/8l/3o), temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true, false, false, {"/clouds/quality=high"}},
       {"resolution_divisor 2", [](SkyRenderOptions& o) { o.clouds.resolutionDivisor = 2; }},

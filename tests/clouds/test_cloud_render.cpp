@@ -553,9 +553,9 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_EQ(given.layers[0].msB, sc.b);
 }
 
-// The quality presets change the march's steps; only `low` drops an octave. The octave parameters are
-// fitted for 3 octaves, and a 4th adds about +48 % at noon (docs/clouds.md, bench "octaves" rows), so
-// `high` keeps the scene's count.
+// The quality presets change the march's steps only. The octave parameters are fitted for 3 octaves: a
+// 4th adds about +48 % at noon (docs/clouds.md, bench "octaves" rows), and `low`'s 2 octaves until
+// session 17 made two_layers -52 % against the path tracer (docs/clouds.md "Quality presets").
 TEST(CloudSettingsTest, QualityPresetsKeepTheFittedOctaves) {
   const CloudSettings standard = CloudSettings::fromScene(test::cloudScene({}));
   const CloudSettings low = CloudSettings::fromScene(test::cloudScene({"/clouds/quality=\"low\""}));
@@ -565,7 +565,7 @@ TEST(CloudSettingsTest, QualityPresetsKeepTheFittedOctaves) {
   EXPECT_EQ(standard.march.lightSteps, 6);
   EXPECT_EQ(low.march.viewSteps, 32);
   EXPECT_EQ(low.march.lightSteps, 4);
-  EXPECT_EQ(low.lighting.octaves, 2);
+  EXPECT_EQ(low.lighting.octaves, standard.lighting.octaves);
   EXPECT_EQ(high.march.viewSteps, 128);
   EXPECT_EQ(high.march.lightSteps, 8);
   EXPECT_EQ(high.lighting.octaves, standard.lighting.octaves);
