@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // Bakes the deep shadow map (clouds/deep_shadow_map.glsl): per texel, the line along the sun through its
 // plane point, and per layer the optical depth from each of its K + 1 levels up to the layer top along
-// that line, one midpoint sample of the full density per level segment, at the noise level of the
-// texel's footprint or the segment's length, whichever is larger.
+// that line, one midpoint sample of the full density per level segment (up to 4 where a segment is
+// longer than two level spacings: a low sun), each at the noise level the march's own light samples read
+// at that distance from the camera.
 #include "common/cloud_march.glsl"
 #include "clouds/cloud_sampling.glsl"
 #include "clouds/deep_shadow_map.glsl"
@@ -24,8 +25,8 @@ void main() {
   vec2 a = otherLayerMapPlanePoint(s);
   vec3 sun = cloud.otherLayerSun.xyz;
   vec3 o = cloud.otherLayerOrigin.xyz + a.x * cloud.otherLayerAxisU.xyz + a.y * cloud.otherLayerAxisV.xyz;
-  // The line's periapsis b and its radius r_c; level r lies t(r) = sqrt((r - r_c)(r + r_c)) from b
-  // (0 below r_c: levels the line never reaches repeat its lowest point).
+  // The line's periapsis b and its radius r_c; level r lies t(r) from b (sunLineDistanceToRadius; 0
+  // below r_c: levels the line never reaches repeat its lowest point).
   vec3 b = o - sun * dot(o, sun);
   float rc = length(b);
   CloudLayer layer = layerAt(j);
@@ -36,10 +37,10 @@ void main() {
   uint samples = 0u;
   imageStore(deepShadowImage, ivec3(texel, base + K), vec4(0.0));
   float rUpper = layer.top_radius;
-  float tUpper = sqrt(max((rUpper - rc) * (rUpper + rc), 0.0));
+  float tUpper = sunLineDistanceToRadius(rc, rUpper);
   for (int k = K - 1; k >= 0; --k) {
     float rLower = layer.bottom_radius + float(k) * h;
-    float tLower = sqrt(max((rLower - rc) * (rLower + rc), 0.0));
+    float tLower = sunLineDistanceToRadius(rc, rLower);
     float segment = tUpper - tLower;
     int S = clamp(int(ceil(segment / (2.0 * h))), 1, 4);
     float sub = segment / float(S);

@@ -29,13 +29,17 @@ vec2 otherLayerMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.otherLa
 vec2 otherLayerMapTexelCoordinate(vec2 a) { return logWarpTexelCoordinate(a, cloud.otherLayerMap.x, cloud.otherLayerMap.y); }
 float otherLayerMapTexelSize(vec2 a) { return logWarpTexelSize(a, cloud.otherLayerMap.x, cloud.otherLayerMap.y, cloud.otherLayerMap.z); }
 
+// Where a line along the sun with periapsis radius r_c reaches radius r on its sunward side: the
+// distance from the periapsis, sqrt(r^2 - r_c^2), written as sqrt((r - r_c)(r + r_c)) to keep its
+// precision; 0 for a radius the line never comes down to (r <= r_c).
+float sunLineDistanceToRadius(float rc, float r) { return sqrt(max((r - rc) * (r + rc), 0.0)); }
+
 // The sunward crossing of the shell [inner, outer] by the line through b along `sun`, b the line's
 // periapsis (b.sun = 0, |b| = r_c): the distances along the line from b, (t0, t1); t1 <= t0 when the
-// line misses the shell. The roots are written as sqrt((R - r_c)(R + r_c)) to keep their precision.
+// line misses the shell.
 vec2 otherLayerMapCrossing(float rc, float inner, float outer) {
   if (!(rc < outer)) return vec2(0.0);
-  float t0 = rc < inner ? sqrt((inner - rc) * (inner + rc)) : 0.0;
-  return vec2(t0, sqrt((outer - rc) * (outer + rc)));
+  return vec2(sunLineDistanceToRadius(rc, inner), sunLineDistanceToRadius(rc, outer));
 }
 
 // The optical depth towards the sun from p (radius r) through every layer but `own` whose base lies

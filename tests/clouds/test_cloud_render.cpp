@@ -223,6 +223,12 @@ std::vector<std::pair<std::string, Scene>> mapTestViews(const std::string& layer
   return views;
 }
 
+// The map tests' two layers: cumulus under a stratocumulus deck.
+std::string mapTestTwoLayers() {
+  return test::cloudSceneText(
+      R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.6}, {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6})");
+}
+
 // The column map (clouds/column_map.glsl) against marching up and down from each lit sample: cumulus,
 // the sun high and low, looking up and towards the horizon, 64x36. Both converge to the same vertical
 // optical depths: the fine map (1024 texels, 64 levels) and the fine march (64 light steps: 32 up; the
@@ -266,8 +272,7 @@ TEST_F(CloudRender, OtherLayerMapMatchesTheMarchedCrossings) {
   o.clouds.viewSteps = 32;
   o.clouds.lightSteps = 6;
   o.clouds.deepShadowMap = false;  // the own layer's light march whole, as when the numbers above were measured
-  const std::string layers = test::cloudSceneText(
-      R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.6}, {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6})");
+  const std::string layers = mapTestTwoLayers();
   for (const auto& [what, s] : mapTestViews(layers)) {
       o.clouds.otherLayerMap = false;
       const RenderResult marched = test::cloudRenderer().render(s, o);
@@ -305,8 +310,7 @@ TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 32;
   o.clouds.lightSteps = 6;
-  const std::string twoLayers = test::cloudSceneText(
-      R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.6}, {"kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6})");
+  const std::string twoLayers = mapTestTwoLayers();
   for (const std::string& layers : {test::cloudSceneText(), twoLayers})
     for (const auto& [what, s] : mapTestViews(layers)) {
       const std::string name = what + (layers == twoLayers ? ", two layers" : ", one layer");
