@@ -9,10 +9,12 @@
 #include "astro/geodetic.h"
 #include "astro/sun.h"
 #include "astro/time.h"
+#include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/reference_medium.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/solar_spectrum_g173.h"
 #include "core/spectrum.h"
 #include "sky/kider_capture.h"
 #include "sky/kider_hemisphere.h"
@@ -127,6 +129,20 @@ std::optional<KiderValidationSettings::AzimuthRefit> kiderAzimuthRefitFromName(c
   return std::nullopt;
 }
 
+std::optional<KiderValidationSettings::SolarSpectrum> kiderSolarSpectrumFromName(const std::string& name) {
+  using Solar = KiderValidationSettings::SolarSpectrum;
+  if (name == "instrument") return Solar::instrument;
+  if (name == "band-means") return Solar::bandMeans;
+  return std::nullopt;
+}
+
+double kiderSolarSpectrumScale(const KiderValidationSettings& settings, double wavelengthNm) {
+  if (settings.solarSpectrum == KiderValidationSettings::SolarSpectrum::bandMeans) return 1.0;
+  // Both at 1 au: the Earth-Sun distance scales the rendered irradiance and cancels here.
+  return astmG173ExtraterrestrialSeenWithResolution(wavelengthNm, settings.instrumentFwhmNm) /
+         solarIrradiance(wavelengthNm);
+}
+
 std::vector<std::string> kiderAtmosphereOverrides() {
   return {"/location/height_m=0",
           "/atmosphere/mie/angstrom_alpha=0.8",
@@ -157,6 +173,11 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
   // Index of each compared wavelength among the rendered ones (they are the same grid).
   if (settings.quality.wavelengthCount < settings.wavelengthCount)
     throw InputError("validate kider: the reference must render at least the compared wavelengths");
+  if (!(settings.instrumentFwhmNm > 0.0 && settings.instrumentFwhmNm <= settings.kMaxInstrumentFwhmNm))
+    throw InputError("validate kider: the instrument FWHM must be in (0, " + number(settings.kMaxInstrumentFwhmNm) +
+                     "] nm, got " + number(settings.instrumentFwhmNm));
+  std::vector<double> solarScale;
+  for (double l : result.wavelengths) solarScale.push_back(kiderSolarSpectrumScale(settings, l));
 
   std::unique_ptr<SkyRenderer> gpuRenderer;
   if (context) {
@@ -247,11 +268,11 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
       double dirSe2 = 0.0, dirBias = 0.0;
       for (size_t i = 0; i < result.wavelengths.size(); ++i) {
         d.measured.push_back(s.radianceAt(result.wavelengths[i]));
-        d.model.push_back(total[i]);
+        d.model.push_back(total[i] * solarScale[i]);
         const double e = d.model.back() - d.measured.back();
         dirSe2 += e * e;
         dirBias += e;
-        noise2 += std::pow(radiance[k].multipleScatteringStandardError[i], 2);
+        noise2 += std::pow(radiance[k].multipleScatteringStandardError[i] * solarScale[i], 2);
       }
       se2 += dirSe2;
       bias += dirBias;

@@ -40,6 +40,18 @@ struct KiderValidationSettings {
     q.wavelengthCount = 41;
     return q;
   }();
+  // The solar spectrum under the compared spectra. `instrument` (the default): ASTM G-173 read through
+  // the spectroradiometer's line shape, a Gaussian of `instrumentFwhmNm` (ASD's VNIR specification,
+  // 3 nm), because the measured radiance at λ resolves the Fraunhofer lines that a 10-nm bin averages
+  // away (at 395.25 nm, between Ca II H and K, the 3-nm reading is 0.71 of the bin's value). Each
+  // wavelength is independent (elastic scattering), so the model's radiance at λ scales with the
+  // solar irradiance at λ: the rendered spectra are rescaled by reading / bin value. `bandMeans`: the
+  // atmosphere's own 10-nm means, as the published comparison's models used. The luminances always
+  // use the 10-nm means (an integral over wavelength, where the bins are the right input).
+  enum class SolarSpectrum { instrument, bandMeans };
+  SolarSpectrum solarSpectrum = SolarSpectrum::instrument;
+  double instrumentFwhmNm = 3.0;
+  static constexpr double kMaxInstrumentFwhmNm = 8.0;  // keeps the line shape inside the G-173 table
   double cameraHeightM = 1.0;  // above the ground sphere
   bool gpu = true;             // also sample the fast path's luminance in the same directions
   int gpuWidth = 1440, gpuHeight = 720;  // equirectangular image the fast path renders
@@ -57,6 +69,12 @@ std::vector<std::string> kiderAtmosphereOverrides();
 double grassAlbedo(double wavelengthNm);
 // ∫ ȳ(λ) a(λ) dλ / ∫ ȳ(λ) dλ over 360-830 nm: the single albedo the three-wavelength GPU path gets.
 double grassAlbedoLuminanceWeighted();
+
+// "instrument" or "band-means"; nullopt for anything else.
+std::optional<KiderValidationSettings::SolarSpectrum> kiderSolarSpectrumFromName(const std::string& name);
+// The factor the rendered spectral radiance at `wavelengthNm` is scaled by for the comparison:
+// the solar irradiance the settings ask for over the one the atmosphere rendered with (1 for bandMeans).
+double kiderSolarSpectrumScale(const KiderValidationSettings& settings, double wavelengthNm);
 
 // "published", "log-rings" or "none"; nullopt for anything else.
 std::optional<KiderValidationSettings::AzimuthRefit> kiderAzimuthRefitFromName(const std::string& name);

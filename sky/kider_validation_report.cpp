@@ -118,7 +118,15 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
      << "- Atmosphere: Bruneton's Earth with Ångström α = 0.8, β = 0.04, Cornette–Shanks g = 0.7, aerosol "
         "single-scattering albedo 0.8, aerosol scale height 1.2 km, no ozone, ground at sea level (6360 km), grass "
         "spectral albedo (Feister & Grewe 1995), camera "
-     << settings.cameraHeightM << " m above the ground; solar spectrum ASTM G-173 at 1 au.\n"
+     << settings.cameraHeightM << " m above the ground; solar spectrum ASTM G-173 at 1 au, scaled to the "
+        "capture date's Earth-Sun distance.\n"
+     << "- Solar spectrum under the compared spectra: "
+     << (settings.solarSpectrum == KiderValidationSettings::SolarSpectrum::instrument
+             ? "ASTM G-173 read through the instrument's line shape, a Gaussian of " + num(settings.instrumentFwhmNm) +
+                   " nm FWHM (`--solar-spectrum instrument`, the default)"
+             : std::string("the atmosphere's 10-nm means of ASTM G-173, as the published comparison's models used "
+                           "(`--solar-spectrum band-means`)"))
+     << "; luminances use the 10-nm means.\n"
      << "- Files: results.csv (per capture), per_direction.csv, per_wavelength.csv.\n";
   writeTextFileAtomically(outDir / "report.md", md.str());
 }

@@ -35,6 +35,15 @@ int runValidate(const Args& args) {
     if (!method) throw InputError("--refit '" + *refit + "': expected published, log-rings or none");
     settings.azimuthRefit = *method;
   }
+  if (const auto solar = args.get("solar-spectrum")) {
+    const auto spectrum = kiderSolarSpectrumFromName(*solar);
+    if (!spectrum) throw InputError("--solar-spectrum '" + *solar + "': expected instrument or band-means");
+    settings.solarSpectrum = *spectrum;
+  }
+  settings.instrumentFwhmNm = args.number("instrument-fwhm", settings.instrumentFwhmNm);
+  if (!(settings.instrumentFwhmNm > 0.0 && settings.instrumentFwhmNm <= settings.kMaxInstrumentFwhmNm))
+    throw InputError("--instrument-fwhm " + *args.get("instrument-fwhm") + ": expected a width in nm, > 0 and <= " +
+                     std::to_string(int(settings.kMaxInstrumentFwhmNm)));
   if (args.has("no-refit")) settings.azimuthRefit = KiderValidationSettings::AzimuthRefit::none;
   settings.gpu = !args.has("no-gpu");
 
@@ -60,7 +69,7 @@ int runValidate(const Args& args) {
 const CommandRegistration registration{Command{
     "validate",
     "render the measured directions of real captured skies and report the error (docs/validation.md)",
-    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--refit published|log-rings|none] [--utc-offset H] [--lat D --lon D]",
+    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--refit published|log-rings|none] [--solar-spectrum instrument|band-means] [--instrument-fwhm NM] [--utc-offset H] [--lat D --lon D]",
     {
         {"out", "DIR", "output folder (created): results.csv, per_direction.csv, per_wavelength.csv, report.md"},
         {"spp", "N", "reference Monte Carlo paths per direction (default 4096)"},
@@ -69,6 +78,10 @@ const CommandRegistration registration{Command{
         {"refit", "METHOD",
          "sun-azimuth re-fit: published (default; the published evaluation's method), log-rings, or none"},
         {"no-refit", "", "same as --refit none"},
+        {"solar-spectrum", "WHICH",
+         "solar spectrum under the compared spectra: instrument (default; G-173 through the instrument's line "
+         "shape) or band-means (10-nm means, as the published comparison's models)"},
+        {"instrument-fwhm", "NM", "the instrument line shape's full width at half maximum (default 3, ASD VNIR)"},
         {"utc-offset", "H", "capture names' local time = UTC + H hours (default -4, EDT)"},
         {"lat", "DEG", "site latitude (default 42.443449, Cornell)"},
         {"lon", "DEG", "site longitude (default -76.481962)"},

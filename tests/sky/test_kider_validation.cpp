@@ -7,6 +7,8 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/solar_spectrum_g173.h"
+#include "core/spectrum.h"
 #include "sky/kider_capture.h"
 #include "sky/kider_hemisphere.h"
 #include "sky/kider_validation.h"
@@ -170,6 +172,43 @@ TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
   writeKiderValidationOutputs(out, settings, result);
   for (const char* file : {"results.csv", "per_direction.csv", "per_wavelength.csv", "report.md"})
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
+}
+
+// The compared spectra under the instrument's solar spectrum are the band-mean ones scaled per
+// wavelength by reading / bin value (the reference is deterministic per direction), the luminances
+// are untouched, and the scale is the G-173 reading over the atmosphere's bin value.
+TEST(KiderValidation, TheInstrumentSolarSpectrumRescalesTheComparedSpectra) {
+  ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
+  const auto data = test::scratchDir("kider-solar-spectrum");
+  std::filesystem::create_directories(data / "radiance");
+  std::filesystem::copy(shippedCapture(), data / "radiance" / shippedCapture().filename());
+  KiderValidationSettings bands;
+  bands.quality.samplesPerPixel = 16;
+  bands.gpu = false;
+  bands.solarSpectrum = KiderValidationSettings::SolarSpectrum::bandMeans;
+  KiderValidationSettings instrument = bands;
+  instrument.solarSpectrum = KiderValidationSettings::SolarSpectrum::instrument;
+  const KiderValidationResult a = runKiderValidation(data, bands, nullptr);
+  const KiderValidationResult b = runKiderValidation(data, instrument, nullptr);
+  ASSERT_EQ(a.captures.size(), 1u);
+  ASSERT_EQ(b.captures.size(), 1u);
+  const auto& da = a.captures[0].directions;
+  const auto& db = b.captures[0].directions;
+  ASSERT_EQ(da.size(), db.size());
+  for (size_t k = 0; k < da.size(); ++k) {
+    EXPECT_DOUBLE_EQ(da[k].modelLuminance, db[k].modelLuminance);
+    for (size_t i = 0; i < a.wavelengths.size(); ++i) {
+      const double scale = kiderSolarSpectrumScale(instrument, a.wavelengths[i]);
+      EXPECT_NEAR(db[k].model[i], da[k].model[i] * scale, 1e-12 * da[k].model[i]);
+    }
+  }
+  EXPECT_DOUBLE_EQ(kiderSolarSpectrumScale(bands, 395.25), 1.0);
+  EXPECT_NEAR(kiderSolarSpectrumScale(instrument, 395.25),
+              astmG173ExtraterrestrialSeenWithResolution(395.25, 3.0) / solarIrradianceTopOfAtmosphere()(395.25), 1e-12);
+  // Bad widths are refused before anything renders.
+  KiderValidationSettings wide = instrument;
+  wide.instrumentFwhmNm = 9.0;
+  EXPECT_THROW(runKiderValidation(data, wide, nullptr), InputError);
 }
 
 TEST(KiderValidation, GrassAlbedoIsTheTabulatedSpectrum) {
