@@ -84,6 +84,13 @@ std::vector<Scenario> scenarios(bool quick) {
        R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 50, "azimuth_deg": 230},
            "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 30, "fov_deg": 70, )" + size + R"(},
            "clouds": {"layers": [{"kind": "cirrus", "bottom_m": 8000, "top_m": 10000, "coverage": 0.65}]}})", false},
+      // Not in the issue's list, which asks for a camera above the clouds too: a flight over a cumulus
+      // field, looking down at the sunlit tops (the sun behind, to the right), where nearly all the
+      // light comes back out of the tops after many scatterings (session 18).
+      {"above_clouds", "camera at 4500 m over cumulus 1500-3000 m, coverage 0.5, extinction x 0.3; sun 40 deg from the zenith, behind to the right; looking down 25 deg",
+       R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 40, "azimuth_deg": 150},
+           "camera": {"height_above_ground_m": 4500, "yaw_deg": 0, "pitch_deg": -25, "fov_deg": 70, )" + size + R"(},
+           "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.5, "extinction_scale": 0.3}]}})", false},
   };
   list.insert(list.end(), more.begin(), more.end());
   return list;
