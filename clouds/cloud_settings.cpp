@@ -215,6 +215,8 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
     l.msB = lighting.contains("ms_b") ? scene.number("/clouds/lighting/ms_b") : type.b;
     l.msC = lighting.contains("ms_c") ? scene.number("/clouds/lighting/ms_c") : type.c;
     l.msD = lighting.contains("ms_d") ? scene.number("/clouds/lighting/ms_d") : type.d;
+    l.msR = lighting.contains("ms_r") ? scene.number("/clouds/lighting/ms_r") : type.r;
+    l.msRA = lighting.contains("ms_ra") ? scene.number("/clouds/lighting/ms_ra") : type.ra;
     if (l.msA > l.msB)
       throw InputError(source + ": /clouds/lighting/ms_a: " + std::to_string(l.msA) + " exceeds ms_b (" +
                        std::to_string(l.msB) + (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +

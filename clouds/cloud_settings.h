@@ -24,7 +24,9 @@ struct CloudLayerSettings {
   // /clouds/lighting/ms_a|b|c where given, else the type's calibrated values (cloudTypeMultipleScattering).
   // msD: the weight of the Eddington diffusion floor under the octaves i >= 1 (cloudEddingtonSlabSource;
   // 0: off, 1: the slab's own value), /clouds/lighting/ms_d or the type's.
-  double msA = 0.5, msB = 0.5, msC = 0.5, msD = 0.0;
+  // msR, msRA: the weight r and depth scale a_r of the light the cloud behind a sample (along the sun)
+  // turns back towards the sun (cloudReflectedSource; 0: off), /clouds/lighting/ms_r|ms_ra or the type's.
+  double msA = 0.5, msB = 0.5, msC = 0.5, msD = 0.0, msR = 0.0, msRA = 0.0;
 };
 
 // How the air between the camera and the clouds is applied (docs/clouds.md "Aerial perspective"):
@@ -281,6 +283,7 @@ double cloudTypeExtinction(int kind);
 // its own fit (`--phase`; the approximate Mie's d fitted in session 8).
 struct CloudMultipleScattering {
   double a, b, c, d;
+  double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale (0: off)
 };
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);
 // The joint fit over the cumulus and stratocumulus calibration scenes (the calibration's group "all").

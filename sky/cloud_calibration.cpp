@@ -138,7 +138,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   t0 = std::chrono::steady_clock::now();
 
   // The errors of one parameter set on the scenes of a group.
-  auto evaluate = [&](const std::string& group, double a, double b, double c, double d, std::vector<CloudCalibrationSceneError>& out) {
+  auto evaluate = [&](const std::string& group, double a, double b, double c, double d, double r, double ra,
+                      std::vector<CloudCalibrationSceneError>& out) {
     out.clear();
     double sum = 0.0;
     for (const Prepared& p : prepared) {
@@ -147,7 +148,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
                                        {"/clouds/lighting/phase=" + config.phase,
                                         "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
                                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d)});
+                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
+                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra)});
       const RenderResult r = p.renderer->render(scene, options);
       const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
@@ -162,8 +164,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     if (!config.group.empty() && group != config.group) continue;
     CloudCalibrationFit fit;
     fit.group = group;
-    constexpr int N = 4;
-    using Point = std::array<double, N>;
+    const int N = config.reflection ? 6 : 4;  // the simplex's dimension: (b, a/b, c, d/2[, r/4, a_r])
+    using Point = std::array<double, 6>;
     auto clamp01 = [](Point x) {
       for (double& v : x) v = std::clamp(v, 0.0, 1.0);
       return x;
@@ -171,19 +173,19 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     std::vector<CloudCalibrationSceneError> scratch;
     auto f = [&](const Point& x) {
       ++fit.evaluations;
-      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], scratch);
+      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], scratch);
     };
     // The group's shipped constants: its type's, or for "all" the joint fit.
     const CloudMultipleScattering shipped =
         group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase);
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
-      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d;
-      fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, fit.start);
-      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.fit);
+      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
+      fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
+      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit);
       char line[200];
-      std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f: rms rel RMSE %.4f", group.c_str(),
-                    fit.a, fit.b, fit.c, fit.d, std::sqrt(fit.objectiveFit));
+      std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f",
+                    group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveFit));
       logInfo(line);
       result.fits.push_back(std::move(fit));
       continue;
@@ -191,28 +193,32 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     // The simplex starts at the shipped constants (since session 8): the objective is flat across quite
     // different (a, b, c, d), and from a fixed start the 90 evaluations could end on a point worse than
     // the shipped one (docs/clouds.md, "Calibration"); from there a fit can only improve on it.
-    const Point start = clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d});
-    std::array<Point, N + 1> simplex;
+    const bool fromZero = shipped.r <= 0.0;
+    const Point start = clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d,
+                                 config.reflection ? (fromZero ? 0.25 : 0.25 * shipped.r) : 0.25 * shipped.r,
+                                 config.reflection && fromZero ? 0.5 : shipped.ra});
+    std::array<Point, 7> simplex;
     simplex[0] = start;
     for (int i = 0; i < N; ++i) {
       simplex[i + 1] = start;
       simplex[i + 1][i] += start[i] + 0.25 <= 1.0 ? 0.25 : -0.25;
     }
-    std::array<double, N + 1> value{};
+    std::array<double, 7> value{};
     for (int i = 0; i <= N; ++i) value[i] = f(simplex[i]);
-    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, fit.start);
+    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
     while (fit.evaluations < config.maxEvaluations) {
-      std::array<int, N + 1> order{};
+      std::array<int, 7> order{};
       for (int i = 0; i <= N; ++i) order[i] = i;
-      std::sort(order.begin(), order.end(), [&](int i, int j) { return value[i] < value[j]; });
+      std::sort(order.begin(), order.begin() + N + 1, [&](int i, int j) { return value[i] < value[j]; });
       const auto best = simplex[order[0]];
       const int worst = order[N];
       if (value[order[N]] - value[order[0]] < 1e-6 * std::max(value[order[0]], 1e-12)) break;
-      Point centroid{};
+      Point centroid = start;  // the coordinates past N stay at the start's
+      for (int d = 0; d < N; ++d) centroid[d] = 0.0;
       for (int k = 0; k < N; ++k)
         for (int d = 0; d < N; ++d) centroid[d] += simplex[order[k]][d] / double(N);
       auto along = [&](double t) {
-        Point x{};
+        Point x = start;
         for (int d = 0; d < N; ++d) x[d] = centroid[d] + t * (simplex[worst][d] - centroid[d]);
         return clamp01(x);
       };
@@ -239,16 +245,19 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
         }
       }
     }
-    int bestIndex = int(std::min_element(value.begin(), value.end()) - value.begin());
+    int bestIndex = int(std::min_element(value.begin(), value.begin() + N + 1) - value.begin());
     const auto x = simplex[bestIndex];
     fit.b = x[0];
     fit.a = x[0] * x[1];
     fit.c = x[2];
     fit.d = 2.0 * x[3];
-    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.fit);
+    fit.r = 4.0 * x[4];
+    fit.ra = x[5];
+    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit);
     char line[256];
-    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
-                  group.c_str(), fit.a, fit.b, fit.c, fit.d, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit), fit.evaluations);
+    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
+                  group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit),
+                  fit.evaluations);
     logInfo(line);
     result.fits.push_back(std::move(fit));
   }

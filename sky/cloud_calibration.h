@@ -32,6 +32,9 @@ struct CloudCalibrationConfig {
   bool evaluateDefaults = false;
   std::string group;  // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
+  // Also fit the reflected light's weight r and depth scale a_r (cloudReflectedSource): x gains
+  // (r / 4, a_r), started at the shipped values or, where they are 0, at (0.25, 0.5).
+  bool reflection = false;
   // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
   // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").
   std::string phase = "dual_henyey_greenstein";
@@ -46,6 +49,7 @@ struct CloudCalibrationSceneError {
 struct CloudCalibrationFit {
   std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
+  double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
   std::vector<CloudCalibrationSceneError> start, fit;  // per scene

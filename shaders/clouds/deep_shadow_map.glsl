@@ -57,4 +57,15 @@ float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q) 
   return tau;
 }
 
+// The whole sunward crossing of q's line through the layer, T(0): the level-0 slice, bilinear between
+// lines (one level, so the four lines need no shift along the sun).
+float deepShadowMapCrossing(sampler3D map, int j, vec3 q) {
+  vec3 d = q - cloud.otherLayerOrigin.xyz;
+  vec2 a = vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz));
+  float size = cloud.deepShadowMap.x;
+  vec2 f = clamp((0.5 * otherLayerMapTexelCoordinate(a) + 0.5) * size - 0.5, vec2(0.0), vec2(size - 1.0));
+  float slices = float(cloud.image.w) * (cloud.deepShadowMap.y + 1.0);
+  return textureLod(map, vec3((f + 0.5) / size, (float(j) * (cloud.deepShadowMap.y + 1.0) + 0.5) / slices), 0.0).r;
+}
+
 #endif  // FIRMAMENT_DEEP_SHADOW_MAP_GLSL

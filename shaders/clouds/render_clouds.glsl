@@ -88,6 +88,7 @@ const bool kOtherLayerMarch = (kMarchFeatures & 128u) != 0u;  // the other layer
 const bool kColumnMap = (kMarchFeatures & 256u) != 0u;    // the vertical optical depths from the column map (when baked)
 const bool kColumnMarch = (kMarchFeatures & 512u) != 0u;  // the vertical optical depths by marching up and down
 const bool kDeepShadowMap = (kMarchFeatures & 1024u) != 0u;  // the own layer's far light from the deep shadow map (when baked)
+const bool kReflection = (kMarchFeatures & 2048u) != 0u;  // the light the cloud behind a sample turns back (a layer's ms_r > 0)
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -224,6 +225,7 @@ void main() {
   float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
   float diffusion = 0.0;  // that layer's diffusion-floor weight d
+  float reflectWeight = 0.0, reflectDepthScale = 0.0;  // that layer's reflected light's r and a_r
   vec2 texels = vec2(1.0);  // that layer's noise texel sizes (noiseTexels)
 
   float transmittance = 1.0;       // the true one: the alpha, opacity and depth
@@ -324,6 +326,8 @@ void main() {
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
       diffusion = cloud.layerLighting[phaseLayer].x;
+      reflectWeight = cloud.layerLighting[phaseLayer].y;
+      reflectDepthScale = cloud.layerLighting[phaseLayer].z;
       for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
                                     cloud.phase.z, cloud.phaseLight.x, nu);
@@ -345,6 +349,8 @@ void main() {
       bool sunVisible = max(sunLight.x + sunLight.y + sunLight.z, 0.0) > 0.0;
       float tau = 0.0;
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
+      float tauBehind = 0.0;  // the own layer's optical depth behind p along the sun (cloudReflectedSource)
+      bool behindFromMap = false;
       if (sunVisible) {
         // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
         vec3 shadow = vec3(0.0);
@@ -392,6 +398,12 @@ void main() {
             vec3 q = p + sun * (marchLength * f * f);
             tau += deepShadowMapOpticalDepth(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, layer, q);
           }
+          // The reflected light's medium behind p (cloudReflectedSource): from the deep shadow map, p's
+          // line's whole crossing less p's way to the top.
+          if (kReflection && reflectWeight > 0.0 && fromMap) {
+            tauBehind = max(deepShadowMapCrossing(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, p) - tau, 0.0);
+            behindFromMap = true;
+          }
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
           if (throughOthers) {
             if (kOtherLayerMap && cloud.otherLayerMap.w > 0.0)  // baked this frame (its samples counted as the maps')
@@ -400,7 +412,15 @@ void main() {
               tauOther = opticalDepthThroughOtherLayers(segmentLayer[s], p, rp, muS, sun, otherLayerSteps, lightLength, lod, lightCount);
           }
         }
+        // Else the way behind p (away from the sun, to where it leaves the layer) is marched in
+        // lightSteps / 2 samples (at least 2), as the way up to the top is without the column map.
+        if (kReflection && reflectWeight > 0.0 && !behindFromMap) {
+          int behindSteps = max(lightSteps / 2, 2);
+          tauBehind = opticalDepthToSun(layer, p, -sun, behindSteps, cloudSunExitDistance(layer, p, -sun, lightLength), 0.0, lod);
+          lightCount += uint(behindSteps);
+        }
         tauOther *= transportScale;
+        tauBehind *= transportScale;
         tau = transportScale * tau + tauOther;
       }
       // Octaves i >= 1 (light scattered before it reaches the sample; docs/clouds.md "Multiple
@@ -461,6 +481,9 @@ void main() {
         float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
       }
+      // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
+      if (kReflection && reflectWeight > 0.0 && octaves > 1 && sunVisible)
+        msSum += reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
       float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
