@@ -248,6 +248,8 @@ std::vector<KnobValue> knobValues(bool quick) {
   v.push_back({"light_march", "milestone 1 (fixed length)", {}, [](SkyRenderOptions& o) { o.clouds.lightMarchToExit = false; }});
   v.push_back({"ms_model", "no way from the top", {}, [](SkyRenderOptions& o) { o.clouds.msZenithDepth = false; }});
   v.push_back({"ms_model", "no diffusion floor", {"/clouds/lighting/ms_d=0"}, [](SkyRenderOptions&) {}});
+  // The octaves and the floor alone with their own fit (sessions 9-16's model).
+  v.push_back({"ms_model", "no reflected light", {"/clouds/lighting/reflected_light=false"}, [](SkyRenderOptions&) {}});
   v.push_back({"ms_model", "unscattered part kept", {}, [](SkyRenderOptions& o) { o.clouds.msScatteredOnly = false; }});
   v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
                  o.clouds.msZenithDepth = false;
@@ -411,7 +413,8 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"default", "64v/6l/3o"},    {"baseline_fixed_steps", "64v/6l uniform"}, {"single_scattering", "1 octave vs order 1"},
       {"view_steps", "32"},        {"view_steps", "48"},                      {"view_steps", "128"},
       {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
-      {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"temporal_update", "16"},
+      {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"ms_model", "no reflected light"},
+      {"temporal_update", "16"},
       {"quality", "low (32v/4l/3o)"}, {"quality", "low, 2 octaves (the preset until session 17)"}, {"quality", "high (128v/8l/3o)"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
       {"light_through_other_layers", "1x samples across the other layers (sessions 9-14)"},

@@ -164,20 +164,26 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     if (!config.group.empty() && group != config.group) continue;
     CloudCalibrationFit fit;
     fit.group = group;
-    const int N = config.reflection ? 6 : 4;  // the simplex's dimension: (b, a/b, c, d/2[, r/4, a_r])
+    // The simplex's dimension: (b, a/b, c, d/2[, r/4, a_r]), or (r/4, a_r) alone with the octaves'
+    // constants fixed at their own fit (reflectionOnly).
+    const bool rOnly = config.reflectionOnly;
+    const int N = rOnly ? 2 : config.reflection ? 6 : 4;
     using Point = std::array<double, 6>;
     auto clamp01 = [](Point x) {
       for (double& v : x) v = std::clamp(v, 0.0, 1.0);
       return x;
     };
     std::vector<CloudCalibrationSceneError> scratch;
+    const CloudMultipleScattering shipped0 =
+        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, false);
     auto f = [&](const Point& x) {
       ++fit.evaluations;
+      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], scratch);
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], scratch);
     };
     // The group's shipped constants: its type's, or for "all" the joint fit.
     const CloudMultipleScattering shipped =
-        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase);
+        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
@@ -194,7 +200,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     // different (a, b, c, d), and from a fixed start the 90 evaluations could end on a point worse than
     // the shipped one (docs/clouds.md, "Calibration"); from there a fit can only improve on it.
     const bool fromZero = shipped.r <= 0.0;
-    const Point start = clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d,
+    const Point start = rOnly ? Point{0.25, 0.5, 0, 0, 0, 0} : clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d,
                                  config.reflection ? (fromZero ? 0.25 : 0.25 * shipped.r) : 0.25 * shipped.r,
                                  config.reflection && fromZero ? 0.5 : shipped.ra});
     std::array<Point, 7> simplex;
@@ -207,9 +213,9 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     for (int i = 0; i <= N; ++i) value[i] = f(simplex[i]);
     fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
     while (fit.evaluations < config.maxEvaluations) {
-      std::array<int, 7> order{};
-      for (int i = 0; i <= N; ++i) order[i] = i;
-      std::sort(order.begin(), order.begin() + N + 1, [&](int i, int j) { return value[i] < value[j]; });
+      std::vector<int> order(size_t(N) + 1);
+      for (int i = 0; i <= N; ++i) order[size_t(i)] = i;
+      std::sort(order.begin(), order.end(), [&](int i, int j) { return value[size_t(i)] < value[size_t(j)]; });
       const auto best = simplex[order[0]];
       const int worst = order[N];
       if (value[order[N]] - value[order[0]] < 1e-6 * std::max(value[order[0]], 1e-12)) break;
@@ -253,6 +259,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.d = 2.0 * x[3];
     fit.r = 4.0 * x[4];
     fit.ra = x[5];
+    if (rOnly) fit.a = shipped0.a, fit.b = shipped0.b, fit.c = shipped0.c, fit.d = shipped0.d, fit.r = 4.0 * x[0], fit.ra = x[1];
     fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit);
     char line[256];
     std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",

@@ -33,8 +33,12 @@ struct CloudCalibrationConfig {
   std::string group;  // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   // Also fit the reflected light's weight r and depth scale a_r (cloudReflectedSource): x gains
-  // (r / 4, a_r), started at the shipped values or, where they are 0, at (0.25, 0.5).
+  // (r / 4, a_r), started at the shipped reflection fit or, where it has none (r = 0), at (0.25, 0.5).
+  // Without it the octaves alone are fitted, from their own shipped fit, with r = 0
+  // (cloudTypeMultipleScattering's reflectedLight false).
   bool reflection = false;
+  // Fit r and a_r alone, the octaves' a, b, c, d fixed at their own fit (without the reflected light).
+  bool reflectionOnly = false;
   // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
   // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").
   std::string phase = "dual_henyey_greenstein";

@@ -88,7 +88,8 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.octaves = args.integer("octaves", 3, 1, 8);
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.evaluateDefaults = args.has("evaluate-defaults");
-  config.reflection = args.has("reflection");
+  config.reflection = args.has("reflection") || args.has("reflection-only");
+  config.reflectionOnly = args.has("reflection-only");
   if (config.reflection) config.maxEvaluations = 150;  // six dimensions instead of four
   config.group = args.getOr("group", "");
   config.phase = args.getOr("phase", config.phase);
@@ -191,7 +192,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--timing-only] [--timing-size WxH] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection]] [--device D]",
+    "[--images] [--timing-only] [--timing-size WxH] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -204,6 +205,7 @@ const CommandRegistration registration{Command{
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
         {"reflection", "", "with --calibrate: also fit the reflected light's r and a_r (cloudReflectedSource)"},
+        {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants fixed at their own fit"},
         {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
