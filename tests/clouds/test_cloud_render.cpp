@@ -215,13 +215,17 @@ double relativeRmsLuminance(const Image& img, const Image& truth) {
 }
 
 // The per-frame maps' test views (64x36): the sun high and low, looking up and towards the horizon.
+// Without the reflected light: these tests measure the maps' optical depths against the marched
+// ones, and the reflected light's way behind a sample has estimators of its own (the deep map's whole
+// crossing less the way to the sun, or lightSteps / 2 marched samples with the deep map off) whose
+// difference would add to what they measure (at sun 80 deg, two layers: 5.5-6.9 % instead of 2.6-3.5 %).
 std::vector<std::pair<std::string, Scene>> mapTestViews(const std::string& layers) {
   std::vector<std::pair<std::string, Scene>> views;
   for (double sunZenith : {35.0, 80.0})
     for (double pitch : {30.0, 5.0})
       views.emplace_back("sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch),
                          test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
-                                           "/camera/width=64", "/camera/height=36"},
+                                           "/camera/width=64", "/camera/height=36", "/clouds/lighting/reflected_light=false"},
                                           layers));
   return views;
 }

@@ -162,6 +162,9 @@ TEST_F(CloudTemporal, ClampRejectsHistoryThatNoLongerBelongs) {
 // 8.8 % (measured). Turning 0.5 deg per frame must stay finite and add at most that much again
 // (measured 11.7 % and 9.3 %: the horizon's fine detail, compressed into the fisheye's rim, blurs as
 // the history is resampled; a Catmull-Rom read took 10.5 % to 9.2 % before the per-thickness light march).
+// The bias the turning adds is bounded by the still sequence's own plus half a point: the reflected light
+// (session 18) moved the still sequences' floor to 10.5 % and 12.7 %, bias -1.0 % and -1.4 % (without it
+// 7.5 % and 9.4 %, -0.65 % and -1.0 %), and the turning ones to +0.16 % and -1.2 %.
 TEST_F(CloudTemporal, OtherProjectionsStayNearTheirNoiseFloor) {
   SkyRenderer& renderer = test::cloudRenderer();
   for (const char* projection : {"fisheye", "equirectangular"}) {
@@ -190,7 +193,8 @@ TEST_F(CloudTemporal, OtherProjectionsStayNearTheirNoiseFloor) {
     std::printf("%s, 1/16: still sequence %.2f %% (bias %+.2f %%), turning 0.5 deg per frame %.2f %% (bias %+.2f %%)\n", projection,
                 100.0 * error[0], 100.0 * bias[0], 100.0 * error[1], 100.0 * bias[1]);
     EXPECT_LT(error[1], 2.0 * error[0] + 0.01) << projection;
-    EXPECT_LT(std::abs(bias[1]), 0.01) << projection;
+    EXPECT_LT(std::abs(bias[1]), std::abs(bias[0]) + 0.005) << projection;
+    EXPECT_LT(std::abs(bias[1]), 0.02) << projection;
   }
 }
 
