@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "core/error.h"
 #include "core/solar_spectrum_g173.h"
@@ -138,6 +139,14 @@ TEST(KiderConventions, ReadsAShippedCapture) {
   EXPECT_GT(zenith.radianceAt(550.0), 0.0);
 }
 
+// A scratch data folder holding the 11:45 capture alone.
+std::filesystem::path dataDirWithTheShippedCapture(const std::string& name) {
+  const auto data = test::scratchDir(name);
+  std::filesystem::create_directories(data / "radiance");
+  std::filesystem::copy(shippedCapture(), data / "radiance" / shippedCapture().filename());
+  return data;
+}
+
 class KiderValidationTest : public test::GpuTest {};
 
 // The whole pipeline on the 11:45 capture, at 64 paths per direction and a small equirectangular
@@ -145,9 +154,7 @@ class KiderValidationTest : public test::GpuTest {};
 // about 10; the published models range from 11.2 to 88.2 in total).
 TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
   ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
-  const auto data = test::scratchDir("kider-one-capture");
-  std::filesystem::create_directories(data / "radiance");
-  std::filesystem::copy(shippedCapture(), data / "radiance" / shippedCapture().filename());
+  const auto data = dataDirWithTheShippedCapture("kider-one-capture");
   KiderValidationSettings settings;
   settings.quality.samplesPerPixel = 64;
   settings.gpuWidth = 256, settings.gpuHeight = 128;
@@ -179,9 +186,7 @@ TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
 // are untouched, and the scale is the G-173 reading over the atmosphere's bin value.
 TEST(KiderValidation, TheInstrumentSolarSpectrumRescalesTheComparedSpectra) {
   ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
-  const auto data = test::scratchDir("kider-solar-spectrum");
-  std::filesystem::create_directories(data / "radiance");
-  std::filesystem::copy(shippedCapture(), data / "radiance" / shippedCapture().filename());
+  const auto data = dataDirWithTheShippedCapture("kider-solar-spectrum");
   KiderValidationSettings bands;
   bands.quality.samplesPerPixel = 16;
   bands.gpu = false;
