@@ -286,7 +286,7 @@ struct CloudMultipleScattering {
   double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale (0: off)
 };
 // reflectedLight (/clouds/lighting/reflected_light, default true): the fit with the reflected light
-// (cloudReflectedSource; session 17) where the type has one, else the octaves alone (session 9's fits).
+// (cloudReflectedSource; session 18: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves alone (session 9's fits).
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein,
                                                     bool reflectedLight = true);
 // The joint fit over the cumulus and stratocumulus calibration scenes (the calibration's group "all").

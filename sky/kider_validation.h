@@ -41,8 +41,8 @@ struct KiderValidationSettings {
     return q;
   }();
   // The solar spectrum under the compared spectra. `instrument` (the default): ASTM G-173 read through
-  // the spectroradiometer's line shape, a Gaussian of `instrumentFwhmNm` (ASD's VNIR specification,
-  // 3 nm), because the measured radiance at λ resolves the Fraunhofer lines that a 10-nm bin averages
+  // the spectroradiometer's line shape, a Gaussian of `instrumentFwhmNm` (3 nm, ASD's usual VNIR
+  // figure; docs/validation.md gives the totals for 2 and 5 nm too), because the measured radiance at λ resolves the Fraunhofer lines that a 10-nm bin averages
   // away (at 395.25 nm, between Ca II H and K, the 3-nm reading is 0.71 of the bin's value). Each
   // wavelength is independent (elastic scattering), so the model's radiance at λ scales with the
   // solar irradiance at λ: the rendered spectra are rescaled by reading / bin value. `bandMeans`: the

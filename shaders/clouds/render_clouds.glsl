@@ -351,6 +351,8 @@ void main() {
       float tauOther = 0.0;  // the other layers' part of tau (0 with the shadow map: tau has it)
       float tauBehind = 0.0;  // the own layer's optical depth behind p along the sun (cloudReflectedSource)
       bool behindFromMap = false;
+      // The reflected light is a source of octaves i >= 1: with one octave its way behind is not needed.
+      bool reflects = kReflection && reflectWeight > 0.0 && octaves > 1;
       if (sunVisible) {
         // The Beer shadow map where enabled and p lies on it (all layers); else the light march.
         vec3 shadow = vec3(0.0);
@@ -400,7 +402,7 @@ void main() {
           }
           // The reflected light's medium behind p (cloudReflectedSource): from the deep shadow map, p's
           // line's whole crossing less p's way to the top.
-          if (kReflection && reflectWeight > 0.0 && fromMap) {
+          if (reflects && fromMap) {
             tauBehind = max(deepShadowMapCrossing(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, p) - tau, 0.0);
             behindFromMap = true;
           }
@@ -414,7 +416,7 @@ void main() {
         }
         // Else the way behind p (away from the sun, to where it leaves the layer) is marched in
         // lightSteps / 2 samples (at least 2), as the way up to the top is without the column map.
-        if (kReflection && reflectWeight > 0.0 && !behindFromMap) {
+        if (reflects && !behindFromMap) {
           int behindSteps = max(lightSteps / 2, 2);
           tauBehind = opticalDepthToSun(layer, p, -sun, behindSteps, cloudSunExitDistance(layer, p, -sun, lightLength), 0.0, lod);
           lightCount += uint(behindSteps);
@@ -482,7 +484,7 @@ void main() {
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
       }
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
-      if (kReflection && reflectWeight > 0.0 && octaves > 1 && sunVisible)
+      if (reflects && sunVisible)
         msSum += reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
       float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
