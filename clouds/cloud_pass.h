@@ -48,8 +48,16 @@ struct CloudAerialVolume {
 // shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
 // light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
 // crossings (one of the two with bit 1), 256 the vertical optical depths from the column map, 512 by
-// marching up and down (one of the two), 1024 the own layer's far light from the deep shadow map. All bits with march.specializeMarch off.
-uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach);
+// marching up and down (one of the two), 1024 the own layer's far light from the deep shadow map, 2048
+// the reflected light (a layer's ms_r > 0), 4096 its way behind a sample by marching (with 2048, where
+// the deep shadow map may not hold it: without the map, with the Beer shadow map, or unless
+// sunClearsEverySample). All bits with march.specializeMarch off.
+uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach, bool sunClearsEverySample);
+
+// Whether the sun stands above the horizon of every point the view march can reach (within
+// march.maxDistance_m of the camera), with a margin: then every lit sample's sun ray climbs, and the deep
+// shadow map holds its way to the top and behind it.
+bool sunClearsEveryCloudSample(const CloudMarchSettings& march, const CloudView& view);
 
 class CloudPass {
  public:

@@ -493,6 +493,8 @@ void checkCloudBenchConfig(const CloudBenchConfig& config) {
   selectedScenarios(config);
   if (config.timingOnly && (config.images || config.samplesPerPixel > 0))
     throw InputError("--timing-only: no references are rendered, so --images and --reference-spp do not apply");
+  if (!config.timingSetting.empty() && !config.timingOnly)
+    throw InputError("--timing-setting: only with --timing-only (the error sweep runs every row)");
 }
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config) {
@@ -604,6 +606,17 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
   return rows;
 }
 
+// Whether `name` contains one of the '|'-separated texts of `alternatives` (whole names match too).
+static bool matchesAnyOf(const std::string& name, const std::string& alternatives) {
+  for (std::size_t start = 0;;) {
+    const std::size_t bar = alternatives.find('|', start);
+    const std::string text = alternatives.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
+    if (!text.empty() && name.find(text) != std::string::npos) return true;
+    if (bar == std::string::npos) return false;
+    start = bar + 1;
+  }
+}
+
 std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBenchConfig& config) {
   struct Setting {
     std::string name;
@@ -643,6 +656,10 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"low_transmittance_steps from T 0.3 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.3; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps from T 1 up to 8x", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 1.0; o.clouds.lowTransmittanceStepMax = 8.0; }, 1, true, false},
       {"low_transmittance_steps off (sessions 1-11), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 16, true, false},
+      // The reflected light's cost (cloudReflectedSource; /clouds/lighting/reflected_light).
+      {"reflected_light off", [](SkyRenderOptions&) {}, 1, true, false, false, {"/clouds/lighting/reflected_light=false"}},
+      {"reflected_light off, temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true, false, false,
+       {"/clouds/lighting/reflected_light=false"}},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
       {"1x light samples across the other layers (sessions 9-14)", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 1.0; }, 1, true, false, true},
@@ -685,6 +702,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       if (!sc.fullSweep && !setting.everyScenario) continue;
       if (config.quick && !setting.quick) continue;
       if (setting.severalLayers && scenarioLayerCount(sc) < 2) continue;
+      if (!config.timingSetting.empty() && setting.name != "default" && !matchesAnyOf(setting.name, config.timingSetting)) continue;
       SkyRenderOptions o;
       setting.apply(o);
       std::vector<std::string> overrides = sizeOverrides;

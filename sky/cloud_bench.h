@@ -34,6 +34,10 @@ struct CloudBenchConfig {
   // The frame timing's image size (runCloudTiming); 0: 640x360 (quick 320x180), the size. A lent
   // GPU's 1920x1080 timings: --timing-only --timing-size 1920x1080.
   int timingWidth = 0, timingHeight = 0;
+  // Only the frame-timing settings whose name contains this text (or one of several separated by '|'),
+  // besides the defaults (every row's "vs default" needs them); empty: all. For timing one knob against
+  // the defaults in minutes.
+  std::string timingSetting;
   std::string environmentNote;
 };
 

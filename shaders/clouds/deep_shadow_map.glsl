@@ -25,19 +25,29 @@
 
 // cloud.deepShadowMap: x = texels per side N, y = levels K, z = the light march's near steps, w = 1 when baked.
 
-// The optical depth from q (in `layer`, index j, q.sun > 0) along the sun up to the layer top, read from
-// the map. Between lines the interpolation is bilinear in the plane, each of the four nearest lines read
-// at the point it shares q's distance along the sun with, q' = q + (a' - a) in the plane (its level from
-// |q'|, linear between levels): reading them all at q's own level instead sheared the interpolation
-// along the sun when the sun is low (neighbouring lines a texel apart in v pass q's height ~1 km apart
-// along a 10-degree sun ray), 3-6 % from the march against 0.2-1 % this way.
-float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q) {
+// Where q's line lies in the map, in texels (centres at i + 0.5), clamped to the texel centres: its
+// projection on the plane, log-warped. The map's lookups below take it, so that one lit sample's two
+// lookups (its way to the top and its line's whole crossing, for the reflected light) project once.
+vec2 deepShadowMapTexel(vec3 q) {
+  vec3 d = q - cloud.otherLayerOrigin.xyz;
+  vec2 a = vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz));
+  float size = cloud.deepShadowMap.x;
+  return clamp((0.5 * otherLayerMapTexelCoordinate(a) + 0.5) * size - 0.5, vec2(0.0), vec2(size - 1.0));
+}
+
+// The optical depth from q (in `layer`, index j, q.sun > 0, its texel f = deepShadowMapTexel(q)) along
+// the sun up to the layer top, read from the map. Between lines the interpolation is bilinear in the
+// plane, each of the four nearest lines read at the point it shares q's distance along the sun with,
+// q' = q + (a' - a) in the plane (its level from |q'|, linear between levels): reading them all at q's
+// own level instead sheared the interpolation along the sun when the sun is low (neighbouring lines a
+// texel apart in v pass q's height ~1 km apart along a 10-degree sun ray), 3-6 % from the march against
+// 0.2-1 % this way.
+float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q, vec2 f) {
   vec3 u = cloud.otherLayerAxisU.xyz, v = cloud.otherLayerAxisV.xyz;
+  // q's own plane point, at the texel coordinate f (the inverse of deepShadowMapTexel's clamp aside).
   vec3 d = q - cloud.otherLayerOrigin.xyz;
   vec2 a = vec2(dot(d, u), dot(d, v));
   float size = cloud.deepShadowMap.x;
-  // The texel coordinate in texels (centres at i + 0.5), the lower corner and the weights.
-  vec2 f = clamp((0.5 * otherLayerMapTexelCoordinate(a) + 0.5) * size - 0.5, vec2(0.0), vec2(size - 1.0));
   vec2 i0 = min(floor(f), vec2(size - 2.0));
   vec2 w = f - i0;
   float K = cloud.deepShadowMap.y;
@@ -57,13 +67,10 @@ float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q) 
   return tau;
 }
 
-// The whole sunward crossing of q's line through the layer, T(0): the level-0 slice, bilinear between
-// lines (one level, so the four lines need no shift along the sun).
-float deepShadowMapCrossing(sampler3D map, int j, vec3 q) {
-  vec3 d = q - cloud.otherLayerOrigin.xyz;
-  vec2 a = vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz));
+// The whole sunward crossing of the line at texel f through layer j, T(0): the level-0 slice, bilinear
+// between lines (one level, so the four lines need no shift along the sun).
+float deepShadowMapCrossing(sampler3D map, int j, vec2 f) {
   float size = cloud.deepShadowMap.x;
-  vec2 f = clamp((0.5 * otherLayerMapTexelCoordinate(a) + 0.5) * size - 0.5, vec2(0.0), vec2(size - 1.0));
   float slices = float(cloud.image.w) * (cloud.deepShadowMap.y + 1.0);
   return textureLod(map, vec3((f + 0.5) / size, (float(j) * (cloud.deepShadowMap.y + 1.0) + 0.5) / slices), 0.0).r;
 }

@@ -89,6 +89,7 @@ const bool kColumnMap = (kMarchFeatures & 256u) != 0u;    // the vertical optica
 const bool kColumnMarch = (kMarchFeatures & 512u) != 0u;  // the vertical optical depths by marching up and down
 const bool kDeepShadowMap = (kMarchFeatures & 1024u) != 0u;  // the own layer's far light from the deep shadow map (when baked)
 const bool kReflection = (kMarchFeatures & 2048u) != 0u;  // the light the cloud behind a sample turns back (a layer's ms_r > 0)
+const bool kReflectionMarch = (kMarchFeatures & 4096u) != 0u;  // its way behind a sample marched where the deep shadow map does not hold it
 layout(set = 0, binding = 13) uniform sampler2D shadowMap;  // Beer shadow map, linear, clamp (when enabled)
 
 layout(set = 0, binding = 14) uniform sampler2D multipleScatteringAnisotropy;  // the per-pixel air march
@@ -395,15 +396,22 @@ void main() {
           }
           tau = opticalDepthToSunGrouped(layer, p, sun, n, m, taken, marchLength, cone, lod);
           lightCount += uint(taken);
+          // The map's texel of the line that p and q share (q lies on p's sun ray), projected once for
+          // both lookups below.
+          int mapLayer = kSeveralLayers ? segmentLayer[s] : 0;
+          vec2 mapTexel = vec2(0.0);
           if (fromMap && taken < n) {
             float f = float(taken) / float(n);
             vec3 q = p + sun * (marchLength * f * f);
-            tau += deepShadowMapOpticalDepth(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, layer, q);
+            mapTexel = deepShadowMapTexel(q);
+            tau += deepShadowMapOpticalDepth(deepShadowMap, mapLayer, layer, q, mapTexel);
+          } else if (reflects && fromMap) {
+            mapTexel = deepShadowMapTexel(p);
           }
           // The reflected light's medium behind p (cloudReflectedSource): from the deep shadow map, p's
           // line's whole crossing less p's way to the top.
           if (reflects && fromMap) {
-            tauBehind = max(deepShadowMapCrossing(deepShadowMap, kSeveralLayers ? segmentLayer[s] : 0, p) - tau, 0.0);
+            tauBehind = max(deepShadowMapCrossing(deepShadowMap, mapLayer, mapTexel) - tau, 0.0);
             behindFromMap = true;
           }
           // Bit 256: the other layers the sun ray crosses shadow p too (the path tracer's medium has them all).
@@ -416,7 +424,7 @@ void main() {
         }
         // Else the way behind p (away from the sun, to where it leaves the layer) is marched in
         // lightSteps / 2 samples (at least 2), as the way up to the top is without the column map.
-        if (reflects && !behindFromMap) {
+        if (kReflectionMarch && reflects && !behindFromMap) {
           int behindSteps = max(lightSteps / 2, 2);
           tauBehind = opticalDepthToSun(layer, p, -sun, behindSteps, cloudSunExitDistance(layer, p, -sun, lightLength), 0.0, lod);
           lightCount += uint(behindSteps);

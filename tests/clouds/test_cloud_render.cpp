@@ -143,7 +143,9 @@ TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
 // The march compiled for the options a frame uses (cloudMarchFeatures, a specialization constant)
 // gives the same image, bit for bit, as the general one with every option compiled in: single layer,
 // two layers (light through the other one), the Beer shadow map, light samples by transmittance, the
-// light cone, a weather simulation's map (the coverage reach), and the octaves without the reflected light.
+// light cone, a weather simulation's map (the coverage reach), the octaves without the reflected light,
+// and a sun 1 degree above the horizon, where the reflected light's way behind comes from the deep shadow
+// map alone (its march left out: the general march would show any sample that needed it).
 TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   SkyRenderOptions base = test::smallCloudOptions();
   base.clouds.viewSteps = 32;
@@ -155,6 +157,7 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
     Scene scene;
     SkyRenderOptions options;
     uint32_t features;
+    double sunZenith_deg = 40.0;  // the scene's (test::cloudSceneText)
   };
   std::vector<Case> cases;
   const Scene single = test::cloudScene({"/camera/width=32", "/camera/height=18"});
@@ -172,15 +175,21 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   cases.push_back({"vertical marches", single, columnsMarched, 3584u});
   SkyRenderOptions everyLightStep = base;
   everyLightStep.clouds.deepShadowMap = false;
-  cases.push_back({"every light step marched", single, everyLightStep, 2304u});  // the way behind marched too
-  cases.push_back({"two layers, every light step marched", two, everyLightStep, 2401u});
+  cases.push_back({"every light step marched", single, everyLightStep, 6400u});  // the way behind marched too
+  cases.push_back({"two layers, every light step marched", two, everyLightStep, 6497u});
   SkyRenderOptions shadow = base;
   shadow.clouds.beerShadowMap = true;
-  cases.push_back({"shadow map", single, shadow, 3330u});
+  cases.push_back({"shadow map", single, shadow, 7426u});  // the way behind marched on the shadow map
   SkyRenderOptions falloff = base;
   falloff.clouds.lightStepsFalloff = 1.0;
   falloff.clouds.deepShadowMap = false;
-  cases.push_back({"light falloff", single, falloff, 2312u});
+  cases.push_back({"light falloff", single, falloff, 6408u});
+  // The sun low: 1 degree above the horizon every sample's sun ray still climbs (the way behind from the
+  // deep shadow map alone, bit 4096 left out); 0.5 degrees below it, some descend (bit 4096 in).
+  cases.push_back({"sun 1 deg above the horizon", test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=89", "/camera/pitch_deg=3"}),
+                   base, 3328u, 89.0});
+  cases.push_back({"sun 0.5 deg below the horizon", test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=90.5", "/camera/pitch_deg=3"}),
+                   base, 7424u, 90.5});
   SkyRenderOptions cone = base;
   cone.clouds.lightCone = 0.15;
   cases.push_back({"light cone", single, cone, 3344u});
@@ -190,7 +199,11 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   for (Case& c : cases) {
     CloudSettings settings = CloudSettings::fromScene(c.scene);
     c.options.clouds.apply(settings.march);
-    EXPECT_EQ(cloudMarchFeatures(settings, c.features == 3332u), c.features) << c.name;
+    CloudView view;
+    view.cameraPosition = glm::dvec3(0.0, 0.0, 6360e3 + 500.0 + 2.0);
+    const double zenith = glm::radians(c.sunZenith_deg);
+    view.sunDirection = glm::dvec3(std::sin(zenith), 0.0, std::cos(zenith));
+    EXPECT_EQ(cloudMarchFeatures(settings, c.features == 3332u, sunClearsEveryCloudSample(settings.march, view)), c.features) << c.name;
     c.options.clouds.specializeMarch = true;
     const RenderResult specialized = test::cloudRenderer().render(c.scene, c.options);
     c.options.clouds.specializeMarch = false;
