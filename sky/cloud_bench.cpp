@@ -702,7 +702,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       if (!sc.fullSweep && !setting.everyScenario) continue;
       if (config.quick && !setting.quick) continue;
       if (setting.severalLayers && scenarioLayerCount(sc) < 2) continue;
-      if (!config.timingSetting.empty() && setting.name != "default" && !matchesAnyOf(setting.name, config.timingSetting)) continue;
+      if (!config.timingSetting.empty() && setting.name != "default" && setting.name != "temporal_update 16 (sequence)" &&
+          !matchesAnyOf(setting.name, config.timingSetting))
+        continue;
       SkyRenderOptions o;
       setting.apply(o);
       std::vector<std::string> overrides = sizeOverrides;

@@ -55,6 +55,10 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        sceneAt(5500, 27, 60, 90, 0, -20, R"({"kind": "cumulus", "bottom_m": 1700, "top_m": 3300, "coverage": 0.6, "extinction_scale": 0.3})")},
       {"sc_above", "stratocumulus", "camera at 4000 m over stratocumulus 900-1900 m, coverage 0.75, seed 37; sun 45 deg, behind; looking down 35 deg",
        sceneAt(4000, 37, 45, 180, 0, -35, R"({"kind": "stratocumulus", "bottom_m": 900, "top_m": 1900, "coverage": 0.75, "extinction_scale": 0.3})")},
+      // Session 19: a far view, low over the horizon (the bench's horizon was +12 % bright with the
+      // constants fitted on nearer views).
+      {"cu_far", "cumulus", "cumulus 1300-2800 m, coverage 0.55, seed 33; sun 50 deg, to the right; looking 4 deg up over the horizon",
+       scene(33, 50, 250, 180, 4, R"({"kind": "cumulus", "bottom_m": 1300, "top_m": 2800, "coverage": 0.55, "extinction_scale": 0.3})")},
       {"sc_afternoon", "stratocumulus", "stratocumulus 800-1800 m, coverage 0.8, seed 3; sun 60 deg; looking away, up 30 deg",
        scene(3, 60, 200, 20, 30, R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1800, "coverage": 0.8, "extinction_scale": 0.3})")},
       {"sc_dusk", "stratocumulus", "stratocumulus 1200-2000 m, coverage 0.6, seed 17; sun 80 deg; 50 deg left of it, up 20 deg",
@@ -285,7 +289,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 }
 
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
-  std::string csv = "group,a,b,c,d,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
+  std::string csv = "group,a,b,c,d,r,a_r,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
                    "sc_thin x 0.15, the cumulonimbus x 0.1, cirrus at its own extinction), " +
@@ -295,7 +299,8 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
                    " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2) from the group's shipped constants, minimising the "
                    "mean squared rel RMSE of the clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "
-                   "model (d: the Eddington diffusion floor's weight). `corrected`: the reference's noise subtracted.\n\n";
+                   "model (d: the Eddington diffusion floor's weight) and no reflected light (r = 0). r, a_r: the reflected light's weight and depth "
+                   "scale (cloudReflectedSource; 0 and unused when it is off). `corrected`: the reference's noise subtracted.\n\n";
   if (config.evaluateDefaults)
     md += "**No fit (`--evaluate-defaults`)**: the columns `a b c d` and `at the fit` are each group's shipped constants "
           "(cloudTypeMultipleScattering; `all`: the joint fit) and their errors.\n\n";
@@ -304,10 +309,11 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
                 result.fitSeconds, result.device.c_str());
   md += line;
-  md += "| group | a | b | c | d | evaluations | rms rel RMSE at a = b = c = 0.5, d = 1 | at the fit |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md += "| group | a | b | c | d | r | a_r | evaluations | rms rel RMSE at a = b = c = 0.5, d = 1 | at the fit |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& f : result.fits) {
-    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b, f.c, f.d,
-                  f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
+    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b,
+                  f.c, f.d, f.r, f.ra, f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
     md += line;
   }
   md += "\n| group | scene | rel RMSE start | corrected | bias | rel RMSE fit | corrected | noise | bias |\n"
@@ -321,8 +327,9 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
                     e.meanBias);
       md += line;
       for (const auto* x : {&s, &e}) {
-        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
-                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x == &s ? 1.0 : f.d, x->scene.c_str(), x->relRmse,
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
+                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x == &s ? 1.0 : f.d, x == &s ? 0.0 : f.r,
+                      x == &s ? 0.0 : f.ra, x->scene.c_str(), x->relRmse,
                       x->noiseCorrected, x->noiseFloor, x->meanBias, x == &s ? "start" : "fit");
         csv += line;
       }
