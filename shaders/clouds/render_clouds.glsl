@@ -223,7 +223,7 @@ void main() {
   // Per octave of the current layer (set when the march enters a layer): the phase for this pixel's
   // scattering angle, the extinction scale a^i, the weight b^i, and the most the way down from the layer
   // top can pass (cloudOctaveTransmittanceBound, with a 1e-4 margin for its float rounding).
-  float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8];
+  float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8], octaveShare[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
   float diffusion = 0.0;  // that layer's diffusion-floor weight d
   float reflectWeight = 0.0, reflectDepthScale = 0.0;  // that layer's reflected light's r and a_r
@@ -336,6 +336,10 @@ void main() {
         octaveWeight[o] = cloudOctaveWeight(b, o);
         octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
       }
+      // Octave i's share b^i / sum_j b^j (j >= 1) of a deck's slab transmission (cloudOctaveTransmittanceThroughOthers).
+      float weights = 0.0;
+      for (int o = 1; o < octaves; ++o) weights += octaveWeight[o];
+      for (int o = 1; o < octaves; ++o) octaveShare[o] = weights > 0.0 ? octaveWeight[o] / weights : 0.0;
     }
 
     // (b) The sample's light.
@@ -445,9 +449,15 @@ void main() {
       // result.
       float sunAttenuation[8];
       bool upCanWin = false;
+      // The light through the other layers (tauOther > 0) takes cloudOctaveTransmittanceThroughOthers,
+      // each octave its share of the deck's slab transmission; the top path's bound is then 1.
+      float tauOwn = tau - tauOther;
+      bool throughDeck = kOtherLayers && tauOther > 0.0;
       for (int o = 1; o < octaves; ++o) {
-        sunAttenuation[o] = cloudOctaveTransmittance(octaveScale[o], tau, msScattered);
-        if (topWeight * octaveTopBound[o] > sunAttenuation[o]) upCanWin = true;
+        sunAttenuation[o] = throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauOwn, tauOther, muS, phaseMeanCosine,
+                                                                                octaveShare[o], msScattered)
+                                        : cloudOctaveTransmittance(octaveScale[o], tau, msScattered);
+        if (topWeight * (throughDeck ? 1.0 : octaveTopBound[o]) > sunAttenuation[o]) upCanWin = true;
       }
       // One march straight up serves the way from the top (lightSteps / 2 samples, at least 2, where it
       // can win) and the diffusion floor below (2 samples, where only the floor needs it): lavapipe runs
@@ -473,7 +483,10 @@ void main() {
       for (int o = 1; o < octaves; ++o) {
         float attenuation = sunAttenuation[o];
         // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
-        if (wantTop) attenuation = max(attenuation, topWeight * cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered));
+        if (wantTop)
+          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp, tauOther, muS, phaseMeanCosine,
+                                                                                                          octaveShare[o], msScattered)
+                                                                  : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
