@@ -122,6 +122,7 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --calibrate --timing-only", {"--timing-only", "--calibrate"}},
       {"bench clouds --timing-only --timing-size 1920", {"--timing-size 1920", "WxH", "8..8192"}},
       {"bench clouds --timing-only --timing-size 4x4", {"--timing-size 4x4", "WxH"}},
+      {"bench clouds --timing-setting quality", {"--timing-setting", "--timing-only"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
@@ -147,6 +148,27 @@ TEST(Cli, BenchCloudTimingTakesItsImageSize) {
     EXPECT_NE(line.find(",40,24,"), std::string::npos) << line;
   }
   EXPECT_GT(rows, 3);
+}
+
+// --timing-setting times only the rows whose name contains one of its texts, and the defaults' still
+// and 1/16 sequence.
+TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
+  auto dir = test::scratchDir("cli_bench_timing_setting");
+  CommandRun r = firmament("bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting "
+                           "\"reflected_light off|quality low (\" --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream csv(dir / "clouds_timing.csv");
+  std::string line;
+  std::getline(csv, line);  // header
+  std::vector<std::string> settings;
+  while (std::getline(csv, line)) {
+    const size_t open = line.find(",\"") + 2, close = line.find('"', open);
+    settings.push_back(line.substr(open, close - open));
+  }
+  const std::vector<std::string> expected = {"default", "reflected_light off", "reflected_light off, temporal_update 16 (sequence)",
+                                             "quality low (32v/4l/3o)", "quality low (32v/4l/3o), temporal_update 16 (sequence)",
+                                             "temporal_update 16 (sequence)"};
+  EXPECT_EQ(settings, expected);
 }
 
 TEST(Cli, RenderWritesExrPngAndStats) {
