@@ -450,12 +450,12 @@ void main() {
       float sunAttenuation[8];
       bool upCanWin = false;
       // The light through the other layers (tauOther > 0) takes cloudOctaveTransmittanceThroughOthers,
-      // each octave its share of the deck's slab transmission; the top path's bound is then 1.
+      // each octave its share of the deck's diffuse light (once per sample); the top path's bound is then 1.
       float tauOwn = tau - tauOther;
       bool throughDeck = kOtherLayers && tauOther > 0.0;
+      float deckLight = throughDeck ? cloudDeckDiffuseLight(tauOther, muS, phaseMeanCosine) : 0.0;
       for (int o = 1; o < octaves; ++o) {
-        sunAttenuation[o] = throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauOwn, tauOther, muS, phaseMeanCosine,
-                                                                                octaveShare[o], msScattered)
+        sunAttenuation[o] = throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauOwn, tauOther, deckLight, octaveShare[o], msScattered)
                                         : cloudOctaveTransmittance(octaveScale[o], tau, msScattered);
         if (topWeight * (throughDeck ? 1.0 : octaveTopBound[o]) > sunAttenuation[o]) upCanWin = true;
       }
@@ -484,7 +484,7 @@ void main() {
         float attenuation = sunAttenuation[o];
         // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
         if (wantTop)
-          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp, tauOther, muS, phaseMeanCosine,
+          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp, tauOther, deckLight,
                                                                                                           octaveShare[o], msScattered)
                                                                   : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;

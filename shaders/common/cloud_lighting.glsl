@@ -89,32 +89,46 @@ SHARED_INLINE Real cloudOctaveTransmittance(Real extinctionScale, Real tau, bool
   return scatteredOnly ? max(t - exp(-tau), 0.0) : t;
 }
 
-// The diffuse transmission of a conservative slab of optical depth tauSlant along the sun (cosine mu0
-// with the vertical, so vertical depth mu0 tauSlant): the flux that comes out of its base, direct and
-// scattered, per unit flux on its top. The two-stream (Eddington) solution of cloudEddingtonSlabSource
-// (its K / A): T = [(2/3 + mu0) + (2/3 - mu0) e^(-tauSlant)] / (4/3 + (1 - g) mu0 tauSlant). 1 at
-// tauSlant = 0; it falls as 1/tau, not exponentially, for a thick slab; clamped to 1 (for mu0 g > 2/3 it
-// rises above 1 at small depths, outside the form's validity).
+// The flux out of the base of a conservatively scattering slab of vertical optical depth tauVertical,
+// direct and diffuse, per unit flux mu E on its top, sun at mu = cos(zenith) > 0 (clamped by the
+// callers), phase asymmetry g: the two-stream (Eddington) solution's K / A, derived with
+// cloudEddingtonSlabSource below (which uses it):
+//   T = [(2/3 + mu) + (2/3 - mu) e^(-tauVertical/mu)] / (4/3 + (1 - g) tauVertical).
+// 1 at tauVertical = 0; it falls as 1/tau, not exponentially, for a thick slab.
+SHARED_INLINE Real cloudEddingtonTransmission(Real mu, Real tauVertical, Real g) {
+  return ((2.0 / 3.0 + mu) + (2.0 / 3.0 - mu) * exp(-tauVertical / mu)) / (4.0 / 3.0 + (1.0 - g) * tauVertical);
+}
+
+// The same transmission for a deck crossed along the sun over optical depth tauSlant (vertical depth
+// mu0 tauSlant), mu0 clamped at 0.02 as the floor clamps it; clamped to 1 (for mu0 g > 2/3 the form rises
+// above 1 at small depths, outside its validity).
 SHARED_INLINE Real cloudSlabTransmission(Real tauSlant, Real mu0, Real g) {
   Real m = max(mu0, 0.02);
-  Real t = max(tauSlant, 0.0);
-  return min(((2.0 / 3.0 + m) + (2.0 / 3.0 - m) * exp(-t)) / (4.0 / 3.0 + (1.0 - g) * m * t), 1.0);
+  return min(cloudEddingtonTransmission(m, m * max(tauSlant, 0.0), g), 1.0);
+}
+
+// The light a sample scatters from a deck above it, per unit solar irradiance and in units of the
+// isotropic phase 1/4pi: the deck passes the flux T mu0 E (cloudSlabTransmission T, optical depth
+// tauOther along the sun), which leaves its base as radiance of about T mu0 E / pi over the upper
+// hemisphere, and a sample scatters (1/4pi) 2pi T mu0 E / pi = 2 mu0 T E / 4pi of it. 0 for a sun at or
+// below the horizon.
+SHARED_INLINE Real cloudDeckDiffuseLight(Real tauOther, Real mu0, Real g) {
+  return 2.0 * max(mu0, 0.0) * cloudSlabTransmission(tauOther, mu0, g);
 }
 
 // The attenuation of octave i >= 1 when the sun's light crosses other layers first (optical depth
 // tauOther along the sun) and then the sample's own layer (tauOwn). The octave alone would take
 // e^(-a^i (tauOwn + tauOther)): for a thick deck above it goes to 0 exponentially, where the deck
-// passes cloudSlabTransmission T of the flux, scattered (the bench's two_layers: a cumulus fit with a
-// larger a left the cumulus under the deck -21 %, session 19). That flux, T mu0 E, leaves the deck's
-// base as radiance of about T mu0 E / pi over the upper hemisphere, and a sample scatters
-// (1/4pi) 2pi T mu0 E / pi = 2 mu0 T E / 4pi of it: the octaves i >= 1 together (their phases ~1/4pi
-// for light from all over the sky) carry at least 2 mu0 T, octave i its share b^i / sum_j b^j (share).
-// So the way through the others is the octave's own e^(-a^i tauOther), but at least share 2 mu0 T,
-// and from the deck's base on the octave is attenuated by the own layer as before. With tauOther = 0
-// it is cloudOctaveTransmittance(a^i, tauOwn) exactly (both terms of the max are 1 or less, the first 1).
-SHARED_INLINE Real cloudOctaveTransmittanceThroughOthers(Real extinctionScale, Real tauOwn, Real tauOther, Real mu0, Real g,
-                                                         Real share, bool scatteredOnly) {
-  Real through = max(exp(-extinctionScale * tauOther), min(share * 2.0 * max(mu0, 0.0) * cloudSlabTransmission(tauOther, mu0, g), 1.0));
+// passes ~1/tau of the flux, scattered (the bench's two_layers: a cumulus fit with a larger a left the
+// cumulus under the deck -21 %, session 19). The octaves i >= 1 together (their phases ~1/4pi for light
+// from all over the sky) carry at least the deck's diffuse light D = cloudDeckDiffuseLight, octave i
+// its share b^i / sum_j b^j (share). So the way through the others is the octave's own
+// e^(-a^i tauOther), but at least share D, and from the deck's base on the octave is attenuated by the
+// own layer as before. With tauOther = 0 (D <= 2, the first term 1) it is cloudOctaveTransmittance(a^i,
+// tauOwn) exactly.
+SHARED_INLINE Real cloudOctaveTransmittanceThroughOthers(Real extinctionScale, Real tauOwn, Real tauOther, Real deckLight, Real share,
+                                                         bool scatteredOnly) {
+  Real through = max(exp(-extinctionScale * tauOther), min(share * deckLight, 1.0));
   Real t = through * exp(-extinctionScale * tauOwn);
   return scatteredOnly ? max(t - exp(-(tauOwn + tauOther)), 0.0) : t;
 }
@@ -184,7 +198,7 @@ SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, R
   Real m = max(mu0, 0.02);  // e^(-tau/mu0) is then 0 for any real depth; keeps the division finite
   Real a = 3.0 * m / (4.0 * kPi);
   Real s = 1.0 - g;
-  Real k = a * ((2.0 / 3.0 + m) + (2.0 / 3.0 - m) * exp(-tauTotal / m)) / (4.0 / 3.0 + s * tauTotal);
+  Real k = a * cloudEddingtonTransmission(m, tauTotal, g);
   Real beam = exp(-tau / m);
   Real i0 = a * ((m + 2.0 / 3.0) - m * beam) - k * (2.0 / 3.0 + s * tau);
   Real i1 = k - a * beam;

@@ -1,5 +1,5 @@
 // The light of the octaves i >= 1 through the other layers (common/cloud_lighting.glsl
-// cloudSlabTransmission, cloudOctaveTransmittanceThroughOthers) on the CPU in double: the slab's
+// cloudSlabTransmission, cloudDeckDiffuseLight, cloudOctaveTransmittanceThroughOthers) on the CPU in double: the slab's
 // transmission against the diffusion floor's own two-stream solution, its limits, and the octave's
 // attenuation that it bounds from below.
 #include <gtest/gtest.h>
@@ -60,10 +60,12 @@ TEST(CloudDeckTransmission, OctaveThroughOthersOnlyAddsTheDecksDiffuseLight) {
     for (double s : {0.1, 0.445, 0.9})
       for (double tauOwn : {0.0, 0.5, 5.0}) {
         // Without another layer on the way: the octave's own attenuation, exactly.
-        EXPECT_EQ(shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, 0.0, 0.6, 0.47, 0.5, scatteredOnly),
+        EXPECT_EQ(shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, 0.0, shared::cloudDeckDiffuseLight(0.0, 0.6, 0.47), 0.5,
+                                                                scatteredOnly),
                   shared::cloudOctaveTransmittance(s, tauOwn, scatteredOnly));
         for (double tauOther : {0.1, 2.0, 30.0, 1e4}) {
-          const double t = shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, tauOther, 0.6, 0.47, 0.5, scatteredOnly);
+          const double t = shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, tauOther, shared::cloudDeckDiffuseLight(tauOther, 0.6, 0.47),
+                                                                         0.5, scatteredOnly);
           // Never below the octave through both (the deck only adds), never above 1, never negative.
           EXPECT_GE(t, shared::cloudOctaveTransmittance(s, tauOwn + tauOther, scatteredOnly) - 1e-15);
           EXPECT_LE(t, 1.0);
@@ -72,12 +74,14 @@ TEST(CloudDeckTransmission, OctaveThroughOthersOnlyAddsTheDecksDiffuseLight) {
       }
   // A thick deck: the octave's exponential is gone, its share of 2 mu0 T is left, attenuated by the own layer.
   const double mu0 = 0.6, g = 0.47, share = 0.5, tauOther = 50.0, tauOwn = 1.0, s = 0.445;
-  EXPECT_NEAR(shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, tauOther, mu0, g, share, false),
+  const double deck = shared::cloudDeckDiffuseLight(tauOther, mu0, g);
+  EXPECT_DOUBLE_EQ(deck, 2.0 * mu0 * shared::cloudSlabTransmission(tauOther, mu0, g));
+  EXPECT_NEAR(shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, tauOther, deck, share, false),
               share * 2.0 * mu0 * shared::cloudSlabTransmission(tauOther, mu0, g) * std::exp(-s * tauOwn), 1e-12);
   // The octaves' shares sum to 1: together they carry 2 mu0 T, the light a sample scatters from the
   // deck's base radiance T mu0 E / pi over the upper hemisphere, (1/4pi) 2pi T mu0 E / pi.
   double sum = 0.0;
-  for (double part : {0.6, 0.4}) sum += shared::cloudOctaveTransmittanceThroughOthers(1.0, 0.0, tauOther, mu0, g, part, false);
+  for (double part : {0.6, 0.4}) sum += shared::cloudOctaveTransmittanceThroughOthers(1.0, 0.0, tauOther, deck, part, false);
   EXPECT_NEAR(sum, 2.0 * mu0 * shared::cloudSlabTransmission(tauOther, mu0, g), 1e-12);
 }
 
