@@ -25,28 +25,29 @@
 
 // cloud.deepShadowMap: x = texels per side N, y = levels K, z = the light march's near steps, w = 1 when baked.
 
-// Where q's line lies in the map, in texels (centres at i + 0.5), clamped to the texel centres: its
-// projection on the plane, log-warped. The map's lookups below take it, so that one lit sample's two
-// lookups (its way to the top and its line's whole crossing, for the reflected light) project once.
-vec2 deepShadowMapTexel(vec3 q) {
+// Where q's line meets the map's plane: q projected on it, (a_u, a_v) (m).
+vec2 deepShadowMapPlanePoint(vec3 q) {
   vec3 d = q - cloud.otherLayerOrigin.xyz;
-  vec2 a = vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz));
+  return vec2(dot(d, cloud.otherLayerAxisU.xyz), dot(d, cloud.otherLayerAxisV.xyz));
+}
+
+// That line's place in the map, in texels (centres at i + 0.5), clamped to the texel centres: the plane
+// point a log-warped. The lookups below take a and f, so that one lit sample's two lookups (its way to
+// the top and its line's whole crossing, for the reflected light) project and warp once.
+vec2 deepShadowMapTexel(vec2 a) {
   float size = cloud.deepShadowMap.x;
   return clamp((0.5 * otherLayerMapTexelCoordinate(a) + 0.5) * size - 0.5, vec2(0.0), vec2(size - 1.0));
 }
 
-// The optical depth from q (in `layer`, index j, q.sun > 0, its texel f = deepShadowMapTexel(q)) along
-// the sun up to the layer top, read from the map. Between lines the interpolation is bilinear in the
-// plane, each of the four nearest lines read at the point it shares q's distance along the sun with,
+// The optical depth from q (in `layer`, index j, q.sun > 0, its plane point a and texel f) along the sun
+// up to the layer top, read from the map. Between lines the interpolation is bilinear in the plane,
+// each of the four nearest lines read at the point it shares q's distance along the sun with,
 // q' = q + (a' - a) in the plane (its level from |q'|, linear between levels): reading them all at q's
 // own level instead sheared the interpolation along the sun when the sun is low (neighbouring lines a
 // texel apart in v pass q's height ~1 km apart along a 10-degree sun ray), 3-6 % from the march against
 // 0.2-1 % this way.
-float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q, vec2 f) {
+float deepShadowMapOpticalDepth(sampler3D map, int j, CloudLayer layer, vec3 q, vec2 a, vec2 f) {
   vec3 u = cloud.otherLayerAxisU.xyz, v = cloud.otherLayerAxisV.xyz;
-  // q's own plane point, at the texel coordinate f (the inverse of deepShadowMapTexel's clamp aside).
-  vec3 d = q - cloud.otherLayerOrigin.xyz;
-  vec2 a = vec2(dot(d, u), dot(d, v));
   float size = cloud.deepShadowMap.x;
   vec2 i0 = min(floor(f), vec2(size - 2.0));
   vec2 w = f - i0;

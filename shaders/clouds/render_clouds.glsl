@@ -407,10 +407,11 @@ void main() {
           if (fromMap && taken < n) {
             float f = float(taken) / float(n);
             vec3 q = p + sun * (marchLength * f * f);
-            mapTexel = deepShadowMapTexel(q);
-            tau += deepShadowMapOpticalDepth(deepShadowMap, mapLayer, layer, q, mapTexel);
+            vec2 planePoint = deepShadowMapPlanePoint(q);
+            mapTexel = deepShadowMapTexel(planePoint);
+            tau += deepShadowMapOpticalDepth(deepShadowMap, mapLayer, layer, q, planePoint, mapTexel);
           } else if (reflects && fromMap) {
-            mapTexel = deepShadowMapTexel(p);
+            mapTexel = deepShadowMapTexel(deepShadowMapPlanePoint(p));
           }
           // The reflected light's medium behind p (cloudReflectedSource): from the deep shadow map, p's
           // line's whole crossing less p's way to the top.
