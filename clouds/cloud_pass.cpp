@@ -204,8 +204,9 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach, bo
     if (layer.msR > 0.0) features |= 2048u;
   // The way behind a sample is marched only where the deep shadow map does not hold it: without the
   // map, on the Beer shadow map, or with the sun at or below some sample's horizon (its ray descends).
-  // Else the march's code is left out: lavapipe ran its loop once per lit sample under an empty mask,
-  // 6-8 % of a cumulonimbus frame (docs/clouds.md "Calibration", session 19).
+  // Else the march's code is left out: lavapipe ran its loop once per lit sample under an empty mask
+  // (the term's cost on a cumulonimbus 1/16 sequence frame +8.5 % -> +3.0 %; docs/clouds.md
+  // "Calibration", session 19).
   if ((features & 2048u) && (!usesDeepShadowMap(settings) || m.beerShadowMap || !sunClearsEverySample)) features |= 4096u;
   return features;
 }
