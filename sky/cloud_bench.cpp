@@ -489,12 +489,25 @@ void writeScenarioPixels(const std::filesystem::path& file, const CloudReference
 
 }  // namespace
 
+// Whether `name` contains one of the '|'-separated texts of `alternatives` (whole names match too).
+static bool matchesAnyOf(const std::string& name, const std::string& alternatives) {
+  for (std::size_t start = 0;;) {
+    const std::size_t bar = alternatives.find('|', start);
+    const std::string text = alternatives.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
+    if (!text.empty() && name.find(text) != std::string::npos) return true;
+    if (bar == std::string::npos) return false;
+    start = bar + 1;
+  }
+}
+
 void checkCloudBenchConfig(const CloudBenchConfig& config) {
   selectedScenarios(config);
   if (config.timingOnly && (config.images || config.samplesPerPixel > 0))
     throw InputError("--timing-only: no references are rendered, so --images and --reference-spp do not apply");
   if (!config.timingSetting.empty() && !config.timingOnly)
     throw InputError("--timing-setting: only with --timing-only (the error sweep runs every row)");
+  if (!config.errorSetting.empty() && config.timingOnly)
+    throw InputError("--error-setting: not with --timing-only (it picks error rows; --timing-setting picks timing rows)");
 }
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config) {
@@ -506,6 +519,17 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     SkyRenderOptions base;
     base.clouds.ambient = false;
     base.clouds.aerialPerspective = AerialPerspective::Off;
+    // The rows this run computes (--error-setting: the matching ones and the default), and so which
+    // references it needs: the path tracer's first order and the fine air march only for their rows.
+    std::vector<KnobValue> knobs;
+    for (KnobValue& k : knobValues(config.quick)) {
+      if (!sc.fullSweep && !k.everyScenario) continue;
+      if (k.severalLayers && scenarioLayerCount(sc) < 2) continue;
+      if (!config.errorSetting.empty() && k.knob != "default" && !matchesAnyOf(k.knob + " " + k.value, config.errorSetting)) continue;
+      knobs.push_back(std::move(k));
+    }
+    const bool needsSingleReference = std::any_of(knobs.begin(), knobs.end(), [](const KnobValue& k) { return k.singleScattering; });
+    const bool needsAirReference = std::any_of(knobs.begin(), knobs.end(), [](const KnobValue& k) { return k.againstFineAirMarch; });
     const RenderResult first = renderer.render(scene, base);
     double bakeMs = 0.0;
     for (const auto& t : first.timings)
@@ -521,29 +545,33 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     const CloudReferenceImage ref = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
     logInfo("bench clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel in " +
             std::to_string(ref.seconds) + " s");
-    CloudReferenceSettings single = rs;
-    single.maxScatteringOrder = 1;
-    const CloudPathTracer singleTracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection,
-                                       CloudEnvironment{}, single);
-    const CloudReferenceImage singleRef =
-        renderCloudReference(singleTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
+    CloudReferenceImage singleRef;
+    if (needsSingleReference) {
+      CloudReferenceSettings single = rs;
+      single.maxScatteringOrder = 1;
+      const CloudPathTracer singleTracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection,
+                                         CloudEnvironment{}, single);
+      singleRef = renderCloudReference(singleTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
+    }
 
     // The aerial perspective's reference: the same frame with the air marched per pixel in 256 steps
     // (ambient off as in the other rows); its cloud pixels (transmittance < 0.95) are compared.
-    SkyRenderOptions fineAir = base;
-    fineAir.clouds.aerialPerspective = AerialPerspective::March;
-    fineAir.clouds.aerialPerspectiveSteps = 256;
-    const RenderResult airReference = renderer.render(scene, fineAir);
-    std::vector<float> cloudMask(airReference.clouds.pixelCount());
-    for (size_t i = 0; i < cloudMask.size(); ++i) cloudMask[i] = airReference.clouds.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
+    RenderResult airReference;
+    std::vector<float> cloudMask;
+    if (needsAirReference) {
+      SkyRenderOptions fineAir = base;
+      fineAir.clouds.aerialPerspective = AerialPerspective::March;
+      fineAir.clouds.aerialPerspectiveSteps = 256;
+      airReference = renderer.render(scene, fineAir);
+      cloudMask.resize(airReference.clouds.pixelCount());
+      for (size_t i = 0; i < cloudMask.size(); ++i) cloudMask[i] = airReference.clouds.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
+    }
 
     // Path tracers of rows that change the shared physics (KnobValue::ownReference), one per distinct
     // scene overrides: rows that differ only in the march share it.
     std::map<std::vector<std::string>, CloudReferenceImage> ownReferences;
     std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
-    for (const KnobValue& k : knobValues(config.quick)) {
-      if (!sc.fullSweep && !k.everyScenario) continue;
-      if (k.severalLayers && scenarioLayerCount(sc) < 2) continue;
+    for (const KnobValue& k : knobs) {
       SkyRenderOptions o = base;
       k.apply(o);
       TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + k.knob + " " + k.value + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats,
@@ -604,17 +632,6 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     if (config.images) writeScenarioPixels(config.outDir / "images" / (sc.name + "_pixels.csv"), ref, rowLuminance);
   }
   return rows;
-}
-
-// Whether `name` contains one of the '|'-separated texts of `alternatives` (whole names match too).
-static bool matchesAnyOf(const std::string& name, const std::string& alternatives) {
-  for (std::size_t start = 0;;) {
-    const std::size_t bar = alternatives.find('|', start);
-    const std::string text = alternatives.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
-    if (!text.empty() && name.find(text) != std::string::npos) return true;
-    if (bar == std::string::npos) return false;
-    start = bar + 1;
-  }
 }
 
 std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBenchConfig& config) {

@@ -38,6 +38,11 @@ struct CloudBenchConfig {
   // besides the defaults' still (every row's "vs default" needs it) and 1/16 sequence; empty: all. For
   // timing one knob against the defaults in minutes.
   std::string timingSetting;
+  // Only the error rows whose "knob value" contains this text (or one of several separated by '|'),
+  // besides the default row; empty: all. The first-order and fine-air references are rendered only if a
+  // chosen row needs them, and the CLI then skips the timing sweep: the defaults against a quiet
+  // reference (--error-setting default --reference-spp 1024) cost only the reference.
+  std::string errorSetting;
   std::string environmentNote;
 };
 

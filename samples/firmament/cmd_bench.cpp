@@ -119,6 +119,7 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.images = args.has("images");
   config.timingOnly = args.has("timing-only");
   config.timingSetting = args.getOr("timing-setting", "");
+  config.errorSetting = args.getOr("error-setting", "");
   if (auto size = args.get("timing-size")) {
     // WxH: the frame timing's image size.
     int w = 0, h = 0;
@@ -145,6 +146,7 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
     writeCloudBenchOutputs(config, rows);
     logInfo("wrote " + (out / "clouds_results.csv").string() + " and " + (out / "clouds_report.md").string());
   }
+  if (!config.errorSetting.empty()) return kExitOk;  // the chosen error rows only: no timing sweep
   const std::vector<CloudTimingRow> timing = runCloudTiming(context, config);
   if (config.timingOnly) noteLoad();
   writeCloudTimingOutputs(config, timing);
@@ -193,7 +195,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only]] [--device D]",
+    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -211,6 +213,7 @@ const CommandRegistration registration{Command{
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
         {"timing-only", "", "clouds only: the frame timing alone (DIR/clouds_timing.*), no references or error rows"},
+        {"error-setting", "TEXT", "clouds, not with --timing-only: only the error rows whose \"knob value\" contains TEXT (alternatives separated by |) and the default row; no timing sweep"},
         {"timing-setting", "TEXT", "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), and the defaults' still and 1/16 sequence"},
         {"timing-size", "WxH", "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "

@@ -123,6 +123,7 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --timing-only --timing-size 1920", {"--timing-size 1920", "WxH", "8..8192"}},
       {"bench clouds --timing-only --timing-size 4x4", {"--timing-size 4x4", "WxH"}},
       {"bench clouds --timing-setting quality", {"--timing-setting", "--timing-only"}},
+      {"bench clouds --timing-only --error-setting default", {"--error-setting", "--timing-only"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
@@ -169,6 +170,23 @@ TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
                                              "quality low (32v/4l/3o)", "quality low (32v/4l/3o), temporal_update 16 (sequence)",
                                              "temporal_update 16 (sequence)"};
   EXPECT_EQ(settings, expected);
+}
+
+// --error-setting computes only the error rows whose "knob value" contains one of its texts, and the
+// default row; no timing sweep follows.
+TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
+  auto dir = test::scratchDir("cli_bench_error_setting");
+  CommandRun r = firmament("bench clouds --quick --scenario cumulus_noon --reference-spp 2 --repeats 1 --error-setting "
+                           "\"ms_model no diffusion floor|view_steps 256\" --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream csv(dir / "clouds_results.csv");
+  std::string line;
+  std::getline(csv, line);  // header
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line.substr(0, line.find('"', line.find('"') + 1) + 1));  // knob,"value"
+  const std::vector<std::string> expected = {"default,\"64v/6l/3o\"", "ms_model,\"no diffusion floor\"", "view_steps,\"256\""};
+  EXPECT_EQ(rows, expected);
+  EXPECT_FALSE(std::filesystem::exists(dir / "clouds_timing.csv"));
 }
 
 TEST(Cli, RenderWritesExrPngAndStats) {
