@@ -294,6 +294,7 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
   if (test.width != reference.image.width || test.height != reference.image.height || test.channels < 3)
     throw std::invalid_argument("compareWithCloudReference: image sizes differ");
   double d2 = 0.0, y2 = 0.0, se2 = 0.0, sumTest = 0.0, sumRef = 0.0;
+  std::vector<std::pair<double, double>> pairs;  // (fast path, reference) luminance per cloud pixel
   CloudReferenceError e;
   for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
     if (!(reference.image.pixels[4 * i + 3] < maxTransmittance)) continue;
@@ -309,6 +310,7 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
     se2 += se * se;
     sumTest += a;
     sumRef += y;
+    pairs.push_back({a, y});
     ++e.pixels;
   }
   if (e.pixels == 0 || !(y2 > 0.0)) return e;
@@ -318,6 +320,19 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
   e.meanTest = sumTest / e.pixels;
   e.meanReference = sumRef / e.pixels;
   e.meanBias = sumRef > 0.0 ? sumTest / sumRef - 1.0 : 0.0;
+  // The darkest and brightest quarter by the fast path's luminance (ties keep the pixel order).
+  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+  const size_t quarter = std::max<size_t>(pairs.size() / 4, 1);
+  auto bias = [](auto begin, auto end) {
+    double test = 0.0, ref = 0.0;
+    for (auto it = begin; it != end; ++it) {
+      test += it->first;
+      ref += it->second;
+    }
+    return ref > 0.0 ? test / ref - 1.0 : 0.0;
+  };
+  e.darkQuartileBias = bias(pairs.begin(), pairs.begin() + quarter);
+  e.brightQuartileBias = bias(pairs.end() - quarter, pairs.end());
   return e;
 }
 

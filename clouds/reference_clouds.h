@@ -172,8 +172,16 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
 //   noiseFloor       = sqrt(sum SE^2 / sum Y^^2)                       (relRmse of a perfect fast path),
 //   noiseCorrected   = sqrt(max(sum (a - Y^)^2 - sum SE^2, 0) / (sum Y^^2 - sum SE^2))
 // (the same subtraction as docs/bench.md's atmosphere reports), meanBias = mean(a) / mean(Y^) - 1.
+// The range: the cloud pixels are split into quartiles of the fast path's own luminance a, and
+// darkQuartileBias / brightQuartileBias are mean(a) / mean(Y^) - 1 over the darkest / brightest
+// quarter. A model that compresses the range is positive in the dark quarter and negative in the bright
+// one. The split is by a, not by Y^: a split by the noisy reference puts pixels whose noise came out
+// high into the bright quarter, and so shows a perfect fast path too dark there and too bright in the
+// dark quarter (regression to the mean); a split by a is independent of that noise, so each quarter's
+// mean(Y^) is unbiased.
 struct CloudReferenceError {
   double relRmse = 0.0, noiseFloor = 0.0, noiseCorrected = 0.0, meanBias = 0.0;
+  double darkQuartileBias = 0.0, brightQuartileBias = 0.0;
   double meanTest = 0.0, meanReference = 0.0;
   int pixels = 0;
   int aureolePixels = 0;  // cloud pixels left out: inside the aureole cone

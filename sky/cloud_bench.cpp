@@ -604,6 +604,8 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
         row.relRmseNoiseCorrected = e.noiseCorrected;
         row.referenceNoise = e.noiseFloor;
         row.meanBias = e.meanBias;
+        row.darkQuartileBias = e.darkQuartileBias;
+        row.brightQuartileBias = e.brightQuartileBias;
         row.psnrDb = m.psnrDb;
         row.maxRelErr = maxRelativeLuminanceError(r.clouds, against.image);
         if (config.images && k.knob == "default") writeScenarioImages(config.outDir / "images", sc.name, r.clouds, against);
@@ -622,11 +624,11 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       row.mapSamplesPerPixel = run.mapSamplesPerPixel;
       row.device = context.description();
       rows.push_back(row);
-      char line[256];
+      char line[320];
       std::snprintf(line, sizeof(line),
-                    "%-20s %-20s %-28s frame %7.1f ms  rel_rmse %.4f (noise-corrected %.4f, noise %.4f)  bias %+.3f  spp %.1f",
+                    "%-20s %-20s %-28s frame %7.1f ms  rel_rmse %.4f (noise-corrected %.4f, noise %.4f)  bias %+.3f (dark %+.3f, bright %+.3f)  spp %.1f",
                     sc.name.c_str(), k.knob.c_str(), k.value.c_str(), row.frameMs, row.relRmse, row.relRmseNoiseCorrected,
-                    row.referenceNoise, row.meanBias, row.samplesPerPixel);
+                    row.referenceNoise, row.meanBias, row.darkQuartileBias, row.brightQuartileBias, row.samplesPerPixel);
       logInfo(line);
     }
     if (config.images) writeScenarioPixels(config.outDir / "images" / (sc.name + "_pixels.csv"), ref, rowLuminance);
@@ -792,14 +794,14 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows) {
   std::string csv =
       "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,rel_rmse_noise_corrected,"
-      "ref_noise_rel_rmse,mean_bias,against,device\n";
+      "ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device\n";
   std::string md = "# Cloud march: error against run time\n\nReference: the CPU cloud path tracer (all orders, " +
                    std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : config.quick ? 16 : 64) +
                    " paths/pixel) over the same medium; sunlight only (no ambient, no aerial perspective) on both "
                    "sides; extinction x 0.3 (cumulonimbus x 0.1, cirrus its own). Error of the clouds' luminance over the cloud pixels (reference "
                    "transmittance < 0.95); `noise` is the reference's own Monte Carlo noise as a rel RMSE (what a "
                    "perfect fast path would score), `corrected` the rel RMSE with that noise subtracted (sum SE^2, "
-                   "docs/clouds.md), bias = mean(fast)/mean(reference) - 1. The single_scattering rows compare one "
+                   "docs/clouds.md), bias = mean(fast)/mean(reference) - 1; dark / bright quarter: that bias over the darkest and the brightest quarter of the cloud pixels by the fast path's own luminance (dark > 0 > bright: the range is compressed). The single_scattering rows compare one "
                    "octave with the path tracer limited to one scattering event. precompute_ms: the noise bake "
                    "(once per seed). samples_per_pixel: density evaluations (view + light march). The "
                    "aerial_perspective rows (ambient off, the air in front of the clouds on) compare the whole frame "
@@ -813,18 +815,19 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
                    "leaves out the pixels within its aureole cone around the sun (1.5 deg); the second phase row turns the "
                    "march's delta-scaling off.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
-  md += "| scenario | knob | value | against | frame ms | rel RMSE | corrected | noise | bias | PSNR dB | max rel err | samples/pixel |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md += "| scenario | knob | value | against | frame ms | rel RMSE | corrected | noise | bias | dark / bright quarter | PSNR dB | max rel err | samples/pixel |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& r : rows) {
     char line[512];
     // The value is quoted (RFC 4180): some name settings with commas ("1 octave, no cone, 16 light").
-    std::snprintf(line, sizeof(line), "%s,\"%s\",%s,%.3f,%.3f,%.6g,%.4g,%.6g,%.2f,%.6g,%.6g,%.6g,%s,\"%s\"\n", r.knob.c_str(),
+    std::snprintf(line, sizeof(line), "%s,\"%s\",%s,%.3f,%.3f,%.6g,%.4g,%.6g,%.2f,%.6g,%.6g,%.6g,%.6g,%.6g,%s,\"%s\"\n", r.knob.c_str(),
                   r.value.c_str(), r.scenario.c_str(), r.precomputeMs, r.frameMs, r.relRmse, r.psnrDb, r.maxRelErr,
-                  r.samplesPerPixel, r.relRmseNoiseCorrected, r.referenceNoise, r.meanBias, r.against.c_str(), r.device.c_str());
+                  r.samplesPerPixel, r.relRmseNoiseCorrected, r.referenceNoise, r.meanBias, r.darkQuartileBias, r.brightQuartileBias,
+                  r.against.c_str(), r.device.c_str());
     csv += line;
-    std::snprintf(line, sizeof(line), "| %s | %s | %s | %s | %.1f | %.4g | %.4g | %.4f | %+.3g | %.2f | %.3g | %.1f |\n",
+    std::snprintf(line, sizeof(line), "| %s | %s | %s | %s | %.1f | %.4g | %.4g | %.4f | %+.3g | %+.3g / %+.3g | %.2f | %.3g | %.1f |\n",
                   r.scenario.c_str(), r.knob.c_str(), r.value.c_str(), r.against.c_str(), r.frameMs, r.relRmse, r.relRmseNoiseCorrected,
-                  r.referenceNoise, r.meanBias, r.psnrDb, r.maxRelErr, r.samplesPerPixel);
+                  r.referenceNoise, r.meanBias, r.darkQuartileBias, r.brightQuartileBias, r.psnrDb, r.maxRelErr, r.samplesPerPixel);
     md += line;
   }
   // Plots: per scenario, the error against the path tracer over the frame's cloud-pass time, one series

@@ -63,6 +63,9 @@ struct CloudBenchRow {
   // compareWithCloudReference): the error with the reference's Monte Carlo noise subtracted, the noise
   // alone (the rel RMSE of a perfect fast path), and mean(fast) / mean(reference) - 1.
   double relRmseNoiseCorrected = 0.0, referenceNoise = 0.0, meanBias = 0.0;
+  // The mean bias over the darkest and the brightest quarter of the cloud pixels by the fast path's
+  // own luminance (CloudReferenceError): dark > 0 > bright is a compressed range. 0 for the air rows.
+  double darkQuartileBias = 0.0, brightQuartileBias = 0.0;
   // What the row is compared with: "path_tracer", "path_tracer_order_1" (single_scattering rows) or
   // "air_march_256" (aerial_perspective rows: the whole frame over the cloud pixels against the fast
   // path with the air marched per pixel in 256 steps; no reference noise).
@@ -72,7 +75,7 @@ struct CloudBenchRow {
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config);
 // clouds_results.csv (knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,
-// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
+// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
 // atmosphere's results.csv into the same folder).
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
 

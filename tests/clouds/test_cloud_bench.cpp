@@ -98,11 +98,11 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
-                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,against,device");
-  // Every row has the header's 14 fields (commas inside quotes do not split: values such as
+                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device");
+  // Every row has the header's 16 fields (commas inside quotes do not split: values such as
   // "1 octave, no cone, 16 light" are quoted).
   int lines = 0;
-  for (std::string line; std::getline(csv, line); ++lines) EXPECT_EQ(csvFieldCount(line), 14) << line;
+  for (std::string line; std::getline(csv, line); ++lines) EXPECT_EQ(csvFieldCount(line), 16) << line;
   EXPECT_EQ(lines, int(rows.size()));
   EXPECT_TRUE(std::filesystem::exists(config.outDir / "clouds_report.md"));
   // One error-against-time plot per scenario.
