@@ -169,7 +169,7 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
   PixelResult result;
   reference::Random random(settings_.seed, stream);
   const double albedo = albedo_;
-  double sumY = 0.0, sumY2 = 0.0, sumT = 0.0;
+  double sumY = 0.0, sumY2 = 0.0, sumT = 0.0, sumOddY = 0.0;
   glm::dvec3 sumRgb(0.0);
   const int n = std::max(settings_.samplesPerPixel, 1);
   for (int sample = 0; sample < n; ++sample) {
@@ -231,13 +231,18 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
     sumRgb += rgb;
     sumY += y;
     sumY2 += y * y;
+    if (sample % 2 == 1) sumOddY += y;
   }
   result.rgb = sumRgb / double(n);
   result.transmittance = sumT / double(n);
   result.luminance = sumY / double(n);
-  if (n > 1)
+  if (n > 1) {
     result.luminanceStandardError =
         std::sqrt(std::max(0.0, sumY2 / n - result.luminance * result.luminance) / double(n - 1));
+    const int odd = n / 2, even = n - odd;
+    result.luminanceOddPaths = sumOddY / double(odd);
+    result.luminanceEvenPaths = (sumY - sumOddY) / double(even);
+  }
   return result;
 }
 
@@ -250,6 +255,10 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
   const size_t count = out.image.pixelCount();
   out.luminance.assign(count, 0.0);
   out.luminanceStandardError.assign(count, 0.0);
+  if (tracer.settings().samplesPerPixel >= 2) {
+    out.luminanceEvenPaths.assign(count, 0.0);
+    out.luminanceOddPaths.assign(count, 0.0);
+  }
   out.inAureole.assign(count, 0);
   std::atomic<size_t> next{0}, done{0};
   std::atomic<long long> events{0}, capped{0};
@@ -267,6 +276,10 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
         p[3] = float(r.transmittance);
         out.luminance[i] = r.luminance;
         out.luminanceStandardError[i] = r.luminanceStandardError;
+        if (!out.luminanceOddPaths.empty()) {
+          out.luminanceEvenPaths[i] = r.luminanceEvenPaths;
+          out.luminanceOddPaths[i] = r.luminanceOddPaths;
+        }
         out.inAureole[i] = glm::dot(dir, tracer.sunDirection()) > tracer.aureoleCosine() ? 1 : 0;
         events += r.events;
         capped += r.capped;
@@ -294,7 +307,13 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
   if (test.width != reference.image.width || test.height != reference.image.height || test.channels < 3)
     throw std::invalid_argument("compareWithCloudReference: image sizes differ");
   double d2 = 0.0, y2 = 0.0, se2 = 0.0, sumTest = 0.0, sumRef = 0.0;
-  std::vector<std::pair<double, double>> pairs;  // (fast path, reference) luminance per cloud pixel
+  // Per cloud pixel: the even paths' luminance (the split), the fast path's and the odd paths' (measured).
+  struct Split {
+    double by, test, reference;
+  };
+  std::vector<Split> split;
+  const bool halves = reference.luminanceOddPaths.size() == reference.luminance.size() &&
+                      reference.luminanceEvenPaths.size() == reference.luminance.size();
   CloudReferenceError e;
   for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
     if (!(reference.image.pixels[4 * i + 3] < maxTransmittance)) continue;
@@ -310,7 +329,7 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
     se2 += se * se;
     sumTest += a;
     sumRef += y;
-    pairs.push_back({a, y});
+    if (halves) split.push_back({reference.luminanceEvenPaths[i], a, reference.luminanceOddPaths[i]});
     ++e.pixels;
   }
   if (e.pixels == 0 || !(y2 > 0.0)) return e;
@@ -320,19 +339,22 @@ CloudReferenceError compareWithCloudReference(const Image& test, const CloudRefe
   e.meanTest = sumTest / e.pixels;
   e.meanReference = sumRef / e.pixels;
   e.meanBias = sumRef > 0.0 ? sumTest / sumRef - 1.0 : 0.0;
-  // The darkest and brightest quarter by the fast path's luminance (ties keep the pixel order).
-  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
-  const size_t quarter = std::max<size_t>(pairs.size() / 4, 1);
-  auto bias = [](auto begin, auto end) {
-    double test = 0.0, ref = 0.0;
-    for (auto it = begin; it != end; ++it) {
-      test += it->first;
-      ref += it->second;
-    }
-    return ref > 0.0 ? test / ref - 1.0 : 0.0;
-  };
-  e.darkQuartileBias = bias(pairs.begin(), pairs.begin() + quarter);
-  e.brightQuartileBias = bias(pairs.end() - quarter, pairs.end());
+  // The darkest and brightest quarter by the even paths (ties keep the pixel order), measured
+  // against the odd paths.
+  if (split.size() >= 4) {
+    std::stable_sort(split.begin(), split.end(), [](const Split& l, const Split& r) { return l.by < r.by; });
+    const size_t quarter = split.size() / 4;
+    auto bias = [](auto begin, auto end) {
+      double test = 0.0, ref = 0.0;
+      for (auto it = begin; it != end; ++it) {
+        test += it->test;
+        ref += it->reference;
+      }
+      return ref > 0.0 ? test / ref - 1.0 : 0.0;
+    };
+    e.darkQuartileBias = bias(split.begin(), split.begin() + quarter);
+    e.brightQuartileBias = bias(split.end() - quarter, split.end());
+  }
   return e;
 }
 

@@ -94,6 +94,9 @@ struct CloudReferenceSettings {
 struct CloudReferenceImage {
   Image image;  // rgb: the clouds' light (cd/m^2, Rec.709), a: their mean transmittance
   std::vector<double> luminance, luminanceStandardError;
+  // The luminance of the even- and the odd-numbered paths alone (empty below 2 paths per pixel): two
+  // estimates with independent noise, for compareWithCloudReference's split of the pixels by brightness.
+  std::vector<double> luminanceEvenPaths, luminanceOddPaths;
   std::vector<uint8_t> inAureole;  // 1: inside CloudPathTracer::aureoleCosine, left out of comparisons
   double seconds = 0.0;
   long long paths = 0, events = 0, capped = 0;
@@ -112,6 +115,7 @@ class CloudPathTracer {
     glm::dvec3 rgb{0.0};  // Rec.709 cd/m^2
     double transmittance = 1.0;
     double luminance = 0.0, luminanceStandardError = 0.0;
+    double luminanceEvenPaths = 0.0, luminanceOddPaths = 0.0;  // the two halves' means (2 paths or more)
     long long events = 0, capped = 0;
   };
   PixelResult pixel(glm::dvec3 origin, glm::dvec3 direction, uint64_t stream) const;
@@ -129,6 +133,7 @@ class CloudPathTracer {
   // approximate Mie's 20 um droplets; measured for g = 0.95 in tests/clouds/test_cloud_reference.cpp:
   // outside 10 deg +3.5 %, outside 15 deg -2 %, all pixels +34 %). Above 1 (no pixel) without δ-scaling.
   double aureoleCosine() const { return aureoleCosine_; }
+  const CloudReferenceSettings& settings() const { return settings_; }
   glm::dvec3 sunDirection() const { return sun_; }
 
  private:
@@ -172,13 +177,15 @@ CloudReferenceImage renderCloudReference(const CloudPathTracer& tracer, glm::dve
 //   noiseFloor       = sqrt(sum SE^2 / sum Y^^2)                       (relRmse of a perfect fast path),
 //   noiseCorrected   = sqrt(max(sum (a - Y^)^2 - sum SE^2, 0) / (sum Y^^2 - sum SE^2))
 // (the same subtraction as docs/bench.md's atmosphere reports), meanBias = mean(a) / mean(Y^) - 1.
-// The range: the cloud pixels are split into quartiles of the fast path's own luminance a, and
-// darkQuartileBias / brightQuartileBias are mean(a) / mean(Y^) - 1 over the darkest / brightest
-// quarter. A model that compresses the range is positive in the dark quarter and negative in the bright
-// one. The split is by a, not by Y^: a split by the noisy reference puts pixels whose noise came out
-// high into the bright quarter, and so shows a perfect fast path too dark there and too bright in the
-// dark quarter (regression to the mean); a split by a is independent of that noise, so each quarter's
-// mean(Y^) is unbiased.
+// The range: darkQuartileBias / brightQuartileBias are mean(a) / mean(Y) - 1 over the darkest /
+// brightest quarter of the cloud pixels. A model that compresses the range is positive in the dark
+// quarter and negative in the bright one. The pixels are split by the even-numbered paths' luminance
+// and the bias is measured against the odd-numbered paths' (CloudReferenceImage::luminanceEvenPaths,
+// luminanceOddPaths), whose noise is independent of the split. A split by the same noisy reference that
+// is measured files the pixels whose noise came out high under "bright", so even a perfect fast path
+// would show too dark there and too bright in the dark quarter (regression to the mean); a split by the
+// fast path's own luminance files its own errors the same way and shows a range expanded. With fewer
+// than 2 paths per pixel both are 0.
 struct CloudReferenceError {
   double relRmse = 0.0, noiseFloor = 0.0, noiseCorrected = 0.0, meanBias = 0.0;
   double darkQuartileBias = 0.0, brightQuartileBias = 0.0;
