@@ -465,7 +465,9 @@ void writeScenarioImages(const std::filesystem::path& folder, const std::string&
 // luminance (the rows compared with the scenario's all-order path tracer), one column per row.
 void writeScenarioPixels(const std::filesystem::path& file, const CloudReferenceImage& reference,
                          const std::vector<std::pair<std::string, std::vector<float>>>& rowLuminance) {
+  const bool halves = reference.luminanceOddPaths.size() == reference.luminance.size();
   std::string csv = "x,y,reference_luminance,reference_standard_error,reference_transmittance";
+  if (halves) csv += ",reference_luminance_even_paths,reference_luminance_odd_paths";
   for (const auto& [name, luminance] : rowLuminance) {
     std::string column = name;
     std::replace(column.begin(), column.end(), ',', ';');
@@ -478,6 +480,10 @@ void writeScenarioPixels(const std::filesystem::path& file, const CloudReference
     std::snprintf(line, sizeof(line), "%d,%d,%.6g,%.6g,%.4f", int(i % size_t(width)), int(i / size_t(width)), reference.luminance[i],
                   reference.luminanceStandardError[i], reference.image.pixels[4 * i + 3]);
     csv += line;
+    if (halves) {
+      std::snprintf(line, sizeof(line), ",%.6g,%.6g", reference.luminanceEvenPaths[i], reference.luminanceOddPaths[i]);
+      csv += line;
+    }
     for (const auto& row : rowLuminance) {
       std::snprintf(line, sizeof(line), ",%.6g", double(row.second[i]));
       csv += line;

@@ -25,7 +25,7 @@ struct CloudBenchConfig {
   std::string scenario;     // only this scenario (empty: all; checkCloudBenchConfig)
   // DIR/images/<scenario>_{reference,default}.exr (rgb: the clouds' light in cd/m^2, a: transmittance),
   // <scenario>_default_error.png (relative luminance error heat map, 0..20 %) and <scenario>_pixels.csv
-  // (per pixel: the reference's luminance, standard error and transmittance, then the luminance of
+  // (per pixel: the reference's luminance, standard error and transmittance, its even and odd paths' luminance, then the luminance of
   // every row compared with the all-order path tracer, a column named knob=value each).
   bool images = false;
   // Only the frame timing (runCloudTiming, clouds_timing.*): no path-traced references, no error rows.
