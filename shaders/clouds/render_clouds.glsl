@@ -329,11 +329,12 @@ void main() {
       diffusion = cloud.layerLighting[phaseLayer].x;
       reflectWeight = cloud.layerLighting[phaseLayer].y;
       reflectDepthScale = cloud.layerLighting[phaseLayer].z;
+      float weightScale = cloudOctaveWeightScale(b, octaves);
       for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
                                     cloud.phase.z, cloud.phaseLight.x, nu);
         octaveScale[o] = cloudOctaveExtinctionScale(a, o);
-        octaveWeight[o] = cloudOctaveWeight(b, o);
+        octaveWeight[o] = cloudOctaveWeight(b, o) * (o > 0 ? weightScale : 1.0);
         octaveTopBound[o] = 1.0001 * cloudOctaveTransmittanceBound(octaveScale[o], msScattered);
       }
       // Octave i's share b^i / sum_j b^j (j >= 1) of a deck's slab transmission (cloudOctaveTransmittanceThroughOthers).

@@ -73,6 +73,21 @@ SHARED_INLINE Real cloudOctavePower(Real x, int octave) {
   return p;
 }
 SHARED_INLINE Real cloudOctaveWeight(Real b, int octave) { return cloudOctavePower(b, octave); }
+
+// The factor on the weights b^i of octaves i >= 1 for N octaves: the three-octave total b + b^2 over
+// the N-octave total sum_{i=1}^{N-1} b^i, so that N sets how the multiple-scattering light is spread
+// over extinction scales a^i, not how much of it there is. Why: every fit has b at or near 1
+// (docs/clouds.md, "Calibration"; 1 is the fit's upper bound), so each octave beyond the three the
+// constants were fitted for added nearly another octave's light: 8 octaves gave 1.7x the light of 3
+// on a stratocumulus deck at sunset and 7.5x on a thick cumulus, and the scene allows up to 8. With
+// this factor 1.07x and 2.4x (test CloudOctaves.MoreOctavesAddLittleLight; the rest is the high
+// octaves' vanishing extinction a^i). 1 at N = 3 exactly (x / x), and for N <= 1 or b = 0.
+SHARED_INLINE Real cloudOctaveWeightScale(Real b, int octaves) {
+  Real total = 0.0;
+  for (int i = 1; i < octaves; ++i) total += cloudOctavePower(b, i);
+  Real fitted = b + b * b;
+  return total > 0.0 ? fitted / total : 1.0;
+}
 SHARED_INLINE Real cloudOctaveExtinctionScale(Real a, int octave) { return cloudOctavePower(a, octave); }
 SHARED_INLINE Real cloudOctaveEccentricityScale(Real c, int octave) { return cloudOctavePower(c, octave); }
 
