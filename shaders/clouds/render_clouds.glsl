@@ -504,7 +504,8 @@ void main() {
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
         float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
-        msSum = max(msSum, diffusion * fluxThroughOthers * cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
+        msSum = max(msSum, diffusion * fluxThroughOthers * cloudEscapeCorrection(muS) *
+                               cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
       }
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
       if (reflects && sunVisible)
