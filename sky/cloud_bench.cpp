@@ -21,6 +21,7 @@
 #include "core/statistics.h"
 #include "core/svg_xy_plot.h"
 #include "sky/atmosphere_bench.h"
+#include "sky/cloud_reference_cache.h"
 #include "sky/gpu_warm_up.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
@@ -548,9 +549,14 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;
     const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, CloudEnvironment{}, rs);
-    const CloudReferenceImage ref = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
-    logInfo("bench clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel in " +
-            std::to_string(ref.seconds) + " s");
+    // Kept in DIR/references (sky/cloud_reference_cache.h): a re-run with the same --out and paths
+    // renders only the fast path.
+    bool cached = false;
+    const CloudReferenceImage ref = cachedCloudReference(scene, tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera,
+                                                         config.threads, base.cloudNoise, config.outDir / "references", sc.name, &cached);
+    logInfo("bench clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel " +
+            (cached ? "from " + (config.outDir / "references").string() + " (rendered in " : "in ") + std::to_string(ref.seconds) +
+            (cached ? " s)" : " s"));
     CloudReferenceImage singleRef;
     if (needsSingleReference) {
       CloudReferenceSettings single = rs;

@@ -189,6 +189,45 @@ TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
   EXPECT_FALSE(std::filesystem::exists(dir / "clouds_timing.csv"));
 }
 
+// The all-order references are kept in DIR/references: a second run with the same --out reads them
+// (and says so) and gives the same errors; a damaged cache file is rendered again.
+TEST(Cli, BenchCloudReusesItsReferences) {
+  auto dir = test::scratchDir("cli_bench_reference_cache");
+  const std::string command = "bench clouds --quick --scenario cumulus_noon --reference-spp 4 --repeats 1 --error-setting "
+                              "\"view_steps 256\" --out " + dir.string();
+  auto errors = [&] {
+    std::ifstream csv(dir / "clouds_results.csv");
+    std::string line, all;
+    std::getline(csv, line);  // header
+    while (std::getline(csv, line)) {
+      // knob,"value",scenario,precompute_ms,frame_ms,rel_rmse,...: drop the two times.
+      const size_t scenarioEnd = line.find(',', line.find('"', line.find('"') + 1) + 2);
+      const size_t framesEnd = line.find(',', line.find(',', scenarioEnd + 1) + 1);
+      all += line.substr(0, scenarioEnd) + line.substr(framesEnd) + "\n";
+    }
+    return all;
+  };
+  CommandRun first = firmament(command);
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_EQ(first.output.find("paths/pixel from"), std::string::npos) << first.output;
+  const std::string firstErrors = errors();
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "references")) files += entry.path().extension() == ".exr";
+  EXPECT_EQ(files, 2);
+
+  CommandRun second = firmament(command);
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  EXPECT_NE(second.output.find("paths/pixel from"), std::string::npos) << second.output;
+  EXPECT_EQ(errors(), firstErrors);
+
+  // Damaged: every file of the cache truncated; the run renders the reference again and overwrites them.
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "references")) std::filesystem::resize_file(entry.path(), 10);
+  CommandRun third = firmament(command);
+  ASSERT_EQ(third.exitCode, 0) << third.output;
+  EXPECT_EQ(third.output.find("paths/pixel from"), std::string::npos) << third.output;
+  EXPECT_EQ(errors(), firstErrors);
+}
+
 TEST(Cli, RenderWritesExrPngAndStats) {
   auto dir = test::scratchDir("cli_render");
   auto scene = test::sourceDir() / "scenes" / "default.json";
