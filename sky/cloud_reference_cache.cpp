@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "core/hash.h"
 #include "core/log.h"
 
 namespace firmament {
@@ -16,17 +17,6 @@ std::string format(double v) {
   return text;
 }
 
-std::string fnv1a(const std::string& text) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char out[20];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return out;
-}
-
 }  // namespace
 
 std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& s, const CloudNoiseSettings& noise) {
@@ -36,7 +26,7 @@ std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSetti
                              std::to_string(int(s.exactSingleScattering)) + "/noise " + std::to_string(noise.shapeSize) + " " +
                              std::to_string(noise.detailSize) + " " + std::to_string(noise.curlSize) + " " +
                              std::to_string(noise.blueNoiseSize) + "/cloud-reference-v" + std::to_string(kCloudReferenceVersion);
-  return scene.hash() + "-" + fnv1a(fields);
+  return scene.hash() + "-" + hex16(fnv1a(fields));
 }
 
 CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTracer& tracer, glm::dvec3 cameraPosition,

@@ -151,6 +151,16 @@ TEST(Cli, BenchCloudTimingTakesItsImageSize) {
   EXPECT_GT(rows, 3);
 }
 
+// The lines of a CSV file after its header.
+std::vector<std::string> csvRows(const std::filesystem::path& file) {
+  std::ifstream csv(file);
+  std::string line;
+  std::getline(csv, line);  // header
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  return rows;
+}
+
 // --timing-setting times only the rows whose name contains one of its texts, and the defaults' still
 // and 1/16 sequence.
 TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
@@ -158,11 +168,8 @@ TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
   CommandRun r = firmament("bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting "
                            "\"reflected_light off|quality low (\" --out " + dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream csv(dir / "clouds_timing.csv");
-  std::string line;
-  std::getline(csv, line);  // header
   std::vector<std::string> settings;
-  while (std::getline(csv, line)) {
+  for (const std::string& line : csvRows(dir / "clouds_timing.csv")) {
     const size_t open = line.find(",\"") + 2, close = line.find('"', open);
     settings.push_back(line.substr(open, close - open));
   }
@@ -179,11 +186,9 @@ TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
   CommandRun r = firmament("bench clouds --quick --scenario cumulus_noon --reference-spp 2 --repeats 1 --error-setting "
                            "\"ms_model no diffusion floor|view_steps 256\" --out " + dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream csv(dir / "clouds_results.csv");
-  std::string line;
-  std::getline(csv, line);  // header
   std::vector<std::string> rows;
-  while (std::getline(csv, line)) rows.push_back(line.substr(0, line.find('"', line.find('"') + 1) + 1));  // knob,"value"
+  for (const std::string& line : csvRows(dir / "clouds_results.csv"))
+    rows.push_back(line.substr(0, line.find('"', line.find('"') + 1) + 1));  // knob,"value"
   const std::vector<std::string> expected = {"default,\"64v/6l/3o\"", "ms_model,\"no diffusion floor\"", "view_steps,\"256\""};
   EXPECT_EQ(rows, expected);
   EXPECT_FALSE(std::filesystem::exists(dir / "clouds_timing.csv"));
@@ -196,10 +201,8 @@ TEST(Cli, BenchCloudReusesItsReferences) {
   const std::string command = "bench clouds --quick --scenario cumulus_noon --reference-spp 4 --repeats 1 --error-setting "
                               "\"view_steps 256\" --out " + dir.string();
   auto errors = [&] {
-    std::ifstream csv(dir / "clouds_results.csv");
-    std::string line, all;
-    std::getline(csv, line);  // header
-    while (std::getline(csv, line)) {
+    std::string all;
+    for (const std::string& line : csvRows(dir / "clouds_results.csv")) {
       // knob,"value",scenario,precompute_ms,frame_ms,rel_rmse,...: drop the two times.
       const size_t scenarioEnd = line.find(',', line.find('"', line.find('"') + 1) + 2);
       const size_t framesEnd = line.find(',', line.find(',', scenarioEnd + 1) + 1);
