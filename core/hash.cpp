@@ -10,4 +10,10 @@ std::string hex16(uint64_t value) {
   return out;
 }
 
+std::string roundTripDecimal(double value) {
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
 }  // namespace firmament

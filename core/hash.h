@@ -18,4 +18,7 @@ inline uint64_t fnv1a(std::string_view bytes, uint64_t hash = 146959810393466560
 // 16 lowercase hex digits.
 std::string hex16(uint64_t value);
 
+// A double as text that reads back as the same value (17 significant digits): a cache key's field.
+std::string roundTripDecimal(double value);
+
 }  // namespace firmament

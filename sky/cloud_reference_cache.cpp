@@ -1,6 +1,6 @@
 #include "sky/cloud_reference_cache.h"
 
-#include <cstdio>
+#include <cstdlib>
 #include <system_error>
 
 #include "core/error.h"
@@ -9,20 +9,11 @@
 #include "core/log.h"
 
 namespace firmament {
-namespace {
-
-std::string format(double v) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.17g", v);
-  return text;
-}
-
-}  // namespace
 
 std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& s, const CloudNoiseSettings& noise) {
   const std::string fields = std::to_string(s.samplesPerPixel) + "/" + std::to_string(s.seed) + "/" + std::to_string(s.maxEvents) + "/" +
-                             std::to_string(s.sunOpticalDepthSteps) + "/" + format(s.maxDistance_m) + "/" +
-                             std::to_string(s.maxScatteringOrder) + "/" + format(s.deltaLobeMinG) + "/" +
+                             std::to_string(s.sunOpticalDepthSteps) + "/" + roundTripDecimal(s.maxDistance_m) + "/" +
+                             std::to_string(s.maxScatteringOrder) + "/" + roundTripDecimal(s.deltaLobeMinG) + "/" +
                              std::to_string(int(s.exactSingleScattering)) + "/noise " + std::to_string(noise.shapeSize) + " " +
                              std::to_string(noise.detailSize) + " " + std::to_string(noise.curlSize) + " " +
                              std::to_string(noise.blueNoiseSize) + "/cloud-reference-v" + std::to_string(kCloudReferenceVersion);
@@ -84,7 +75,7 @@ CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTrac
   image.metadata["firmament.units"] = "RGB: the clouds' light, linear Rec.709, cd/m^2; A: transmittance";
   image.metadata["firmament.reference.spp"] = std::to_string(settings.samplesPerPixel);
   image.metadata["firmament.reference.seed"] = std::to_string(settings.seed);
-  image.metadata["firmament.timing.reference_s"] = format(reference.seconds);
+  image.metadata["firmament.timing.reference_s"] = roundTripDecimal(reference.seconds);
   Image luminance(image.width, image.height, 4);
   const bool halves = reference.luminanceOddPaths.size() == reference.luminance.size();
   for (size_t i = 0; i < image.pixelCount(); ++i) {

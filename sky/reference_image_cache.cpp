@@ -6,17 +6,12 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "core/hash.h"
 #include "core/log.h"
 #include "sky/scene_view.h"
 
 namespace firmament {
 namespace {
-
-std::string format(double v) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.17g", v);
-  return text;
-}
 
 double metadataNumber(const Image& image, const std::string& key) {
   auto it = image.metadata.find(key);
@@ -27,19 +22,12 @@ double metadataNumber(const Image& image, const std::string& key) {
 
 std::string referenceCacheKey(const Scene& scene, const ReferenceQuality& q) {
   const std::string fields = std::to_string(q.samplesPerPixel) + "/" + std::to_string(q.wavelengthCount) + "/" +
-                             std::to_string(q.seed) + "/" + format(q.quadratureTolerance) + "/" +
-                             format(q.pathTolerance) + "/" + std::to_string(q.maxBounces) + "/" +
+                             std::to_string(q.seed) + "/" + roundTripDecimal(q.quadratureTolerance) + "/" +
+                             roundTripDecimal(q.pathTolerance) + "/" + std::to_string(q.maxBounces) + "/" +
                              std::to_string(q.rouletteStartBounce) + "/" + std::to_string(q.forcedSegments) + "/" +
                              std::to_string(int(q.sunDisc)) + std::to_string(int(q.singleScattering)) +
                              std::to_string(int(q.multipleScattering)) + "/reference-v1";
-  uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-  for (unsigned char c : fields) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char out[40];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-  return scene.hash() + "-" + out;
+  return scene.hash() + "-" + hex16(fnv1a(fields));
 }
 
 CachedReference cachedReferenceImage(const Scene& scene, const ReferenceQuality& quality,
@@ -82,9 +70,9 @@ CachedReference cachedReferenceImage(const Scene& scene, const ReferenceQuality&
   image.metadata["firmament.reference.spp"] = std::to_string(quality.samplesPerPixel);
   image.metadata["firmament.reference.wavelengths"] = std::to_string(quality.wavelengthCount);
   image.metadata["firmament.reference.seed"] = std::to_string(quality.seed);
-  image.metadata["firmament.reference.noise_median_relative"] = format(reference.medianRelativeError);
-  image.metadata["firmament.reference.noise_p95_relative"] = format(reference.p95RelativeError);
-  image.metadata["firmament.timing.reference_s"] = format(reference.seconds);
+  image.metadata["firmament.reference.noise_median_relative"] = roundTripDecimal(reference.medianRelativeError);
+  image.metadata["firmament.reference.noise_p95_relative"] = roundTripDecimal(reference.p95RelativeError);
+  image.metadata["firmament.timing.reference_s"] = roundTripDecimal(reference.seconds);
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("cannot create " + folder.string() + ": " + ec.message());
   writeExr(result.file, image);
