@@ -31,7 +31,7 @@ struct CloudBlock {
   int32_t shadowSize[4];   // texels, steps, enabled, unused
   float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
   float layers[kMaxLayers * 5][4];
-  float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, the reflected light's r and a_r, unused
+  float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, the reflected light's r and a_r, the base's limb darkening
   float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m), unused x2
   float otherLayerMap[4];              // the other layers' map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   float otherLayerOrigin[4];           // its plane's origin (cloud frame, m); w = the first row this bake writes
@@ -327,7 +327,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, std::min(ls.msA, ls.msB));
     put(b.layers[5 * i + 3], c.wind_offset, ls.msB);
     put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), ls.msC);
-    put(b.layerLighting[i], ls.msD, ls.msR, ls.msRA, 0.0);
+    put(b.layerLighting[i], ls.msD, ls.msR, ls.msRA, cloudTypeBaseLimbDarkening(ls.kind));
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);

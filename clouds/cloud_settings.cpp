@@ -94,6 +94,10 @@ double cloudPhaseDeltaFraction(const CloudLightingSettings& lighting, double min
   return (1.0 - lighting.backWeight) * lighting.gForward * lighting.gForward;
 }
 
+double cloudTypeBaseLimbDarkening(int kind) {
+  return kind == shared::kCloudStratus || kind == shared::kCloudStratocumulus ? 1.0 : 0.0;
+}
+
 int cloudKindFromName(const std::string& name) {
   if (name == "stratus") return shared::kCloudStratus;
   if (name == "stratocumulus") return shared::kCloudStratocumulus;

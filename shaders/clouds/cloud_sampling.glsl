@@ -30,7 +30,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
   vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: the light-step falloff's start T0 (lightStepsFalloffStart)
   vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
-  vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), y, z = the reflected light's r and a_r (cloudReflectedSource; r 0: off), w unused
+  vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), y, z = the reflected light's r and a_r (cloudReflectedSource; r 0: off), w = the base's limb darkening (cloudBaseLimbFactor's strength)
   vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: the longest coarse span on it (m)
   vec4 otherLayerMap;    // the other layers' map (clouds/other_layer_map.glsl): log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   vec4 otherLayerOrigin; // its plane's origin c (cloud frame, m); w: the first row the bake writes

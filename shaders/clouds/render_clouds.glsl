@@ -226,6 +226,7 @@ void main() {
   float phaseOctave[8], octaveScale[8], octaveWeight[8], octaveTopBound[8], octaveShare[8];
   int phaseLayer = -1;  // the layer the octave arrays hold
   float diffusion = 0.0;  // that layer's diffusion-floor weight d
+  float baseLimb = 0.0;   // and its base's limb darkening (cloudBaseLimbFactor's strength)
   float reflectWeight = 0.0, reflectDepthScale = 0.0;  // that layer's reflected light's r and a_r
   vec2 texels = vec2(1.0);  // that layer's noise texel sizes (noiseTexels)
 
@@ -327,6 +328,7 @@ void main() {
       float b = cloud.layers[5 * phaseLayer + 3].w;
       float c = cloud.layers[5 * phaseLayer + 4].w;
       diffusion = cloud.layerLighting[phaseLayer].x;
+      baseLimb = cloud.layerLighting[phaseLayer].w;
       reflectWeight = cloud.layerLighting[phaseLayer].y;
       reflectDepthScale = cloud.layerLighting[phaseLayer].z;
       float weightScale = cloudOctaveWeightScale(b, octaves);
@@ -505,7 +507,8 @@ void main() {
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
         float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudEscapeCorrection(muS) *
-                               cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)));
+                               cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
+                               cloudBaseLimbFactor(dot(dir, up), tauDown, -log(max(transmittance, 1e-30)), baseLimb));
       }
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
       if (reflects && sunVisible)

@@ -242,6 +242,27 @@ SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, R
   return max(i0 + g * muDown * i1, 0.0) * min(mu0 / m, 1.0);
 }
 
+// The diffusion floor's limb darkening at a layer's base: the factor on cloudEddingtonSlabSource for
+// light scattered down towards a viewer below, at muDown = cos(angle from the downward vertical) > 0,
+// vertical optical depth tauBelow above the base and optical depth tauView from the viewer. The
+// Eddington source makes the radiance leaving a thick slab's base go like 2/3 + mu, which is too bright
+// at grazing exits: against the project's Monte Carlo of a homogeneous conservative slab with the
+// default phase (optical thickness 10 and 20, sun at mu0 0.3 to 1; tests CloudFloorAgainstMonteCarlo.*)
+// +5 % at mu = 0.25, +10 to +18 % at 0.15, +18 to +29 % at 0.05, and within 3 % for mu >= 0.35. The exact
+// source falls towards the boundary within ~mu of it (grazing light leaves from the boundary layer), so
+// it is lowered there: 1 - beta(mu) e^(-tauBelow / mu) with beta = 0.6 e^(-mu / 0.15), fitted to that Monte
+// Carlo (the radiance leaving the base then within 7 % of it for every mu >= 0.05; docs/clouds.md
+// "Lighting", item 6). A sample whose way to the viewer is longer than its slant way to the base
+// (tauView > tauBelow / mu: seen through a cloud's side, not its base) keeps more of the source: the
+// exponent takes the larger. `strength` scales beta (cloudTypeBaseLimbDarkening: 1 for the layers that
+// are slabs, 0 for finite cumulus, whose bases the fitted floor weight already covers). 1 for light
+// scattered upwards (the top's reflection, which the octaves and cloudReflectedSource carry).
+SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real tauView, Real strength) {
+  if (!(muDown > 0.0) || !(strength > 0.0)) return 1.0;
+  Real m = max(muDown, 1e-3);
+  return 1.0 - strength * 0.6 * exp(-m / 0.15) * exp(-max(max(tauBelow, 0.0) / m, max(tauView, 0.0)));
+}
+
 // The light that the cloud behind a sample (further from the sun along the sun's line) turns back
 // towards the sun, as a source for octaves i >= 1, per unit solar irradiance and per steradian
 // (docs/clouds.md, "Multiple scattering"). The octaves carry light on along the sun's direction
