@@ -28,6 +28,24 @@ double dot(Direction a, Direction b) { return a.x * b.x + a.y * b.y + a.z * b.z;
 
 double phase(double nu) { return shared::cloudPhase(kForwardG, kBackG, kBackWeight, 0.0, nu); }
 
+// A direction at an angle from w drawn from the phase (a lobe by its weight, then HG by inversion): the
+// light's direction before (or after) a scattering into (or out of) w, density p(w' . w).
+Direction sampleAroundByPhase(Direction w, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double g = uniform(rng) < kBackWeight ? kBackG : kForwardG;
+  const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * uniform(rng));
+  const double cosTheta = std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+  const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta), phi = 2.0 * kPi * uniform(rng);
+  // An orthonormal frame around w.
+  const Direction t = std::abs(w.z) < 0.9 ? Direction{0.0, 0.0, 1.0} : Direction{1.0, 0.0, 0.0};
+  Direction a{w.y * t.z - w.z * t.y, w.z * t.x - w.x * t.z, w.x * t.y - w.y * t.x};
+  const double la = std::sqrt(dot(a, a));
+  a = {a.x / la, a.y / la, a.z / la};
+  const Direction b{w.y * a.z - w.z * a.y, w.z * a.x - w.x * a.z, w.x * a.y - w.y * a.x};
+  const double ca = sinTheta * std::cos(phi), cb = sinTheta * std::sin(phi);
+  return {cosTheta * w.x + ca * a.x + cb * b.x, cosTheta * w.y + ca * a.y + cb * b.y, cosTheta * w.z + ca * a.z + cb * b.z};
+}
+
 // Propagation directions in a slab of optical thickness `thickness` (depth 0 at the top), traced
 // backwards from a point: each vertex adds the sun's single scattering there (next-event estimation),
 // the vertex at the start excluded, so the estimate is the light of scattering orders >= 2 (the
@@ -78,21 +96,7 @@ class SlabMonteCarlo {
     }
   }
 
-  // A propagation direction w' before a scattering into w, with density p(w' . w).
-  Direction samplePhase(Direction w) {
-    const double g = uniform_(rng_) < kBackWeight ? kBackG : kForwardG;
-    const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * uniform_(rng_));
-    const double cosTheta = std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
-    const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta), phi = 2.0 * kPi * uniform_(rng_);
-    // An orthonormal frame around w.
-    const Direction t = std::abs(w.z) < 0.9 ? Direction{0.0, 0.0, 1.0} : Direction{1.0, 0.0, 0.0};
-    Direction a{w.y * t.z - w.z * t.y, w.z * t.x - w.x * t.z, w.x * t.y - w.y * t.x};
-    const double la = std::sqrt(dot(a, a));
-    a = {a.x / la, a.y / la, a.z / la};
-    const Direction b{w.y * a.z - w.z * a.y, w.z * a.x - w.x * a.z, w.x * a.y - w.y * a.x};
-    const double ca = sinTheta * std::cos(phi), cb = sinTheta * std::sin(phi);
-    return {cosTheta * w.x + ca * a.x + cb * b.x, cosTheta * w.y + ca * a.y + cb * b.y, cosTheta * w.z + ca * a.z + cb * b.z};
-  }
+  Direction samplePhase(Direction w) { return sampleAroundByPhase(w, rng_); }
 
   double thickness_, mu0_;
   Direction sun_;
@@ -177,27 +181,16 @@ double photonBaseFlux(double thickness, double mu0, int photons, uint64_t seed, 
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   long transmitted = 0;
   for (int i = 0; i < photons; ++i) {
-    double z = 0.0, wx = std::sqrt(1.0 - mu0 * mu0), wy = 0.0, wz = mu0;
+    double z = 0.0;
+    Direction w{std::sqrt(1.0 - mu0 * mu0), 0.0, mu0};
     for (int order = 0;; ++order) {
-      z += -std::log(1.0 - uniform(rng)) * wz;
+      z += -std::log(1.0 - uniform(rng)) * w.z;
       if (z < 0.0) break;
       if (z > thickness) {
         if (order >= 2) ++transmitted;
         break;
       }
-      // Scatter: a new direction at cosine cosTheta from w (dual HG), about an orthonormal frame.
-      const double g = uniform(rng) < kBackWeight ? kBackG : kForwardG;
-      const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * uniform(rng));
-      const double cosTheta = std::clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
-      const double sinTheta = std::sqrt(1.0 - cosTheta * cosTheta), phi = 2.0 * kPi * uniform(rng);
-      const double tx = std::abs(wz) < 0.9 ? 0.0 : 1.0, tz = std::abs(wz) < 0.9 ? 1.0 : 0.0;
-      double ax = wy * tz, ay = wz * tx - wx * tz, az = -wy * tx;
-      const double la = std::sqrt(ax * ax + ay * ay + az * az);
-      ax /= la, ay /= la, az /= la;
-      const double bx = wy * az - wz * ay, by = wz * ax - wx * az, bz = wx * ay - wy * ax;
-      const double ca = sinTheta * std::cos(phi), cb = sinTheta * std::sin(phi);
-      const double nx = cosTheta * wx + ca * ax + cb * bx, ny = cosTheta * wy + ca * ay + cb * by, nz = cosTheta * wz + ca * az + cb * bz;
-      wx = nx, wy = ny, wz = nz;
+      w = sampleAroundByPhase(w, rng);
     }
   }
   const double p = double(transmitted) / photons;
