@@ -267,8 +267,9 @@ SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, R
 // Carlo (the radiance leaving the base then within 7 % of it for every mu >= 0.05; docs/clouds.md
 // "Lighting", item 6). A sample whose way to the viewer is longer than its slant way to the base
 // (tauView > tauBelow / mu: seen through a cloud's side, not its base) keeps more of the source: the
-// exponent takes the larger. `strength` scales beta (cloudTypeBaseLimbDarkening: 1 for the layers that
-// are slabs, 0 for finite cumulus, whose bases the fitted floor weight already covers). 1 for light
+// exponent takes the larger. `strength` scales beta (cloudTypeBaseLimbDarkening: 1 for stratus and
+// stratocumulus, the layers that are slabs; 0 for the others: a finite cumulus's bases are not a slab's,
+// and cirrus held out worse with it). 1 for light
 // scattered upwards (the top's reflection, which the octaves and cloudReflectedSource carry).
 SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real tauView, Real strength) {
   if (!(muDown > 0.0) || !(strength > 0.0)) return 1.0;
