@@ -508,7 +508,7 @@ void main() {
         float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudEscapeCorrection(muS) * cloudFloorLowSunFactor(muS) *
                                cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
-                               cloudBaseLimbFactor(dot(dir, up), tauDown, -log(max(transmittance, 1e-30)), baseLimb));
+                               cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));
       }
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
       if (reflects && sunVisible)

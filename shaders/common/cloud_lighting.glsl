@@ -257,7 +257,7 @@ SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, R
 
 // The diffusion floor's limb darkening at a layer's base: the factor on cloudEddingtonSlabSource for
 // light scattered down towards a viewer below, at muDown = cos(angle from the downward vertical) > 0,
-// vertical optical depth tauBelow above the base and optical depth tauView from the viewer. The
+// vertical optical depth tauBelow above the base and transmittance viewTransmittance to the viewer. The
 // Eddington source makes the radiance leaving a thick slab's base go like 2/3 + mu, which is too bright
 // at grazing exits: against the project's Monte Carlo of a homogeneous conservative slab with the
 // default phase (optical thickness 10 and 20, sun at mu0 0.3 to 1; tests CloudFloorAgainstMonteCarlo.*)
@@ -266,15 +266,16 @@ SHARED_INLINE Real cloudEddingtonSlabSource(Real mu0, Real tau, Real tauTotal, R
 // it is lowered there: 1 - beta(mu) e^(-tauBelow / mu) with beta = 0.6 e^(-mu / 0.15), fitted to that Monte
 // Carlo (the radiance leaving the base then within 7 % of it for every mu >= 0.05; docs/clouds.md
 // "Lighting", item 6). A sample whose way to the viewer is longer than its slant way to the base
-// (tauView > tauBelow / mu: seen through a cloud's side, not its base) keeps more of the source: the
-// exponent takes the larger. `strength` scales beta (cloudTypeBaseLimbDarkening: 1 for stratus and
+// (optical depth tauView > tauBelow / mu: seen through a cloud's side, not its base) keeps more of the
+// source: the exponent takes the larger, e^(-max(tauBelow / mu, tauView)) = min(e^(-tauBelow / mu),
+// viewTransmittance), so the march passes the transmittance it has. `strength` scales beta (cloudTypeBaseLimbDarkening: 1 for stratus and
 // stratocumulus, the layers that are slabs; 0 for the others: a finite cumulus's bases are not a slab's,
 // and cirrus held out worse with it). 1 for light
 // scattered upwards (the top's reflection, which the octaves and cloudReflectedSource carry).
-SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real tauView, Real strength) {
+SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real viewTransmittance, Real strength) {
   if (!(muDown > 0.0) || !(strength > 0.0)) return 1.0;
   Real m = max(muDown, 1e-3);
-  return 1.0 - strength * 0.6 * exp(-m / 0.15) * exp(-max(max(tauBelow, 0.0) / m, max(tauView, 0.0)));
+  return 1.0 - strength * 0.6 * exp(-m / 0.15) * min(exp(-max(tauBelow, 0.0) / m), clamp(viewTransmittance, 0.0, 1.0));
 }
 
 // The light that the cloud behind a sample (further from the sun along the sun's line) turns back

@@ -1,0 +1,69 @@
+// bench_floor_slab [paths photons]
+// The diffusion floor against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
+// the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
+//   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth 90
+//      deg from the sun's): floor / Monte Carlo at exit cosines mu 1 .. 0.05, without and with the base's
+//      limb darkening (cloudBaseLimbFactor), for optical thickness 10, 20 and mu0 0.3, 0.64, 1.
+//   2. The light leaving the base from photons (`photons` per case, default 2000000), binned by exit
+//      cosine: floor / Monte Carlo averaged over the bins mu >= 0.1 (weighted by their photons), without
+//      and with the low-sun factor (cloudFloorLowSunFactor), for thickness 10, 20, 40 and mu0 0.087 .. 1.
+// Each figure is printed with the Monte Carlo's standard error.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "clouds/slab_monte_carlo.h"
+#include "common/cloud_lighting.glsl"
+
+using namespace firmament;
+
+int main(int argc, char** argv) {
+  const int paths = argc > 1 ? std::atoi(argv[1]) : 100000;
+  const int photons = argc > 2 ? std::atoi(argv[2]) : 2000000;
+  if (paths < 100 || photons < 1000) {
+    std::fprintf(stderr, "bench_floor_slab: paths (>= 100) and photons (>= 1000) expected, got %d and %d\n", paths, photons);
+    return 2;
+  }
+
+  std::printf("1. radiance leaving the base, floor / Monte Carlo (without -> with the limb darkening), %d paths per angle\n", paths);
+  const double exits[] = {1.0, 0.7, 0.5, 0.35, 0.25, 0.15, 0.1, 0.05};
+  for (double thickness : {10.0, 20.0})
+    for (double mu0 : {0.3, 0.64, 1.0}) {
+      SlabMonteCarlo slab(thickness, mu0, uint64_t(1000 * thickness + 100 * mu0));
+      std::printf("thickness %2.0f mu0 %.2f:", thickness, mu0);
+      for (double mu : exits) {
+        const SlabEstimate mc = slab.baseRadiance(slabDirection(mu, 90.0), paths);
+        std::printf("  mu %.2f %.3f -> %.3f (+-%.3f)", mu, slabFloorBaseRadiance(mu0, thickness, mu, false) / mc.mean,
+                    slabFloorBaseRadiance(mu0, thickness, mu, true) / mc.mean, mc.standardError / mc.mean);
+      }
+      std::printf("\n");
+    }
+
+  std::printf("2. light leaving the base over mu >= 0.1, floor / photons (without -> with the low-sun factor), %d photons per case\n",
+              photons);
+  const int bins = 10;
+  for (double thickness : {10.0, 20.0, 40.0})
+    for (double mu0 : {0.087, 0.15, 0.2, 0.3, 0.45, 0.64, 1.0}) {
+      SlabMonteCarlo slab(thickness, mu0, uint64_t(7000 + 1000 * thickness + 100 * mu0));
+      const SlabPhotonResult mc = slab.photonsThroughBase(photons, bins);
+      // Ratio over the bins from mu = 0.1 up, each the floor's radiance averaged over the bin (4 cosines,
+      // weighted by mu) against the photons', combined with the photons' counts as weights.
+      double floorSum = 0.0, mcSum = 0.0, variance = 0.0;
+      for (int b = 1; b < bins; ++b) {
+        double num = 0.0, den = 0.0;
+        for (int k = 0; k < 4; ++k) {
+          const double mu = (b + (k + 0.5) / 4.0) / bins;
+          num += slabFloorBaseRadiance(mu0, thickness, mu, true) * mu;
+          den += mu;
+        }
+        const double weight = (double(b + 1) * (b + 1) - double(b) * b);  // the bin's projected solid angle, x pi / bins^2
+        floorSum += weight * num / den;
+        mcSum += weight * mc.radiance[size_t(b)].mean;
+        variance += weight * weight * mc.radiance[size_t(b)].standardError * mc.radiance[size_t(b)].standardError;
+      }
+      const double ratio = floorSum / mcSum, factor = shared::cloudFloorLowSunFactor(mu0);
+      std::printf("thickness %2.0f mu0 %.3f: %.3f -> %.3f (+-%.3f); flux out of the base %.5f\n", thickness, mu0, ratio, ratio * factor,
+                  std::sqrt(variance) / mcSum, mc.flux.mean);
+    }
+  return 0;
+}

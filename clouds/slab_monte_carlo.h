@@ -1,0 +1,65 @@
+// The case the octave model's diffusion floor is derived for, solved by Monte Carlo: a homogeneous,
+// conservatively scattering, plane-parallel slab lit by the sun, the default dual Henyey-Greenstein
+// phase (CloudLightingSettings), black below, no diffuse light from above. Only the light of
+// scattering orders >= 2 is counted (the octaves' first term carries order 1). Beside it, the floor as
+// the march evaluates it in that slab (common/cloud_lighting.glsl), so that the two can be compared:
+// tests/clouds/test_cloud_floor_monte_carlo.cpp checks a few cases, `bench_floor_slab` prints the sweeps
+// the floor's corrections were fitted to (docs/clouds.md "Lighting", item 6).
+//
+// Depths are optical (0 at the top); directions are propagation directions with z pointing down.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace firmament {
+
+struct SlabDirection {
+  double x, y, z;
+};
+
+struct SlabEstimate {
+  double mean = 0.0;
+  double standardError = 0.0;
+};
+
+// Light scattered out of the slab's base by photons followed from the sun.
+struct SlabPhotonResult {
+  SlabEstimate flux;                   // per unit flux mu0 E entering the top
+  std::vector<SlabEstimate> radiance;  // per unit solar irradiance E, per exit-cosine bin [i / n, (i + 1) / n)
+};
+
+class SlabMonteCarlo {
+ public:
+  SlabMonteCarlo(double thickness, double mu0, uint64_t seed);
+
+  // The source at depth tau scattered into `out`: integral of p(w . out) L(w) dw over the diffuse
+  // radiance L (per unit solar irradiance, per sr). Backward paths, the sun added at each vertex.
+  SlabEstimate source(double tau, SlabDirection out, int paths);
+  // The radiance leaving the base along `out` (out.z > 0), by the same backward paths.
+  SlabEstimate baseRadiance(SlabDirection out, int paths);
+  // Photons from the sun, binned by the cosine of their exit from the base: quiet at a low sun, where a
+  // backward path that climbs to the top picks up e^(-tau/mu0) rarely and strongly.
+  SlabPhotonResult photonsThroughBase(int photons, int bins);
+
+ private:
+  double walk(double z, SlabDirection w, bool countFirst);
+
+  double thickness_, mu0_;
+  SlabDirection sun_;
+  std::mt19937_64 rng_;
+};
+
+// A direction leaving at muDown = cosine with the downward vertical (azimuth in degrees from the sun's).
+SlabDirection slabDirection(double muDown, double azimuth_deg = 0.0);
+
+// The floor (weight 1) as the march evaluates it in the slab: the escape function's correction times the
+// Eddington source, at depth tau, for light scattered at muDown (without the low-sun factor).
+double slabFloorSource(double mu0, double tau, double thickness, double muDown);
+// Its radiance leaving the base at muDown > 0, with or without the base's limb darkening.
+double slabFloorBaseRadiance(double mu0, double thickness, double muDown, bool limb);
+// Its flux out of the base per unit flux mu0 E (with the limb darkening, without the low-sun factor).
+double slabFloorBaseFlux(double thickness, double mu0);
+
+}  // namespace firmament
