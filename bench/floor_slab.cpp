@@ -1,8 +1,8 @@
-// bench_floor_slab [paths photons]
+// bench_floor_slab [paths photons azimuth_deg]
 // The diffusion floor against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
 // the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
-//   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth 90
-//      deg from the sun's): floor / Monte Carlo at exit cosines mu 1 .. 0.05, without and with the base's
+//   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth
+//      `azimuth_deg` from the sun's, default 90): floor / Monte Carlo at exit cosines mu 1 .. 0.05, without and with the base's
 //      limb darkening (cloudBaseLimbFactor), for optical thickness 10, 20 and mu0 0.3, 0.64, 1.
 //   2. The light leaving the base from photons (`photons` per case, default 2000000), binned by exit
 //      cosine: floor / Monte Carlo averaged over the bins mu >= 0.1 (weighted by their photons), without
@@ -20,19 +20,21 @@ using namespace firmament;
 int main(int argc, char** argv) {
   const int paths = argc > 1 ? std::atoi(argv[1]) : 100000;
   const int photons = argc > 2 ? std::atoi(argv[2]) : 2000000;
+  const double azimuth_deg = argc > 3 ? std::atof(argv[3]) : 90.0;
   if (paths < 100 || photons < 1000) {
     std::fprintf(stderr, "bench_floor_slab: paths (>= 100) and photons (>= 1000) expected, got %d and %d\n", paths, photons);
     return 2;
   }
 
-  std::printf("1. radiance leaving the base, floor / Monte Carlo (without -> with the limb darkening), %d paths per angle\n", paths);
+  std::printf("1. radiance leaving the base, floor / Monte Carlo (without -> with the limb darkening), %d paths per angle, azimuth %.0f deg\n",
+              paths, azimuth_deg);
   const double exits[] = {1.0, 0.7, 0.5, 0.35, 0.25, 0.15, 0.1, 0.05};
   for (double thickness : {10.0, 20.0})
     for (double mu0 : {0.3, 0.64, 1.0}) {
       SlabMonteCarlo slab(thickness, mu0, uint64_t(1000 * thickness + 100 * mu0));
       std::printf("thickness %2.0f mu0 %.2f:", thickness, mu0);
       for (double mu : exits) {
-        const SlabEstimate mc = slab.baseRadiance(slabDirection(mu, 90.0), paths);
+        const SlabEstimate mc = slab.baseRadiance(slabDirection(mu, azimuth_deg), paths);
         std::printf("  mu %.2f %.3f -> %.3f (+-%.3f)", mu, slabFloorBaseRadiance(mu0, thickness, mu, false) / mc.mean,
                     slabFloorBaseRadiance(mu0, thickness, mu, true) / mc.mean, mc.standardError / mc.mean);
       }
