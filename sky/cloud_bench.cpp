@@ -583,6 +583,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     // scene overrides: rows that differ only in the march share it.
     std::map<std::vector<std::string>, CloudReferenceImage> ownReferences;
     std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
+    bool singleColumnWritten = false;
     for (const KnobValue& k : knobs) {
       SkyRenderOptions o = base;
       k.apply(o);
@@ -621,7 +622,14 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
         row.psnrDb = m.psnrDb;
         row.maxRelErr = maxRelativeLuminanceError(r.clouds, against.image);
         if (config.images && k.knob == "default") writeScenarioImages(config.outDir / "images", sc.name, r.clouds, against);
-        if (config.images && !k.ownReference && !k.singleScattering) {
+        if (config.images && !k.ownReference) {
+          // The single-scattering rows too: beside the path tracer's first order (its own column) they
+          // split a pixel's error into the first order's and the higher orders'.
+          if (k.singleScattering && !singleColumnWritten) {
+            std::vector<float> order1(singleRef.luminance.begin(), singleRef.luminance.end());
+            rowLuminance.push_back({"reference_order_1_luminance", std::move(order1)});
+            singleColumnWritten = true;
+          }
           std::vector<float> luminance(r.clouds.pixelCount());
           for (size_t i = 0; i < luminance.size(); ++i) luminance[i] = float(luminanceRec709(r.clouds.pixels.data() + size_t(r.clouds.channels) * i));
           rowLuminance.push_back({k.knob + "=" + k.value, std::move(luminance)});

@@ -26,7 +26,8 @@ struct CloudBenchConfig {
   // DIR/images/<scenario>_{reference,default}.exr (rgb: the clouds' light in cd/m^2, a: transmittance),
   // <scenario>_default_error.png (relative luminance error heat map, 0..20 %) and <scenario>_pixels.csv
   // (per pixel: the reference's luminance, standard error and transmittance, its even and odd paths' luminance, then the luminance of
-  // every row compared with the all-order path tracer, a column named knob=value each).
+  // every row, a column named knob=value each; where single_scattering rows run, the path tracer's first
+  // order as `reference_order_1_luminance` before them, so a pixel's error splits into orders 1 and >= 2).
   bool images = false;
   // Only the frame timing (runCloudTiming, clouds_timing.*): no path-traced references, no error rows.
   // Not with images or a reference sample count (checkCloudBenchConfig).
