@@ -1,5 +1,5 @@
 // bench_floor_slab [paths photons azimuth_deg]
-// The diffusion floor against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
+// The diffusion floor (and the deck transmission built on it) against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
 // the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
 //   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth
 //      `azimuth_deg` from the sun's, default 90): floor / Monte Carlo at exit cosines mu 1 .. 0.05, without and with the base's
@@ -7,11 +7,16 @@
 //   2. The light leaving the base from photons (`photons` per case, default 2000000), binned by exit
 //      cosine: floor / Monte Carlo averaged over the bins mu >= 0.1 (weighted by their photons), without
 //      and with the low-sun factor (cloudFloorLowSunFactor), for thickness 10, 20, 40 and mu0 0.087 .. 1.
+//   3. The deck's transmission (cloudSlabTransmission, session 22): the diffuse flux out of the base from
+//      photons of orders >= 1 (`photons` / 10 per case) against the Eddington form's diffuse part and
+//      against cloudSlabTransmission's, for vertical optical depth 1-40 and mu0 0.087 .. 1.
 // Each figure is printed with the Monte Carlo's standard error.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
+#include "clouds/cloud_settings.h"
 #include "clouds/slab_monte_carlo.h"
 #include "common/cloud_lighting.glsl"
 
@@ -67,5 +72,23 @@ int main(int argc, char** argv) {
       std::printf("thickness %2.0f mu0 %.3f: %.3f -> %.3f (+-%.3f); flux out of the base %.5f\n", thickness, mu0, ratio, ratio * factor,
                   std::sqrt(variance) / mcSum, mc.flux.mean);
     }
+
+  const int deckPhotons = std::max(photons / 10, 1000);
+  std::printf("3. the deck's diffuse transmission, Eddington / photons -> cloudSlabTransmission / photons, %d photons per case\n",
+              deckPhotons);
+  const CloudLightingSettings lighting;  // the phase SlabMonteCarlo samples
+  const double g = shared::cloudPhaseMeanCosine(lighting.gForward, lighting.gBack, lighting.backWeight, lighting.alpha);
+  for (double depth : {1.0, 2.0, 5.0, 10.0, 20.0, 40.0}) {
+    std::printf("depth %2.0f:", depth);
+    for (double mu0 : {0.087, 0.15, 0.3, 0.5, 0.7, 1.0}) {
+      SlabMonteCarlo slab(depth, mu0, uint64_t(99 + 1000 * depth + 100 * mu0));
+      const SlabEstimate mc = slab.photonsThroughBase(deckPhotons, 1, 1).flux;
+      const double direct = std::exp(-depth / mu0);
+      const double eddington = std::min(shared::cloudEddingtonTransmission(mu0, depth, g), 1.0) - direct;
+      const double deck = shared::cloudSlabTransmission(depth / mu0, mu0, g) - direct;
+      std::printf("  mu0 %.3f %.3f -> %.3f (+-%.3f)", mu0, eddington / mc.mean, deck / mc.mean, mc.standardError / mc.mean);
+    }
+    std::printf("\n");
+  }
   return 0;
 }

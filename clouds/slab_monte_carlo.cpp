@@ -82,7 +82,7 @@ double SlabMonteCarlo::walk(double z, SlabDirection w, bool countFirst) {
   }
 }
 
-SlabPhotonResult SlabMonteCarlo::photonsThroughBase(int photons, int bins) {
+SlabPhotonResult SlabMonteCarlo::photonsThroughBase(int photons, int bins, int minOrder) {
   std::vector<long> counts(size_t(bins), 0);
   long transmitted = 0;
   for (int i = 0; i < photons; ++i) {
@@ -92,7 +92,7 @@ SlabPhotonResult SlabMonteCarlo::photonsThroughBase(int photons, int bins) {
       z += -std::log(1.0 - uniform(rng_)) * w.z;
       if (z < 0.0) break;
       if (z > thickness_) {
-        if (order >= 2) {
+        if (order >= minOrder) {
           ++transmitted;
           ++counts[size_t(std::min(bins - 1, int(w.z * bins)))];
         }

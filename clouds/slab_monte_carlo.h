@@ -1,9 +1,10 @@
 // The case the octave model's diffusion floor is derived for, solved by Monte Carlo: a homogeneous,
 // conservatively scattering, plane-parallel slab lit by the sun, the default dual Henyey-Greenstein
-// phase (CloudLightingSettings), black below, no diffuse light from above. Only the light of
-// scattering orders >= 2 is counted (the octaves' first term carries order 1). Beside it, the floor as
+// phase (CloudLightingSettings), black below, no diffuse light from above. The floor's checks count the
+// light of scattering orders >= 2 (the octaves' first term carries order 1); the deck's transmission
+// (cloudSlabTransmission) the photons of orders >= 1. Beside it, the floor as
 // the march evaluates it in that slab (common/cloud_lighting.glsl), so that the two can be compared:
-// tests/clouds/test_cloud_floor_monte_carlo.cpp checks a few cases, `bench_floor_slab` prints the sweeps
+// tests/clouds/test_cloud_floor_monte_carlo.cpp and test_cloud_deck_transmission.cpp check a few cases, `bench_floor_slab` prints the sweeps
 // the floor's corrections were fitted to (docs/clouds.md "Lighting", item 6).
 //
 // Depths are optical (0 at the top); directions are propagation directions with z pointing down.
@@ -40,8 +41,9 @@ class SlabMonteCarlo {
   // The radiance leaving the base along `out` (out.z > 0), by the same backward paths.
   SlabEstimate baseRadiance(SlabDirection out, int paths);
   // Photons from the sun, binned by the cosine of their exit from the base: quiet at a low sun, where a
-  // backward path that climbs to the top picks up e^(-tau/mu0) rarely and strongly.
-  SlabPhotonResult photonsThroughBase(int photons, int bins);
+  // backward path that climbs to the top picks up e^(-tau/mu0) rarely and strongly. Counted from
+  // scattering order minOrder on (2: the floor's light; 1: all the diffuse light; 0: the direct beam too).
+  SlabPhotonResult photonsThroughBase(int photons, int bins, int minOrder = 2);
 
  private:
   double walk(double z, SlabDirection w, bool countFirst);

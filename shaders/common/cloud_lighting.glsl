@@ -114,39 +114,6 @@ SHARED_INLINE Real cloudEddingtonTransmission(Real mu, Real tauVertical, Real g)
   return ((2.0 / 3.0 + mu) + (2.0 / 3.0 - mu) * exp(-tauVertical / mu)) / (4.0 / 3.0 + (1.0 - g) * tauVertical);
 }
 
-// The same transmission for a deck crossed along the sun over optical depth tauSlant (vertical depth
-// mu0 tauSlant), mu0 clamped at 0.02 as the floor clamps it; clamped to 1 (for mu0 g > 2/3 the form rises
-// above 1 at small depths, outside its validity).
-SHARED_INLINE Real cloudSlabTransmission(Real tauSlant, Real mu0, Real g) {
-  Real m = max(mu0, 0.02);
-  return min(cloudEddingtonTransmission(m, m * max(tauSlant, 0.0), g), 1.0);
-}
-
-// The light a sample scatters from a deck above it, per unit solar irradiance and in units of the
-// isotropic phase 1/4pi: the deck passes the flux T mu0 E (cloudSlabTransmission T, optical depth
-// tauOther along the sun), which leaves its base as radiance of about T mu0 E / pi over the upper
-// hemisphere, and a sample scatters (1/4pi) 2pi T mu0 E / pi = 2 mu0 T E / 4pi of it. 0 for a sun at or
-// below the horizon.
-SHARED_INLINE Real cloudDeckDiffuseLight(Real tauOther, Real mu0, Real g) {
-  return 2.0 * max(mu0, 0.0) * cloudSlabTransmission(tauOther, mu0, g);
-}
-
-// The attenuation of octave i >= 1 when the sun's light crosses other layers first (optical depth
-// tauOther along the sun) and then the sample's own layer (tauOwn). The octave alone would take
-// e^(-a^i (tauOwn + tauOther)): for a thick deck above it goes to 0 exponentially, where the deck
-// passes ~1/tau of the flux, scattered (the bench's two_layers: a cumulus fit with a larger a left the
-// cumulus under the deck -21 %, session 19). The octaves i >= 1 together (their phases ~1/4pi for light
-// from all over the sky) carry at least the deck's diffuse light D = cloudDeckDiffuseLight, octave i
-// its share b^i / sum_j b^j (share). So the way through the others is the octave's own
-// e^(-a^i tauOther), but at least share D, and from the deck's base on the octave is attenuated by the
-// own layer as before. With tauOther = 0 (D <= 2, the first term 1) it is cloudOctaveTransmittance(a^i,
-// tauOwn) exactly.
-SHARED_INLINE Real cloudOctaveTransmittanceThroughOthers(Real extinctionScale, Real tauOwn, Real tauOther, Real deckLight, Real share,
-                                                         bool scatteredOnly) {
-  Real through = max(exp(-extinctionScale * tauOther), min(share * deckLight, 1.0));
-  Real t = through * exp(-extinctionScale * tauOwn);
-  return scatteredOnly ? max(t - exp(-(tauOwn + tauOther)), 0.0) : t;
-}
 
 // The most octave i can pass along any way in: the largest cloudOctaveTransmittance(s, tau) over
 // tau >= 0. For e^(-s tau) it is 1 (tau = 0). For the scattered part e^(-s tau) - e^(-tau) with
@@ -213,6 +180,53 @@ SHARED_INLINE Real cloudEscapeCorrection(Real mu0) {
 // docs/clouds.md "Lighting", item 6).
 SHARED_INLINE Real cloudFloorLowSunFactor(Real mu0) {
   return 1.0 - 0.178 * exp(-max(mu0, 0.0) / 0.125);
+}
+
+// The flux out of the base of a deck crossed along the sun over optical depth tauSlant (vertical depth
+// mu0 tauSlant), per unit flux mu0 E on its top: the direct beam e^(-tauSlant) plus the diffuse part of
+// cloudEddingtonTransmission (mu0 clamped at 0.02 as the floor clamps it; the form clamped to 1: for
+// mu0 g > 2/3 it rises above 1 at small depths, outside its validity) times the floor's two corrections,
+// the escape function's angular factor and the low-sun factor (capped at 1, which keeps T falling with
+// depth; above 1 only for mu0 > 0.6, by at most 0.9 %). Why: against the project's photon Monte Carlo of a
+// conservative slab with the default phase (clouds/slab_monte_carlo.h, 200 000 photons per case, vertical
+// optical depth 1-40, mu0 0.087-1) the Eddington diffuse part alone was 15-22 % too large at mu0 = 0.087
+// and 9-13 % at 0.15; with the corrections all 36 cases are 0.978-1.077 of it, those at mu0 <= 0.5
+// 0.978-1.037 (the largest left, +7.7 % at depth 1 and +4.5 % at 2 under a zenith sun, is the
+// Eddington form's own; test CloudDeckTransmission.MatchesTheSlabMonteCarlo; docs/clouds.md
+// "Lighting", item 6). Until session 22 the Eddington form alone.
+SHARED_INLINE Real cloudSlabTransmission(Real tauSlant, Real mu0, Real g) {
+  Real m = max(mu0, 0.02);
+  Real tau = max(tauSlant, 0.0);
+  Real eddington = min(cloudEddingtonTransmission(m, m * tau, g), 1.0);
+  Real direct = exp(-tau);
+  Real correction = min(cloudEscapeCorrection(m) * cloudFloorLowSunFactor(m), 1.0);
+  return direct + correction * max(eddington - direct, 0.0);
+}
+
+// The light a sample scatters from a deck above it, per unit solar irradiance and in units of the
+// isotropic phase 1/4pi: the deck passes the flux T mu0 E (cloudSlabTransmission T, optical depth
+// tauOther along the sun), which leaves its base as radiance of about T mu0 E / pi over the upper
+// hemisphere, and a sample scatters (1/4pi) 2pi T mu0 E / pi = 2 mu0 T E / 4pi of it. 0 for a sun at or
+// below the horizon.
+SHARED_INLINE Real cloudDeckDiffuseLight(Real tauOther, Real mu0, Real g) {
+  return 2.0 * max(mu0, 0.0) * cloudSlabTransmission(tauOther, mu0, g);
+}
+
+// The attenuation of octave i >= 1 when the sun's light crosses other layers first (optical depth
+// tauOther along the sun) and then the sample's own layer (tauOwn). The octave alone would take
+// e^(-a^i (tauOwn + tauOther)): for a thick deck above it goes to 0 exponentially, where the deck
+// passes ~1/tau of the flux, scattered (the bench's two_layers: a cumulus fit with a larger a left the
+// cumulus under the deck -21 %, session 19). The octaves i >= 1 together (their phases ~1/4pi for light
+// from all over the sky) carry at least the deck's diffuse light D = cloudDeckDiffuseLight, octave i
+// its share b^i / sum_j b^j (share). So the way through the others is the octave's own
+// e^(-a^i tauOther), but at least share D, and from the deck's base on the octave is attenuated by the
+// own layer as before. With tauOther = 0 (D <= 2, the first term 1) it is cloudOctaveTransmittance(a^i,
+// tauOwn) exactly.
+SHARED_INLINE Real cloudOctaveTransmittanceThroughOthers(Real extinctionScale, Real tauOwn, Real tauOther, Real deckLight, Real share,
+                                                         bool scatteredOnly) {
+  Real through = max(exp(-extinctionScale * tauOther), min(share * deckLight, 1.0));
+  Real t = through * exp(-extinctionScale * tauOwn);
+  return scatteredOnly ? max(t - exp(-(tauOwn + tauOther)), 0.0) : t;
 }
 
 // The weight of the way down from a layer's top for octaves i >= 1 (docs/clouds.md, "Multiple
