@@ -1,4 +1,4 @@
-// bench_floor_slab [paths photons azimuth_deg]
+// bench_floor_slab [paths photons azimuth_deg parts]   (parts: which of 1-4 to run, default "1234")
 // The diffusion floor (and the deck transmission built on it) against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
 // the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
 //   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth
@@ -10,11 +10,18 @@
 //   3. The deck's transmission (cloudSlabTransmission, session 22): the diffuse flux out of the base from
 //      photons of orders >= 1 (`photons` / 10 per case) against the Eddington form's diffuse part and
 //      against cloudSlabTransmission's, for vertical optical depth 1-40 and mu0 0.087 .. 1.
+//   4. A finite cloud (session 23): the same medium cut to a vertical cylinder of optical radius R, R / H
+//      0.5, 1, 2 and infinite (thickness H 10 and 20, mu0 1 and 0.64), the source of orders >= 2 (backward
+//      paths, `paths` / 4 per point) against the slab's floor at the same depth, which is what the
+//      column-wise floor gives inside any cylinder: on the axis at depths 0.25, 0.5, 0.9 H, scattered
+//      down and up, and across the cylinder at mid-depth (x / R -0.75 .. 0.75, the sunlit side negative).
 // Each figure is printed with the Monte Carlo's standard error.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <limits>
 
 #include "clouds/cloud_settings.h"
 #include "clouds/slab_monte_carlo.h"
@@ -26,11 +33,14 @@ int main(int argc, char** argv) {
   const int paths = argc > 1 ? std::atoi(argv[1]) : 100000;
   const int photons = argc > 2 ? std::atoi(argv[2]) : 2000000;
   const double azimuth_deg = argc > 3 ? std::atof(argv[3]) : 90.0;
+  const char* parts = argc > 4 ? argv[4] : "1234";
+  auto runs = [&](char part) { return std::strchr(parts, part) != nullptr; };
   if (paths < 100 || photons < 1000) {
     std::fprintf(stderr, "bench_floor_slab: paths (>= 100) and photons (>= 1000) expected, got %d and %d\n", paths, photons);
     return 2;
   }
 
+  if (runs('1')) {
   std::printf("1. radiance leaving the base, floor / Monte Carlo (without -> with the limb darkening), %d paths per angle, azimuth %.0f deg\n",
               paths, azimuth_deg);
   const double exits[] = {1.0, 0.7, 0.5, 0.35, 0.25, 0.15, 0.1, 0.05};
@@ -46,6 +56,9 @@ int main(int argc, char** argv) {
       std::printf("\n");
     }
 
+  }
+
+  if (runs('2')) {
   std::printf("2. light leaving the base over mu >= 0.1, floor / photons (without -> with the low-sun factor), %d photons per case\n",
               photons);
   const int bins = 10;
@@ -73,6 +86,9 @@ int main(int argc, char** argv) {
                   std::sqrt(variance) / mcSum, mc.flux.mean);
     }
 
+  }
+
+  if (runs('3')) {
   const int deckPhotons = std::max(photons / 10, 1000);
   std::printf("3. the deck's diffuse transmission, Eddington / photons -> cloudSlabTransmission / photons, %d photons per case\n",
               deckPhotons);
@@ -89,6 +105,34 @@ int main(int argc, char** argv) {
       std::printf("  mu0 %.3f %.3f -> %.3f (+-%.3f)", mu0, eddington / mc.mean, deck / mc.mean, mc.standardError / mc.mean);
     }
     std::printf("\n");
+  }
+  }
+
+  if (runs('4')) {
+    const int pointPaths = std::max(paths / 4, 100);
+    std::printf("4. a finite cloud: source of orders >= 2 in a cylinder / the slab's floor at the same depth (+- standard error), %d paths per point\n",
+                pointPaths);
+    const double down = 1.0, upward = -1.0;
+    for (double thickness : {10.0, 20.0})
+      for (double mu0 : {1.0, 0.64})
+        for (double aspect : {0.5, 1.0, 2.0, -1.0}) {
+          const double radius = aspect > 0.0 ? aspect * thickness : std::numeric_limits<double>::infinity();
+          SlabMonteCarlo cloud(thickness, mu0, uint64_t(4000 + 1000 * thickness + 100 * mu0 + 10 * aspect), radius);
+          std::printf("H %2.0f mu0 %.2f R/H %s:", thickness, mu0, aspect > 0.0 ? (aspect == 0.5 ? "0.5" : aspect == 1.0 ? "1  " : "2  ") : "inf");
+          auto ratio = [&](SlabPoint at, double muDown) {
+            const SlabEstimate mc = cloud.source(at, slabDirection(muDown, 90.0), pointPaths);
+            std::printf(" %.3f(%.3f)", slabFloorSource(mu0, at.z, thickness, muDown) / mc.mean, mc.standardError / mc.mean);
+          };
+          std::printf(" axis z/H 0.25 0.5 0.9 down");
+          for (double f : {0.25, 0.5, 0.9}) ratio({0.0, 0.0, f * thickness}, down);
+          std::printf(" | up");
+          for (double f : {0.25, 0.5, 0.9}) ratio({0.0, 0.0, f * thickness}, upward);
+          if (aspect > 0.0) {
+            std::printf(" | mid-depth x/R -0.75 -0.5 0.5 0.75 sideways");
+            for (double f : {-0.75, -0.5, 0.5, 0.75}) ratio({f * radius, 0.0, 0.5 * thickness}, 0.0);
+          }
+          std::printf("\n");
+        }
   }
   return 0;
 }

@@ -57,27 +57,48 @@ SlabEstimate estimate(int paths, F sample) {
 
 }  // namespace
 
-SlabMonteCarlo::SlabMonteCarlo(double thickness, double mu0, uint64_t seed)
-    : thickness_(thickness), mu0_(mu0), sun_{std::sqrt(1.0 - mu0 * mu0), 0.0, mu0}, rng_(seed) {}
+SlabMonteCarlo::SlabMonteCarlo(double thickness, double mu0, uint64_t seed, double radius)
+    : thickness_(thickness), mu0_(mu0), radius_(radius), sun_{std::sqrt(1.0 - mu0 * mu0), 0.0, mu0}, rng_(seed) {}
 
-SlabEstimate SlabMonteCarlo::source(double tau, SlabDirection out, int paths) {
+SlabEstimate SlabMonteCarlo::source(double tau, SlabDirection out, int paths) { return source(SlabPoint{0.0, 0.0, tau}, out, paths); }
+
+SlabEstimate SlabMonteCarlo::source(SlabPoint at, SlabDirection out, int paths) {
   // The light's propagation direction before it turns into `out`, drawn by the phase: weight 1.
-  return estimate(paths, [&] { return walk(tau, sampleAroundByPhase(out, rng_), /*countFirst=*/true); });
+  return estimate(paths, [&] { return walk(at, sampleAroundByPhase(out, rng_), /*countFirst=*/true); });
 }
 
-SlabEstimate SlabMonteCarlo::baseRadiance(SlabDirection out, int paths) {
-  return estimate(paths, [&] { return walk(thickness_, out, /*countFirst=*/false); });
+SlabEstimate SlabMonteCarlo::baseRadiance(SlabDirection out, int paths, double x, double y) {
+  return estimate(paths, [&] { return walk(SlabPoint{x, y, thickness_}, out, /*countFirst=*/false); });
 }
 
-// Light propagating along w arrives at depth z: go back against w to where it last scattered, add the
-// sun's single scattering there (next-event estimation; not at the first vertex unless countFirst, so
-// that only orders >= 2 arrive), and go on. Albedo 1, free paths and phase sampled exactly: weight 1.
-double SlabMonteCarlo::walk(double z, SlabDirection w, bool countFirst) {
+bool SlabMonteCarlo::inside(SlabPoint p) const {
+  return p.z >= 0.0 && p.z <= thickness_ && (std::isinf(radius_) || p.x * p.x + p.y * p.y <= radius_ * radius_);
+}
+
+// Back along the sun's direction from p: the top is z / mu0 away; the side (a finite radius) where
+// |(x, y) - t (sx, 0)| = R, the larger root of sx^2 t^2 - 2 x sx t + x^2 + y^2 - R^2 = 0. The medium is
+// convex, so the nearer of the two is where the ray entered.
+double SlabMonteCarlo::opticalDepthToSun(SlabPoint p) const {
+  const double toTop = p.z / mu0_;
+  const double sx = sun_.x;
+  if (std::isinf(radius_) || sx < 1e-12) return toTop;
+  const double c = p.x * p.x + p.y * p.y - radius_ * radius_;
+  const double disc = std::max(p.x * p.x * sx * sx - sx * sx * c, 0.0);
+  const double toSide = (p.x * sx + std::sqrt(disc)) / (sx * sx);
+  return std::min(toTop, std::max(toSide, 0.0));
+}
+
+// Light propagating along w arrives at p: go back against w to where it last scattered, add the sun's
+// single scattering there (next-event estimation; not at the first vertex unless countFirst, so that
+// only orders >= 2 arrive), and go on. Albedo 1, free paths and phase sampled exactly: weight 1. A
+// straight line leaves a convex medium once, so a vertex outside ends the path.
+double SlabMonteCarlo::walk(SlabPoint p, SlabDirection w, bool countFirst) {
   double light = 0.0;
   for (int vertex = 0;; ++vertex) {
-    z -= -std::log(1.0 - uniform(rng_)) * w.z;
-    if (z < 0.0 || z > thickness_) return light;
-    if (countFirst || vertex > 0) light += std::exp(-z / mu0_) * phase(dot(sun_, w));
+    const double s = -std::log(1.0 - uniform(rng_));
+    p = {p.x - s * w.x, p.y - s * w.y, p.z - s * w.z};
+    if (!inside(p)) return light;
+    if (countFirst || vertex > 0) light += std::exp(-opticalDepthToSun(p)) * phase(dot(sun_, w));
     w = sampleAroundByPhase(w, rng_);
   }
 }

@@ -7,16 +7,27 @@
 // tests/clouds/test_cloud_floor_monte_carlo.cpp and test_cloud_deck_transmission.cpp check a few cases, `bench_floor_slab` prints the sweeps
 // the floor's corrections were fitted to (docs/clouds.md "Lighting", item 6).
 //
-// Depths are optical (0 at the top); directions are propagation directions with z pointing down.
+// Cut to a vertical cylinder (an optical radius; infinite by default, the slab), it is a finite cloud: the
+// light that leaves through the sides, which the column-wise floor does not see, measured
+// (`bench_floor_slab` part 4, session 23).
+//
+// Depths are optical (0 at the top); directions are propagation directions with z pointing down; the sun's
+// light travels towards +x, so the cylinder's sunlit side is at -x. Horizontal positions are optical too.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
 namespace firmament {
 
 struct SlabDirection {
+  double x, y, z;
+};
+
+// A point in the medium: x, y optical distances from the cylinder's axis, z optical depth below the top.
+struct SlabPoint {
   double x, y, z;
 };
 
@@ -33,22 +44,28 @@ struct SlabPhotonResult {
 
 class SlabMonteCarlo {
  public:
-  SlabMonteCarlo(double thickness, double mu0, uint64_t seed);
+  // radius: the cylinder's optical radius (infinite: the plane-parallel slab).
+  SlabMonteCarlo(double thickness, double mu0, uint64_t seed, double radius = std::numeric_limits<double>::infinity());
 
-  // The source at depth tau scattered into `out`: integral of p(w . out) L(w) dw over the diffuse
-  // radiance L (per unit solar irradiance, per sr). Backward paths, the sun added at each vertex.
+  // The source at depth tau (on the axis) scattered into `out`: integral of p(w . out) L(w) dw over the
+  // diffuse radiance L (per unit solar irradiance, per sr). Backward paths, the sun added at each vertex.
   SlabEstimate source(double tau, SlabDirection out, int paths);
-  // The radiance leaving the base along `out` (out.z > 0), by the same backward paths.
-  SlabEstimate baseRadiance(SlabDirection out, int paths);
+  // The same at any point of the medium.
+  SlabEstimate source(SlabPoint at, SlabDirection out, int paths);
+  // The radiance leaving the base along `out` (out.z > 0) at the axis (or at x, y), by the same backward paths.
+  SlabEstimate baseRadiance(SlabDirection out, int paths, double x = 0.0, double y = 0.0);
   // Photons from the sun, binned by the cosine of their exit from the base: quiet at a low sun, where a
   // backward path that climbs to the top picks up e^(-tau/mu0) rarely and strongly. Counted from
   // scattering order minOrder on (2: the floor's light; 1: all the diffuse light; 0: the direct beam too).
   SlabPhotonResult photonsThroughBase(int photons, int bins, int minOrder = 2);
 
  private:
-  double walk(double z, SlabDirection w, bool countFirst);
+  double walk(SlabPoint p, SlabDirection w, bool countFirst);
+  bool inside(SlabPoint p) const;
+  // The optical distance from p to where the sun's ray into p entered the medium.
+  double opticalDepthToSun(SlabPoint p) const;
 
-  double thickness_, mu0_;
+  double thickness_, mu0_, radius_;
   SlabDirection sun_;
   std::mt19937_64 rng_;
 };
