@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/scene.h"
+#include "sky/cloud_reference_cache.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
 
@@ -144,10 +145,16 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;
     const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, CloudEnvironment{}, rs);
-    Prepared p{sc, renderCloudReference(tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads),
+    // Kept in DIR/references (sky/cloud_reference_cache.h), so a refit after a model change, or at more
+    // paths per pixel once, pays for the references only the first time.
+    bool cached = false;
+    Prepared p{sc,
+               cachedCloudReference(scene, tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads,
+                                    options.cloudNoise, config.outDir / "references", sc.name, &cached),
                std::move(renderer)};
-    logInfo("calibrate clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel in " +
-            std::to_string(p.reference.seconds) + " s");
+    logInfo("calibrate clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel " +
+            (cached ? "from " + (config.outDir / "references").string() + " (rendered in " : "in ") + std::to_string(p.reference.seconds) +
+            (cached ? " s)" : " s"));
     prepared.push_back(std::move(p));
   }
   result.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
