@@ -1,4 +1,4 @@
-// bench_floor_slab [paths photons azimuth_deg parts]   (parts: which of 1-4 to run, default "1234")
+// bench_floor_slab [paths photons azimuth_deg parts]   (parts: which of 1-5 to run, default "12345")
 // The diffusion floor (and the deck transmission built on it) against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
 // the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
 //   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth
@@ -15,6 +15,12 @@
 //      paths, `paths` / 4 per point) against the slab's floor at the same depth, which is what the
 //      column-wise floor gives inside any cylinder: on the axis at depths 0.25, 0.5, 0.9 H, scattered
 //      down and up, and across the cylinder at mid-depth (x / R -0.75 .. 0.75, the sunlit side negative).
+//   5. The octaves' form in a slab (session 23): the light of orders >= 2 that the march gives a sample of a
+//      homogeneous slab (its octaves i >= 1, the floor, and the larger of the two, which the march takes),
+//      with each type's shipped constants (cumulus, stratocumulus; without the reflected light, which has
+//      no medium behind in these cases only at the base), against the Monte Carlo's source (backward paths,
+//      `paths` / 5 per point), thickness 0.5-20, mu0 1 and 0.5, at mid-depth and 0.9 H, scattered down,
+//      sideways and up (azimuth 90 deg from the sun's).
 // Each figure is printed with the Monte Carlo's standard error.
 #include <algorithm>
 #include <cmath>
@@ -33,7 +39,7 @@ int main(int argc, char** argv) {
   const int paths = argc > 1 ? std::atoi(argv[1]) : 100000;
   const int photons = argc > 2 ? std::atoi(argv[2]) : 2000000;
   const double azimuth_deg = argc > 3 ? std::atof(argv[3]) : 90.0;
-  const char* parts = argc > 4 ? argv[4] : "1234";
+  const char* parts = argc > 4 ? argv[4] : "12345";
   auto runs = [&](char part) { return std::strchr(parts, part) != nullptr; };
   if (paths < 100 || photons < 1000) {
     std::fprintf(stderr, "bench_floor_slab: paths (>= 100) and photons (>= 1000) expected, got %d and %d\n", paths, photons);
@@ -133,6 +139,43 @@ int main(int argc, char** argv) {
           }
           std::printf("\n");
         }
+  }
+
+  if (runs('5')) {
+    const int pointPaths = std::max(paths / 5, 100);
+    const CloudLightingSettings lighting;
+    const double g = shared::cloudPhaseMeanCosine(lighting.gForward, lighting.gBack, lighting.backWeight, lighting.alpha);
+    for (int kind : {shared::kCloudCumulus, shared::kCloudStratocumulus}) {
+      const CloudMultipleScattering ms = cloudTypeMultipleScattering(kind);
+      std::printf("5. %s (a %.3f b %.3f c %.3f d %.3f): march / Monte Carlo, octaves i >= 1 | floor | the larger, %d paths per point\n",
+                  cloudKindName(kind), ms.a, ms.b, ms.c, ms.d, pointPaths);
+      const double weightScale = shared::cloudOctaveWeightScale(ms.b, 3);
+      for (double thickness : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0})
+        for (double mu0 : {1.0, 0.5}) {
+          SlabMonteCarlo slab(thickness, mu0, uint64_t(11 + 100 * thickness + 10 * mu0));
+          std::printf("H %4.1f mu0 %.1f:", thickness, mu0);
+          for (double depth : {0.5, 0.9})
+            for (double muDown : {1.0, 0.0, -1.0}) {
+              const SlabDirection out = slabDirection(muDown, 90.0);
+              const double tau = depth * thickness;
+              const SlabEstimate mc = slab.source(SlabPoint{0.0, 0.0, tau}, out, pointPaths);
+              // nu: the cosine between the sun's light and the scattered light, both as propagation directions.
+              const double nu = out.x * std::sqrt(1.0 - mu0 * mu0) + out.z * mu0;
+              double octaves = 0.0;
+              for (int o = 1; o < 3; ++o) {
+                const double e = shared::cloudOctavePower(ms.c, o);
+                octaves += shared::cloudOctaveWeight(ms.b, o) * weightScale *
+                           shared::cloudPhase(lighting.gForward * e, lighting.gBack * e, lighting.backWeight, lighting.alpha, nu) *
+                           shared::cloudOctaveTransmittance(shared::cloudOctaveExtinctionScale(ms.a, o), tau / mu0, true);
+              }
+              const double floor = ms.d * shared::cloudEscapeCorrection(mu0) * shared::cloudFloorLowSunFactor(mu0) *
+                                   shared::cloudEddingtonSlabSource(mu0, tau, thickness, g, muDown);
+              std::printf("  z %.1fH %s %.2f|%.2f|%.2f(%.2f)", depth, muDown > 0.5 ? "down" : muDown < -0.5 ? "up  " : "side", octaves / mc.mean,
+                          floor / mc.mean, std::max(octaves, floor) / mc.mean, mc.standardError / mc.mean);
+            }
+          std::printf("\n");
+        }
+    }
   }
   return 0;
 }
