@@ -606,8 +606,10 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
           const Scene rowScene = Scene::parse(sc.text, "<bench " + sc.name + ">", k.sceneOverrides);
           const CloudPathTracer rowTracer(medium, CloudSettings::fromScene(rowScene).lighting, first.view.atmosphere,
                                           first.view.sunDirection, CloudEnvironment{}, rs);
-          ownReferences[k.sceneOverrides] =
-              renderCloudReference(rowTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads);
+          // Cached like the scenario's own (the key hashes the scene with the row's overrides).
+          ownReferences[k.sceneOverrides] = cachedCloudReference(rowScene, rowTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius),
+                                                                 first.view.camera, config.threads, base.cloudNoise,
+                                                                 config.outDir / "references", sc.name);
         }
         const CloudReferenceImage& against = k.ownReference ? ownReferences.at(k.sceneOverrides) : k.singleScattering ? singleRef : ref;
         const ImageMetrics m = compareImages(r.clouds, against.image);
