@@ -16,9 +16,9 @@
 //      column-wise floor gives inside any cylinder: on the axis at depths 0.25, 0.5, 0.9 H, scattered
 //      down and up, and across the cylinder at mid-depth (x / R -0.75 .. 0.75, the sunlit side negative).
 //   5. The octaves' form in a slab (session 23): the light of orders >= 2 that the march gives a sample of a
-//      homogeneous slab (its octaves i >= 1, the floor, and the larger of the two, which the march takes),
-//      with each type's shipped constants (cumulus, stratocumulus; without the reflected light, which has
-//      no medium behind in these cases only at the base), against the Monte Carlo's source (backward paths,
+//      homogeneous slab (its octaves i >= 1, the floor, and the larger of the two, which the march takes;
+//      without the reflected light, cloudReflectedSource, which the march adds on top of the larger), with
+//      each type's shipped constants (cumulus, stratocumulus), against the Monte Carlo's source (backward paths,
 //      `paths` / 5 per point), thickness 0.5-20, mu0 1 and 0.5, at mid-depth and 0.9 H, scattered down,
 //      sideways and up (azimuth 90 deg from the sun's).
 // Each figure is printed with the Monte Carlo's standard error.
@@ -124,7 +124,10 @@ int main(int argc, char** argv) {
         for (double aspect : {0.5, 1.0, 2.0, -1.0}) {
           const double radius = aspect > 0.0 ? aspect * thickness : std::numeric_limits<double>::infinity();
           SlabMonteCarlo cloud(thickness, mu0, uint64_t(4000 + 1000 * thickness + 100 * mu0 + 10 * aspect), radius);
-          std::printf("H %2.0f mu0 %.2f R/H %s:", thickness, mu0, aspect > 0.0 ? (aspect == 0.5 ? "0.5" : aspect == 1.0 ? "1  " : "2  ") : "inf");
+          if (aspect > 0.0)
+            std::printf("H %2.0f mu0 %.2f R/H %-3g:", thickness, mu0, aspect);
+          else
+            std::printf("H %2.0f mu0 %.2f R/H inf:", thickness, mu0);
           auto ratio = [&](SlabPoint at, double muDown) {
             const SlabEstimate mc = cloud.source(at, slabDirection(muDown, 90.0), pointPaths);
             std::printf(" %.3f(%.3f)", slabFloorSource(mu0, at.z, thickness, muDown) / mc.mean, mc.standardError / mc.mean);
@@ -147,8 +150,9 @@ int main(int argc, char** argv) {
     const double g = shared::cloudPhaseMeanCosine(lighting.gForward, lighting.gBack, lighting.backWeight, lighting.alpha);
     for (int kind : {shared::kCloudCumulus, shared::kCloudStratocumulus}) {
       const CloudMultipleScattering ms = cloudTypeMultipleScattering(kind);
-      std::printf("5. %s (a %.3f b %.3f c %.3f d %.3f): march / Monte Carlo, octaves i >= 1 | floor | the larger, %d paths per point\n",
-                  cloudKindName(kind), ms.a, ms.b, ms.c, ms.d, pointPaths);
+      std::printf("5. %s (a %.3f b %.3f c %.3f d %.3f; reflected light r %.3f not included): march / Monte Carlo, octaves i >= 1 | floor | "
+                  "the larger, %d paths per point\n",
+                  cloudKindName(kind), ms.a, ms.b, ms.c, ms.d, ms.r, pointPaths);
       const double weightScale = shared::cloudOctaveWeightScale(ms.b, 3);
       for (double thickness : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0})
         for (double mu0 : {1.0, 0.5}) {
@@ -168,7 +172,7 @@ int main(int argc, char** argv) {
                            shared::cloudPhase(lighting.gForward * e, lighting.gBack * e, lighting.backWeight, lighting.alpha, nu) *
                            shared::cloudOctaveTransmittance(shared::cloudOctaveExtinctionScale(ms.a, o), tau / mu0, true);
               }
-              const double floor = ms.d * shared::cloudEscapeCorrection(mu0) * shared::cloudFloorLowSunFactor(mu0) *
+              const double floor = ms.d * shared::cloudFloorSunFactor(mu0) *
                                    shared::cloudEddingtonSlabSource(mu0, tau, thickness, g, muDown);
               std::printf("  z %.1fH %s %.2f|%.2f|%.2f(%.2f)", depth, muDown > 0.5 ? "down" : muDown < -0.5 ? "up  " : "side", octaves / mc.mean,
                           floor / mc.mean, std::max(octaves, floor) / mc.mean, mc.standardError / mc.mean);

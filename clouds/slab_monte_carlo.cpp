@@ -67,8 +67,8 @@ SlabEstimate SlabMonteCarlo::source(SlabPoint at, SlabDirection out, int paths) 
   return estimate(paths, [&] { return walk(at, sampleAroundByPhase(out, rng_), /*countFirst=*/true); });
 }
 
-SlabEstimate SlabMonteCarlo::baseRadiance(SlabDirection out, int paths, double x, double y) {
-  return estimate(paths, [&] { return walk(SlabPoint{x, y, thickness_}, out, /*countFirst=*/false); });
+SlabEstimate SlabMonteCarlo::baseRadiance(SlabDirection out, int paths) {
+  return estimate(paths, [&] { return walk(SlabPoint{0.0, 0.0, thickness_}, out, /*countFirst=*/false); });
 }
 
 bool SlabMonteCarlo::inside(SlabPoint p) const {

@@ -52,11 +52,12 @@ class SlabMonteCarlo {
   SlabEstimate source(double tau, SlabDirection out, int paths);
   // The same at any point of the medium.
   SlabEstimate source(SlabPoint at, SlabDirection out, int paths);
-  // The radiance leaving the base along `out` (out.z > 0) at the axis (or at x, y), by the same backward paths.
-  SlabEstimate baseRadiance(SlabDirection out, int paths, double x = 0.0, double y = 0.0);
+  // The radiance leaving the base along `out` (out.z > 0) at the axis, by the same backward paths.
+  SlabEstimate baseRadiance(SlabDirection out, int paths);
   // Photons from the sun, binned by the cosine of their exit from the base: quiet at a low sun, where a
   // backward path that climbs to the top picks up e^(-tau/mu0) rarely and strongly. Counted from
   // scattering order minOrder on (2: the floor's light; 1: all the diffuse light; 0: the direct beam too).
+  // The slab only: the photons enter the whole top, and a finite radius is not used.
   SlabPhotonResult photonsThroughBase(int photons, int bins, int minOrder = 2);
 
  private:

@@ -506,7 +506,7 @@ void main() {
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
         float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
-        msSum = max(msSum, diffusion * fluxThroughOthers * cloudEscapeCorrection(muS) * cloudFloorLowSunFactor(muS) *
+        msSum = max(msSum, diffusion * fluxThroughOthers * cloudFloorSunFactor(muS) *
                                cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
                                cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));
       }

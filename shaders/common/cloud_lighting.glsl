@@ -182,6 +182,13 @@ SHARED_INLINE Real cloudFloorLowSunFactor(Real mu0) {
   return 1.0 - 0.178 * exp(-max(mu0, 0.0) / 0.125);
 }
 
+// The floor's two corrections for the sun's angle, together: the escape function's angular factor
+// (cloudEscapeCorrection) times the low-sun factor (cloudFloorLowSunFactor). The march's floor and the
+// deck's transmission (cloudSlabTransmission) both take it.
+SHARED_INLINE Real cloudFloorSunFactor(Real mu0) {
+  return cloudEscapeCorrection(mu0) * cloudFloorLowSunFactor(mu0);
+}
+
 // The flux out of the base of a deck crossed along the sun over optical depth tauSlant (vertical depth
 // mu0 tauSlant), per unit flux mu0 E on its top: the direct beam e^(-tauSlant) plus the diffuse part of
 // cloudEddingtonTransmission (mu0 clamped at 0.02 as the floor clamps it; the form clamped to 1: for
@@ -199,7 +206,7 @@ SHARED_INLINE Real cloudSlabTransmission(Real tauSlant, Real mu0, Real g) {
   Real tau = max(tauSlant, 0.0);
   Real eddington = min(cloudEddingtonTransmission(m, m * tau, g), 1.0);
   Real direct = exp(-tau);
-  Real correction = min(cloudEscapeCorrection(m) * cloudFloorLowSunFactor(m), 1.0);
+  Real correction = min(cloudFloorSunFactor(m), 1.0);
   return direct + correction * max(eddington - direct, 0.0);
 }
 

@@ -28,11 +28,8 @@ double baseFlux(double mu0, double tauTotal, double g) {
   return (4.0 * kPi / 3.0 * i1 + mu0 * std::exp(-tauTotal / mu0)) / mu0;
 }
 
-// The corrections the floor takes (cloudEscapeCorrection, cloudFloorLowSunFactor), capped at 1.
-double floorCorrection(double mu0) {
-  const double m = std::max(mu0, 0.02);
-  return std::min(shared::cloudEscapeCorrection(m) * shared::cloudFloorLowSunFactor(m), 1.0);
-}
+// The corrections the floor takes (cloudFloorSunFactor), capped at 1.
+double floorCorrection(double mu0) { return std::min(shared::cloudFloorSunFactor(std::max(mu0, 0.02)), 1.0); }
 
 TEST(CloudDeckTransmission, IsTheDiffusionFloorsSlabTransmission) {
   // tauSlant along the sun is mu0 tauSlant vertically. g <= 0.6 keeps mu0 g <= 2/3 (no clamp at 1).
