@@ -208,6 +208,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (lightCone) march.lightCone = *lightCone;
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;
+  if (msBuildUpScale) march.msBuildUpScale = *msBuildUpScale;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

@@ -21,6 +21,7 @@
 #include "core/statistics.h"
 #include "core/svg_xy_plot.h"
 #include "sky/atmosphere_bench.h"
+#include "sky/cloud_pixels_csv.h"
 #include "sky/cloud_reference_cache.h"
 #include "sky/gpu_warm_up.h"
 #include "sky/scene_cloud_medium.h"
@@ -252,6 +253,9 @@ std::vector<KnobValue> knobValues(bool quick) {
   // The octaves and the floor alone with their own fit (sessions 9-16's model).
   v.push_back({"ms_model", "no reflected light", {"/clouds/lighting/reflected_light=false"}, [](SkyRenderOptions&) {}});
   v.push_back({"ms_model", "unscattered part kept", {}, [](SkyRenderOptions& o) { o.clouds.msScatteredOnly = false; }});
+  // Sessions 9-23's model: the octaves' and the floor's source without the build-up along the view
+  // (CloudMarchSettings::msBuildUpScale), the constants unchanged (they were not refitted with it).
+  v.push_back({"ms_model", "no build-up along the view", {}, [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }});
   v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
                  o.clouds.msZenithDepth = false;
                  o.clouds.msScatteredOnly = false;
@@ -415,6 +419,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"view_steps", "32"},        {"view_steps", "48"},                      {"view_steps", "128"},
       {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"ms_model", "no reflected light"},
+      {"ms_model", "no build-up along the view"},
       {"temporal_update", "16"},
       {"quality", "low (32v/4l/3o)"}, {"quality", "low, 2 octaves (the preset until session 17)"}, {"quality", "high (128v/8l/3o)"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
@@ -460,38 +465,6 @@ void writeScenarioImages(const std::filesystem::path& folder, const std::string&
   writeExr(folder / (scenario + "_reference.exr"), reference.image);
   writeExr(folder / (scenario + "_default.exr"), fast);
   writeErrorHeatmapPng(folder / (scenario + "_default_error.png"), fast, reference.image, 0.2);
-}
-
-// Per pixel: the reference's luminance, its standard error and transmittance, then each row's
-// luminance (the rows compared with the scenario's all-order path tracer), one column per row.
-void writeScenarioPixels(const std::filesystem::path& file, const CloudReferenceImage& reference,
-                         const std::vector<std::pair<std::string, std::vector<float>>>& rowLuminance) {
-  const bool halves = reference.luminanceOddPaths.size() == reference.luminance.size();
-  std::string csv = "x,y,reference_luminance,reference_standard_error,reference_transmittance";
-  if (halves) csv += ",reference_luminance_even_paths,reference_luminance_odd_paths";
-  for (const auto& [name, luminance] : rowLuminance) {
-    std::string column = name;
-    std::replace(column.begin(), column.end(), ',', ';');
-    csv += "," + column;
-  }
-  csv += "\n";
-  char line[64];
-  const int width = reference.image.width;
-  for (size_t i = 0; i < reference.image.pixelCount(); ++i) {
-    std::snprintf(line, sizeof(line), "%d,%d,%.6g,%.6g,%.4f", int(i % size_t(width)), int(i / size_t(width)), reference.luminance[i],
-                  reference.luminanceStandardError[i], reference.image.pixels[4 * i + 3]);
-    csv += line;
-    if (halves) {
-      std::snprintf(line, sizeof(line), ",%.6g,%.6g", reference.luminanceEvenPaths[i], reference.luminanceOddPaths[i]);
-      csv += line;
-    }
-    for (const auto& row : rowLuminance) {
-      std::snprintf(line, sizeof(line), ",%.6g", double(row.second[i]));
-      csv += line;
-    }
-    csv += "\n";
-  }
-  writeTextFileAtomically(file, csv);
 }
 
 }  // namespace
@@ -632,9 +605,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
             rowLuminance.push_back({"reference_order_1_luminance", std::move(order1)});
             singleColumnWritten = true;
           }
-          std::vector<float> luminance(r.clouds.pixelCount());
-          for (size_t i = 0; i < luminance.size(); ++i) luminance[i] = float(luminanceRec709(r.clouds.pixels.data() + size_t(r.clouds.channels) * i));
-          rowLuminance.push_back({k.knob + "=" + k.value, std::move(luminance)});
+          rowLuminance.push_back({k.knob + "=" + k.value, cloudPixelLuminance(r.clouds)});
         }
       }
       row.knob = k.knob;
@@ -653,7 +624,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
                     row.referenceNoise, row.meanBias, row.darkQuartileBias, row.brightQuartileBias, row.samplesPerPixel);
       logInfo(line);
     }
-    if (config.images) writeScenarioPixels(config.outDir / "images" / (sc.name + "_pixels.csv"), ref, rowLuminance);
+    if (config.images) writeCloudPixelsCsv(config.outDir / "images" / (sc.name + "_pixels.csv"), first.view, ref, rowLuminance);
   }
   return rows;
 }

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/scene.h"
+#include "sky/cloud_pixels_csv.h"
 #include "sky/cloud_reference_cache.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/sky_renderer.h"
@@ -160,6 +161,30 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   result.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
 
+  // A calibration scene with the octaves' constants given as overrides.
+  auto sceneWith = [&](const Prepared& p, double a, double b, double c, double d, double r, double ra) {
+    return Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
+                        {"/clouds/lighting/phase=" + config.phase, "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
+                         "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d), "/clouds/lighting/ms_r=" + number(r),
+                         "/clouds/lighting/ms_ra=" + number(ra)});
+  };
+  // With --images: each scene of the group rendered with the fit's constants, its pixels beside the
+  // reference's (DIR/images/SCENE_pixels.csv).
+  auto writePixels = [&](const CloudCalibrationFit& fit) {
+    if (!config.images) return;
+    std::filesystem::create_directories(config.outDir / "images");
+    char column[160];
+    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f", config.evaluateDefaults ? "shipped" : "fit",
+                  fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra);
+    for (const Prepared& p : prepared) {
+      if (!inGroup(p.scene.group, fit.group)) continue;
+      const RenderResult r = p.renderer->render(sceneWith(p, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra), options);
+      writeCloudPixelsCsv(config.outDir / "images" / (p.scene.name + "_pixels.csv"), r.view, p.reference,
+                          {{column, cloudPixelLuminance(r.clouds)}});
+    }
+  };
+
   // The errors of one parameter set on the scenes of a group.
   auto evaluate = [&](const std::string& group, double a, double b, double c, double d, double r, double ra,
                       std::vector<CloudCalibrationSceneError>& out) {
@@ -167,14 +192,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     double sum = 0.0;
     for (const Prepared& p : prepared) {
       if (!inGroup(p.scene.group, group)) continue;
-      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
-                                       {"/clouds/lighting/phase=" + config.phase,
-                                        "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
-                                        "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
-                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra)});
-      const RenderResult r = p.renderer->render(scene, options);
-      const CloudReferenceError e = compareWithCloudReference(r.clouds, p.reference);
+      const RenderResult rendered = p.renderer->render(sceneWith(p, a, b, c, d, r, ra), options);
+      const CloudReferenceError e = compareWithCloudReference(rendered.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
       sum += e.relRmse * e.relRmse;
     }
@@ -216,6 +235,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f",
                     group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveFit));
       logInfo(line);
+      writePixels(fit);
       result.fits.push_back(std::move(fit));
       continue;
     }
@@ -289,6 +309,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
                   group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit),
                   fit.evaluations);
     logInfo(line);
+    writePixels(fit);
     result.fits.push_back(std::move(fit));
   }
   result.fitSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -30,6 +30,7 @@ struct CloudCalibrationConfig {
   // No fit: each group's scenes rendered with the group's shipped constants (cloudTypeMultipleScattering
   // of its type; "all": the joint fit, cloudJointMultipleScattering), reported as the fit, to compare with a refit.
   bool evaluateDefaults = false;
+  bool images = false;  // DIR/images/SCENE_pixels.csv: each scene's pixels with the fit's (or shipped) constants
   std::string group;  // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   // Also fit the reflected light's weight r and depth scale a_r (cloudReflectedSource): x gains

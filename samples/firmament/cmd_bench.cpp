@@ -88,6 +88,7 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.octaves = args.integer("octaves", 3, 1, 8);
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.evaluateDefaults = args.has("evaluate-defaults");
+  config.images = args.has("images");
   config.reflection = args.has("reflection") || args.has("reflection-only");
   config.reflectionOnly = args.has("reflection-only");
   if (config.reflection) config.maxEvaluations = 150;  // six dimensions instead of four
@@ -211,7 +212,7 @@ const CommandRegistration registration{Command{
         {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants fixed at their own fit"},
         {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
-        {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images"},
+        {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images (with --calibrate: each scene's per-pixel CSV at the fit)"},
         {"timing-only", "", "clouds only: the frame timing alone (DIR/clouds_timing.*), no references or error rows"},
         {"error-setting", "TEXT", "clouds, not with --timing-only: only the error rows whose \"knob value\" contains TEXT (alternatives separated by |) and the default row; no timing sweep"},
         {"timing-setting", "TEXT", "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), and the defaults' still and 1/16 sequence"},

@@ -198,6 +198,7 @@ void main() {
                           max(1.0 - peakShare, 1e-3);
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
+  float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
   float cone = kLightCone ? cloud.march.w : 0.0;
@@ -237,6 +238,9 @@ void main() {
   // The last cloud sample's sources S (the early exit's remainder, below).
   vec3 lastSunSource = vec3(0.0), lastSkySource = vec3(0.0);
   float depthSum = 0.0, depthWeight = 0.0;
+  // The light of orders >= 2 the build-up along the view takes off (cloudBuildUpDecay): R = sum_i c_i
+  // e^(-k (tau_now - tau_i)), kept in the sun's units as sunlike.
+  vec3 buildUpLost = vec3(0.0);
   // Hard cap on samples (segment ends add partial steps). Growing steps: a stretch [t0, t1] takes
   // N (1 + ln(G)) + N (t1 - G D) / (G D) steps at most (common/cloud_march.glsl); with t1 <= 80 km and
   // D >= 1 km that stays below ~8 N for G >= 10, hence 8 N.
@@ -510,6 +514,7 @@ void main() {
                                cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
                                cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));
       }
+      float msFromSunSide = msSum;  // the octaves and the floor: what builds up along the view (below)
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
       if (reflects && sunVisible)
         msSum += reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
@@ -533,6 +538,11 @@ void main() {
       float sigmaTLight = transportScale * sigmaT;
       float integral = cloudStepIntegral(sigmaTLight, h);
       sunlike += lightTransmittance * sigmaS * sunSource * integral;
+      if (buildUpScale > 0.0) {
+        float dTau = sigmaTLight * h;
+        buildUpLost = buildUpLost * cloudBuildUpDecay(buildUpScale, dTau) +
+                      lightTransmittance * sigmaS * sunLight * msFromSunSide * integral * cloudBuildUpStepWeight(buildUpScale, dTau);
+      }
       skylike += lightTransmittance * sigmaS * skySource * integral;
       lastSunSource = sunSource;
       lastSkySource = skySource;
@@ -551,6 +561,10 @@ void main() {
   // on, whose light is T sigma_s S / sigma_t (its step integral's limit: what that sample would give at
   // any thickness), and as opaque (alpha 0), so that the sky behind is not added as well. sigma_s /
   // sigma_t = albedo sigma_t / (transportScale sigma_t), the same for every sample.
+  // The build-up along the view (cloudBuildUpDecay): the ray left the cloud, so each step's light of
+  // orders >= 2 loses e^(-k tau_behind). After an early exit the rest of the ray is opaque (tau_behind
+  // infinite): nothing is lost.
+  if (lightTransmittance > earlyExit) sunlike = max(sunlike - buildUpLost, vec3(0.0));
   if (exitRemainder && lightTransmittance <= earlyExit) {
     float perExtinction = albedo / max(transportScale, 1e-6);
     sunlike += lightTransmittance * perExtinction * lastSunSource;

@@ -322,6 +322,26 @@ SHARED_INLINE Real cloudReflectedSource(Real tauBehind, Real tauSun, Real g, Rea
   return reflectance * exp(-depthScale * max(tauSun, 0.0)) * (1.0 - nu) / (4.0 * kPi);
 }
 
+// The higher orders' build-up along the view ray (docs/clouds.md, "Build-up along the view"). The
+// octaves and the floor give a sample p a source of orders >= 2 from the sun's side of p only. But the
+// light of orders >= 2 that p sends towards the camera was mostly travelling nearly that way already
+// (the phase's forward lobe), and that light builds up over the cloud behind p along the view ray: a
+// sample at the far side of a thin cloud, or at the back of a wisp, has little behind it. So the march
+// weights that source by 1 - e^(-k tau_behind), tau_behind the view ray's optical depth behind p (from
+// p to where the ray leaves the cloud), k the scale CloudMarchSettings::msBuildUpScale. Through a
+// homogeneous cloud of optical depth tau with a uniform source J the light is then
+//   J [(1 - e^-tau) - (e^-tau - e^(-k tau)) / (k - 1)]  (k != 1),
+// about J k tau^2 / 2 for tau << 1 (second order grows as tau^2, not tau) and J for tau -> infinity.
+// tau_behind is known only once the march has left the cloud, so the march keeps the weighted sum
+// R = sum_i c_i e^(-k (tau_now - tau_i)) of the steps' light of orders >= 2 c_i (tau_i at the middle of
+// step i, tau_now where the march is) and takes R off the light at the end. Each step multiplies R by
+// cloudBuildUpDecay(k, dTau) and adds c_i cloudBuildUpStepWeight(k, dTau): every factor is at most 1,
+// so R stays between 0 and the sum of the c_i at any optical depth (no exponential of a growing tau).
+// A march that stops at its early exit takes the rest of the ray as opaque: tau_behind infinite, R not
+// taken off.
+SHARED_INLINE Real cloudBuildUpDecay(Real k, Real dTau) { return exp(-k * max(dTau, 0.0)); }
+SHARED_INLINE Real cloudBuildUpStepWeight(Real k, Real dTau) { return exp(-0.5 * k * max(dTau, 0.0)); }
+
 // Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
 // over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
