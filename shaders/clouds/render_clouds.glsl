@@ -556,15 +556,16 @@ void main() {
     }
   }
 
+  // The build-up along the view (cloudBuildUpDecay): the ray left the cloud, so each step's light of
+  // orders >= 2 loses e^(-k tau_behind). After an early exit the rest of the ray is opaque (tau_behind
+  // infinite): nothing is lost.
+  if (lightTransmittance > earlyExit) sunlike = max(sunlike - buildUpLost, vec3(0.0));
+
   // The early exit (docs/clouds.md "Early exit"): the march stopped inside cloud with the light's
   // transmittance at or below earlyExit. The rest of the ray is taken as the last sample's cloud going
   // on, whose light is T sigma_s S / sigma_t (its step integral's limit: what that sample would give at
   // any thickness), and as opaque (alpha 0), so that the sky behind is not added as well. sigma_s /
   // sigma_t = albedo sigma_t / (transportScale sigma_t), the same for every sample.
-  // The build-up along the view (cloudBuildUpDecay): the ray left the cloud, so each step's light of
-  // orders >= 2 loses e^(-k tau_behind). After an early exit the rest of the ray is opaque (tau_behind
-  // infinite): nothing is lost.
-  if (lightTransmittance > earlyExit) sunlike = max(sunlike - buildUpLost, vec3(0.0));
   if (exitRemainder && lightTransmittance <= earlyExit) {
     float perExtinction = albedo / max(transportScale, 1e-6);
     sunlike += lightTransmittance * perExtinction * lastSunSource;
