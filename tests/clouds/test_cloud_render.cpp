@@ -576,7 +576,7 @@ TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
                InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
   // ms_a alone is checked against the layer type's calibrated b for the scene's phase (cumulus with the
-  // approximate Mie phase: b = 0.486 since session 23; every dual-HG type's b is 1 since session 9).
+  // approximate Mie phase: b = 0.677 since session 24; every dual-HG type's b is 1 since session 9).
   const double cumulusMieB = cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).b;
   ASSERT_LT(cumulusMieB, 0.99);
   const std::string mie = "/clouds/lighting/phase=approximate_mie";
