@@ -97,7 +97,9 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // cumulus scenes (`--calibrate --phase approximate_mie --group cumulus --reflection --reference-spp 512`):
   // rms 0.2458 (the session 23 constants with the build-up) -> 0.2288. Held out against the 256-path
   // references: cumulus_noon 0.160 / -12.1 % (session 23, no build-up) -> 0.174 / -15.7 % (build-up, old
-  // constants) -> 0.078 / -2.7 %, horizon 0.158 / -5.3 % -> 0.169 / -8.9 % -> 0.144 / +3.6 %.
+  // constants) -> 0.078 / -2.7 %, horizon 0.158 / -5.3 % -> 0.169 / -8.9 % -> 0.144 / +3.6 %; with the
+  // build-up, session 23's constants -> these: cumulonimbus 0.291 / -19.0 % -> 0.228 / -8.9 %, above_clouds
+  // 0.140 / +7.4 % -> 0.185 / +12.9 % (worse).
   static constexpr CloudMultipleScatteringFits approximateMieReflected{
       {0.303, 0.677, 0.629, 0.015, 0.513, 0.000}, approximateMie.stratocumulus, approximateMie.all, approximateMie.stratus,
       approximateMie.cirrus};
