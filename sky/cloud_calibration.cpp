@@ -171,43 +171,40 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   result.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
 
-  // A calibration scene with the octaves' constants given as overrides.
-  auto sceneWith = [&](const Prepared& p, double a, double b, double c, double d, double r, double ra) {
-    return Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
-                        {"/clouds/lighting/phase=" + config.phase, "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
-                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                         "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d), "/clouds/lighting/ms_r=" + number(r),
-                         "/clouds/lighting/ms_ra=" + number(ra)});
-  };
-  // With --images: each scene of the group rendered with the fit's constants, its pixels beside the
-  // reference's (DIR/images/SCENE_pixels.csv).
-  auto writePixels = [&](const CloudCalibrationFit& fit) {
-    if (!config.images) return;
-    std::filesystem::create_directories(config.outDir / "images");
-    char column[160];
-    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f", config.evaluateDefaults ? "shipped" : "fit",
-                  fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra);
-    for (const Prepared& p : prepared) {
-      if (!inGroup(p.scene.group, fit.group)) continue;
-      const RenderResult r = p.renderer->render(sceneWith(p, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra), options);
-      writeCloudPixelsCsv(config.outDir / "images" / (p.scene.name + "_pixels.csv"), r.view, p.reference,
-                          {{column, cloudPixelLuminance(r.clouds)}});
-    }
-  };
-
-  // The errors of one parameter set on the scenes of a group.
+  // The errors of one parameter set on the scenes of a group. With `pixelsColumn` (--images, the final
+  // set) each scene's pixels are also written beside the reference's, from the same render
+  // (DIR/images/SCENE_pixels.csv, the column so named).
   auto evaluate = [&](const std::string& group, double a, double b, double c, double d, double r, double ra,
-                      std::vector<CloudCalibrationSceneError>& out) {
+                      std::vector<CloudCalibrationSceneError>& out, const std::string& pixelsColumn = "") {
     out.clear();
     double sum = 0.0;
     for (const Prepared& p : prepared) {
       if (!inGroup(p.scene.group, group)) continue;
-      const RenderResult rendered = p.renderer->render(sceneWith(p, a, b, c, d, r, ra), options);
+      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
+                                       {"/clouds/lighting/phase=" + config.phase,
+                                        "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+                                        "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
+                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
+                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra)});
+      const RenderResult rendered = p.renderer->render(scene, options);
+      if (!pixelsColumn.empty()) {
+        std::filesystem::create_directories(config.outDir / "images");
+        writeCloudPixelsCsv(config.outDir / "images" / (p.scene.name + "_pixels.csv"), rendered.view, p.reference,
+                            {{pixelsColumn, cloudPixelLuminance(rendered.clouds)}});
+      }
       const CloudReferenceError e = compareWithCloudReference(rendered.clouds, p.reference);
       out.push_back({p.scene.name, e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias});
       sum += e.relRmse * e.relRmse;
     }
     return out.empty() ? 0.0 : sum / double(out.size());
+  };
+
+  // The pixels CSV's column for a final parameter set (empty without --images: none written).
+  auto pixelsColumn = [&](const char* what, double a, double b, double c, double d, double r, double ra) {
+    if (!config.images) return std::string();
+    char column[160];
+    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f", what, a, b, c, d, r, ra);
+    return std::string(column);
   };
 
   // 2. Nelder-Mead over x = (b, a/b, c, d / 2), each clamped to [0, 1] (a <= b by construction; the
@@ -240,12 +237,12 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
       fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
-      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit);
+      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit,
+                                  pixelsColumn("shipped", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra));
       char line[200];
       std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f",
                     group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveFit));
       logInfo(line);
-      writePixels(fit);
       result.fits.push_back(std::move(fit));
       continue;
     }
@@ -313,13 +310,13 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.r = 4.0 * x[4];
     fit.ra = x[5];
     if (rOnly) fit.a = shipped0.a, fit.b = shipped0.b, fit.c = shipped0.c, fit.d = shipped0.d, fit.r = 4.0 * x[0], fit.ra = x[1];
-    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit);
+    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit,
+                                pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra));
     char line[256];
     std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
                   group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit),
                   fit.evaluations);
     logInfo(line);
-    writePixels(fit);
     result.fits.push_back(std::move(fit));
   }
   result.fitSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -536,17 +536,18 @@ void main() {
       // sigma_s = omega sigma_t with the scene's phase at the first octave (TMS: the scaled medium's
       // omega' sigma_t' p' with the truncated phase p' replaced by p / (1 - f)).
       float sigmaTLight = transportScale * sigmaT;
-      float integral = cloudStepIntegral(sigmaTLight, h);
-      sunlike += lightTransmittance * sigmaS * sunSource * integral;
-      if (buildUpScale > 0.0) {
-        float dTau = sigmaTLight * h;
-        buildUpLost = buildUpLost * cloudBuildUpDecay(buildUpScale, dTau) +
-                      lightTransmittance * sigmaS * sunLight * msFromSunSide * integral * cloudBuildUpStepWeight(buildUpScale, dTau);
-      }
-      skylike += lightTransmittance * sigmaS * skySource * integral;
+      float dTauLight = sigmaTLight * h;  // the step's δ-scaled optical depth
+      // A source S adds T sigma_s S (1 - e^(-sigma_t h)) / sigma_t over the step (cloudStepIntegral).
+      float stepWeight = lightTransmittance * sigmaS * cloudStepIntegral(sigmaTLight, h);
+      sunlike += stepWeight * sunSource;
+      skylike += stepWeight * skySource;
+      // The same step's light of orders >= 2 from the sun's side, into the build-up's running sum.
+      if (buildUpScale > 0.0)
+        buildUpLost = buildUpLost * cloudBuildUpDecay(buildUpScale, dTauLight) +
+                      stepWeight * sunLight * msFromSunSide * cloudBuildUpStepWeight(buildUpScale, dTauLight);
       lastSunSource = sunSource;
       lastSkySource = skySource;
-      lightTransmittance *= exp(-sigmaTLight * h);
+      lightTransmittance *= exp(-dTauLight);
       float stepT = exp(-sigmaT * h);
       float opacity = transmittance * (1.0 - stepT);
       depthSum += opacity * (t + 0.5 * h);
@@ -559,14 +560,15 @@ void main() {
   // The build-up along the view (cloudBuildUpDecay): the ray left the cloud, so each step's light of
   // orders >= 2 loses e^(-k tau_behind). After an early exit the rest of the ray is opaque (tau_behind
   // infinite): nothing is lost.
-  if (lightTransmittance > earlyExit) sunlike = max(sunlike - buildUpLost, vec3(0.0));
+  bool exitedEarly = lightTransmittance <= earlyExit;
+  if (!exitedEarly) sunlike = max(sunlike - buildUpLost, vec3(0.0));
 
   // The early exit (docs/clouds.md "Early exit"): the march stopped inside cloud with the light's
   // transmittance at or below earlyExit. The rest of the ray is taken as the last sample's cloud going
   // on, whose light is T sigma_s S / sigma_t (its step integral's limit: what that sample would give at
   // any thickness), and as opaque (alpha 0), so that the sky behind is not added as well. sigma_s /
   // sigma_t = albedo sigma_t / (transportScale sigma_t), the same for every sample.
-  if (exitRemainder && lightTransmittance <= earlyExit) {
+  if (exitRemainder && exitedEarly) {
     float perExtinction = albedo / max(transportScale, 1e-6);
     sunlike += lightTransmittance * perExtinction * lastSunSource;
     skylike += lightTransmittance * perExtinction * lastSkySource;
