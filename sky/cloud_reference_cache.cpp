@@ -89,6 +89,16 @@ CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTrac
   if (ec) throw InputError("cannot create " + folder.string() + ": " + ec.message());
   writeExr(luminanceFile, luminance);
   writeExr(imageFile, image);
+  // What a later run reads back (float32): so that the first run's errors are the cached runs' to the
+  // last digit.
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    reference.luminance[i] = luminance.pixels[4 * i + 0];
+    reference.luminanceStandardError[i] = luminance.pixels[4 * i + 1];
+    if (halves) {
+      reference.luminanceEvenPaths[i] = luminance.pixels[4 * i + 2];
+      reference.luminanceOddPaths[i] = luminance.pixels[4 * i + 3];
+    }
+  }
   return reference;
 }
 

@@ -194,12 +194,12 @@ TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
   EXPECT_FALSE(std::filesystem::exists(dir / "clouds_timing.csv"));
 }
 
-// The all-order references are kept in DIR/references: a second run with the same --out reads them
-// (and says so) and gives the same errors; a damaged cache file is rendered again.
+// The all-order and the first-order references are kept in DIR/references: a second run with the
+// same --out reads them (and says so) and gives the same errors; a damaged cache file is rendered again.
 TEST(Cli, BenchCloudReusesItsReferences) {
   auto dir = test::scratchDir("cli_bench_reference_cache");
   const std::string command = "bench clouds --quick --scenario cumulus_noon --reference-spp 4 --repeats 1 --error-setting "
-                              "\"view_steps 256\" --out " + dir.string();
+                              "\"view_steps 256|1 octave vs order 1\" --out " + dir.string();
   auto errors = [&] {
     std::string all;
     for (const std::string& line : csvRows(dir / "clouds_results.csv")) {
@@ -216,7 +216,7 @@ TEST(Cli, BenchCloudReusesItsReferences) {
   const std::string firstErrors = errors();
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir / "references")) files += entry.path().extension() == ".exr";
-  EXPECT_EQ(files, 2);
+  EXPECT_EQ(files, 4);  // image and luminance, all orders and the first
 
   CommandRun second = firmament(command);
   ASSERT_EQ(second.exitCode, 0) << second.output;
