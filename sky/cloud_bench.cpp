@@ -132,6 +132,9 @@ struct KnobValue {
   // The knob changes the physics both sides must share (the phase function): compare with a path
   // tracer over the row's own scene.
   bool ownReference = false;
+  // The ambient (sky and ground light): the fast path with it on, compared with a path tracer whose
+  // paths that leave the shells see the sky and the ground (cloudEnvironmentFromReference).
+  bool skyAndGround = false;
   bool everyScenario = false;  // also for the scenarios without the full sweep (Scenario::fullSweep)
   bool severalLayers = false;  // only for scenarios with more than one layer (the same image otherwise)
 };
@@ -284,6 +287,14 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"single_scattering", "1 octave, 256 view steps", {"/clouds/lighting/ms_octaves=1"},
                  [](SkyRenderOptions& o) { o.clouds.viewSteps = 256; }, true});
   }
+  // The ambient's model ("Lighting": isotropic sky above, Lambertian ground below, visibilities linear in
+  // the height in the layer) against paths that see a constant sky and ground where they leave the
+  // shells. Every other row has sunlight alone on both sides.
+  if (!quick) {
+    KnobValue ambient{"ambient", "on (sky and ground), against the path tracer with them", {}, [](SkyRenderOptions& o) { o.clouds.ambient = true; }};
+    ambient.skyAndGround = true;
+    v.push_back(ambient);
+  }
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
   for (double s : {0.0, 0.5, 2.0})
@@ -435,7 +446,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
       {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"column_map", "off (vertical marches)"},
       {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
-      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"ambient", "on (sky and ground), against the path tracer with them"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5, deep_shadow_map off"}, {"light_steps_falloff", "1.0, deep_shadow_map off"},
       {"light_steps_falloff", "2.0, deep_shadow_map off"}, {"light_steps_falloff", "1 from T 0.3, deep_shadow_map off"},
       {"light_steps_falloff", "1 from T 0.1, deep_shadow_map off"},
@@ -562,6 +573,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     // Path tracers of rows that change the shared physics (KnobValue::ownReference), one per distinct
     // scene overrides: rows that differ only in the march share it.
     std::map<std::vector<std::string>, CloudReferenceImage> ownReferences;
+    CloudReferenceImage skyAndGroundReference;  // KnobValue::skyAndGround's, made on first use
     std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
     bool singleColumnWritten = false;
     for (const KnobValue& k : knobs) {
@@ -591,7 +603,21 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
                                                                  first.view.camera, config.threads, base.cloudNoise,
                                                                  config.outDir / "references", sc.name);
         }
-        const CloudReferenceImage& against = k.ownReference ? ownReferences.at(k.sceneOverrides) : k.singleScattering ? singleRef : ref;
+        if (k.skyAndGround && skyAndGroundReference.image.pixels.empty()) {
+          // The sky's radiance E_sky / pi from the clear-sky reference at the layers' mean mid-height
+          // (as `firmament reference` does); cached under its own name (the cache key does not hold
+          // the environment, which follows from the scene).
+          double middle = 0.0;
+          for (const auto& l : settings.layers) middle += 0.5 * (l.bottom_m + l.top_m) / double(settings.layers.size());
+          const CloudEnvironment environment =
+              cloudEnvironmentFromReference(first.view.atmosphere, first.view.sunDirection, sceneGroundRadius(scene, first.view) + middle);
+          const CloudPathTracer skyTracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, environment, rs);
+          skyAndGroundReference = cachedCloudReference(scene, skyTracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera,
+                                                       config.threads, base.cloudNoise, config.outDir / "references", sc.name + "-sky");
+        }
+        const CloudReferenceImage& against = k.ownReference ? ownReferences.at(k.sceneOverrides)
+                                             : k.skyAndGround ? skyAndGroundReference
+                                             : k.singleScattering ? singleRef : ref;
         const ImageMetrics m = compareImages(r.clouds, against.image);
         const CloudReferenceError e = compareWithCloudReference(r.clouds, against);
         row.against = k.singleScattering ? "path_tracer_order_1" : "path_tracer";
