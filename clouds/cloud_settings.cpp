@@ -221,6 +221,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;
   if (msBuildUpScale) march.msBuildUpScale = *msBuildUpScale;
+  if (ambientSlab) march.ambientSlab = *ambientSlab;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

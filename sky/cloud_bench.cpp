@@ -287,13 +287,19 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"single_scattering", "1 octave, 256 view steps", {"/clouds/lighting/ms_octaves=1"},
                  [](SkyRenderOptions& o) { o.clouds.viewSteps = 256; }, true});
   }
-  // The ambient's model ("Lighting": isotropic sky above, Lambertian ground below, visibilities linear in
-  // the height in the layer) against paths that see a constant sky and ground where they leave the
-  // shells. Every other row has sunlight alone on both sides.
+  // The ambient's model ("Lighting": isotropic sky above, Lambertian ground below, weighted as in a
+  // conservative slab by the column's optical depths, or by height as until session 25) against paths
+  // that see a constant sky and ground where they leave the shells. Every other row has sunlight alone
+  // on both sides.
   if (!quick) {
     KnobValue ambient{"ambient", "on (sky and ground), against the path tracer with them", {}, [](SkyRenderOptions& o) { o.clouds.ambient = true; }};
     ambient.skyAndGround = true;
     v.push_back(ambient);
+    // The ambient by height (sessions 1-24): visibilities linear in the height in the layer.
+    KnobValue byHeight{"ambient", "on, by height (sessions 1-24), against the path tracer with the sky and ground", {},
+                       [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientSlab = false; }};
+    byHeight.skyAndGround = true;
+    v.push_back(byHeight);
   }
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
@@ -446,7 +452,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
       {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"column_map", "off (vertical marches)"},
       {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
-      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"ambient", "on (sky and ground), against the path tracer with them"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"ambient", "on (sky and ground), against the path tracer with them"}, {"ambient", "on, by height (sessions 1-24), against the path tracer with the sky and ground"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5, deep_shadow_map off"}, {"light_steps_falloff", "1.0, deep_shadow_map off"},
       {"light_steps_falloff", "2.0, deep_shadow_map off"}, {"light_steps_falloff", "1 from T 0.3, deep_shadow_map off"},
       {"light_steps_falloff", "1 from T 0.1, deep_shadow_map off"},
@@ -637,6 +643,11 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
             std::vector<float> order1(singleRef.luminance.begin(), singleRef.luminance.end());
             rowLuminance.push_back({"reference_order_1_luminance", std::move(order1)});
             singleColumnWritten = true;
+          }
+          // The ambient row beside its own reference (sunlight, sky and ground).
+          if (k.skyAndGround) {
+            std::vector<float> withSky(skyAndGroundReference.luminance.begin(), skyAndGroundReference.luminance.end());
+            rowLuminance.push_back({"reference_sky_and_ground_luminance", std::move(withSky)});
           }
           rowLuminance.push_back({k.knob + "=" + k.value, cloudPixelLuminance(r.clouds)});
         }

@@ -199,6 +199,7 @@ void main() {
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
+  bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
   float cone = kLightCone ? cloud.march.w : 0.0;
@@ -473,16 +474,17 @@ void main() {
       vec3 up = p / rp;
       bool wantTop = msZenith && octaves > 1 && sunVisible && muS > 0.0 && upCanWin;
       bool wantFloor = diffusion > 0.0 && octaves > 1 && sunVisible && muS > 0.0;
+      bool wantAmbientColumn = ambientOn && ambientSlab;
       const int floorSteps = 2;
       // From the column map when baked (both ways in two lookups; its samples counted as the maps').
       bool columnsFromMap = kColumnMap && cloud.columnMap.w > 0.0;
       float tauDown = 0.0;
-      if (columnsFromMap && (wantTop || wantFloor)) {
+      if (columnsFromMap && (wantTop || wantFloor || wantAmbientColumn)) {
         vec2 depths = transportScale * columnMapOpticalDepths(columnMap, kSeveralLayers ? segmentLayer[s] : 0, layer, p, rp);
         tauUp = depths.x;
         tauDown = depths.y;
       }
-      int upSteps = !kColumnMarch || columnsFromMap ? 0 : wantTop ? max(lightSteps / 2, 2) : wantFloor ? floorSteps : 0;
+      int upSteps = !kColumnMarch || columnsFromMap ? 0 : wantTop ? max(lightSteps / 2, 2) : wantFloor || wantAmbientColumn ? floorSteps : 0;
       if (upSteps > 0) {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
         lightCount += uint(upSteps);
@@ -499,13 +501,13 @@ void main() {
       }
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
       // through p, straight up and down, its weight the layer's ms_d; the better of it and the octaves.
+      // Two samples down (and tau_up above) for the floor and the ambient: both are smooth functions of
+      // the depths (linear in them when thick).
+      if ((wantFloor || wantAmbientColumn) && kColumnMarch && !columnsFromMap) {
+        tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
+        lightCount += uint(floorSteps);
+      }
       if (wantFloor) {
-        // Two samples down (and tau_up above): the floor is a smooth function of the depths (linear in
-        // them when thick).
-        if (kColumnMarch && !columnsFromMap) {
-          tauDown = transportScale * opticalDepthToSun(layer, p, -up, floorSteps, cloudSunExitDistance(layer, p, -up, lightLength), 0.0, lod);
-          lightCount += uint(floorSteps);
-        }
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
@@ -527,8 +529,11 @@ void main() {
         float rg = atmosphere.bottom_radius;
         vec3 groundSun = transmittanceToSun(transmittanceLut, atmosphere, rg, muS) * atmosphere.solar_irradiance * max(muS, 0.0);
         vec3 groundSky = irradianceLookup(skyIrradianceLut, atmosphere, rg, muS);
-        float vSky = cloudSkyVisibility(ph, bottomVisibility);
-        float vGround = cloudGroundVisibility(ph, bottomVisibility);
+        // J = (1 - w) L_sky + w L_ground written as (v_sky L_sky + v_ground L_ground) / 2.
+        float groundWeight = wantAmbientColumn ? cloudAmbientGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0),
+                                                                          (1.0 - phaseMeanCosine) * tauDown) : 0.5;
+        float vSky = wantAmbientColumn ? 2.0 * (1.0 - groundWeight) : cloudSkyVisibility(ph, bottomVisibility);
+        float vGround = wantAmbientColumn ? 2.0 * groundWeight : cloudGroundVisibility(ph, bottomVisibility);
         vec3 reflectance = atmosphere.ground_albedo / kPi;
         skySource = 0.5 * (vSky * skyIrradiance / kPi + vGround * reflectance * groundSky);
         sunSource += 0.5 * vGround * reflectance * groundSun;

@@ -349,6 +349,20 @@ SHARED_INLINE Real cloudBuildUpStepWeight(Real k, Real dTau) { return exp(-0.5 *
 // rising linearly from `bottomVisibility` at the base to 1 at the top of the shell, the ground by one
 // falling from 1 at the base to `bottomVisibility` at the top (after Hillaire 2016's
 // top/bottom ambient gradient).
+// The ground's share w of the ambient's mean radiance J = (1 - w) L_sky + w L_ground at a point of a
+// conservative slab lit from above by a uniform sky L_sky and from below by a uniform ground L_ground,
+// at optical depth tau_up below its top and tau_down above its base. Eddington's approximation with
+// the Marshak boundary conditions makes J linear in the optical depth between the extrapolated
+// boundaries 2/3 outside each face, where it reaches L_sky and L_ground:
+//     w = (tau_up + 2/3) / (tau_up + tau_down + 4/3).
+// Thin (tau -> 0): w = 1/2, the single scattering of the unobstructed field. Thick: the top sees the
+// sky, the base the ground. For a uniform field (L_sky = L_ground = L) J = L at every depth: a
+// non-absorbing cloud in uniform light is in equilibrium, whatever its optical depth. The depths are
+// the similarity-scaled ones, (1 - g) tau, for an anisotropic phase (van de Hulst 1980).
+SHARED_INLINE Real cloudAmbientGroundWeight(Real tauUp, Real tauDown) {
+  return (max(tauUp, 0.0) + 2.0 / 3.0) / (max(tauUp, 0.0) + max(tauDown, 0.0) + 4.0 / 3.0);
+}
+
 SHARED_INLINE Real cloudSkyVisibility(Real ph, Real bottomVisibility) { return mix(bottomVisibility, 1.0, clamp(ph, 0.0, 1.0)); }
 SHARED_INLINE Real cloudGroundVisibility(Real ph, Real bottomVisibility) { return mix(1.0, bottomVisibility, clamp(ph, 0.0, 1.0)); }
 
