@@ -719,6 +719,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       // The build-up along the view's cost (CloudMarchSettings::msBuildUpScale).
       {"build-up along the view off", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 1, true, false},
       {"build-up along the view off, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 16, true, false},
+      // The ambient as a slab's cost (CloudMarchSettings::ambientSlab): the ambient by height instead.
+      {"ambient by height (sessions 1-24)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 1, true, false},
+      {"ambient by height (sessions 1-24), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 16, true, false},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
       {"1x light samples across the other layers (sessions 9-14)", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 1.0; }, 1, true, false, true},
