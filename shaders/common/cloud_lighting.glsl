@@ -342,13 +342,6 @@ SHARED_INLINE Real cloudReflectedSource(Real tauBehind, Real tauSun, Real g, Rea
 SHARED_INLINE Real cloudBuildUpDecay(Real k, Real dTau) { return exp(-k * max(dTau, 0.0)); }
 SHARED_INLINE Real cloudBuildUpStepWeight(Real k, Real dTau) { return exp(-0.5 * k * max(dTau, 0.0)); }
 
-// Ambient light on a cloud sample (docs/clouds.md, "Ambient"): isotropic scattering of a sky of uniform
-// radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
-// over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
-// L_ground) / 2. The cloud itself hides part of each hemisphere: the sky is scaled by a visibility
-// rising linearly from `bottomVisibility` at the base to 1 at the top of the shell, the ground by one
-// falling from 1 at the base to `bottomVisibility` at the top (after Hillaire 2016's
-// top/bottom ambient gradient).
 // The ground's share w of the ambient's mean radiance J = (1 - w) L_sky + w L_ground at a point of a
 // conservative slab lit from above by a uniform sky L_sky and from below by a uniform ground L_ground,
 // at optical depth tau_up below its top and tau_down above its base. Eddington's approximation with
@@ -363,6 +356,14 @@ SHARED_INLINE Real cloudAmbientGroundWeight(Real tauUp, Real tauDown) {
   return (max(tauUp, 0.0) + 2.0 / 3.0) / (max(tauUp, 0.0) + max(tauDown, 0.0) + 4.0 / 3.0);
 }
 
+// Ambient light on a cloud sample (docs/clouds.md, "Lighting"): isotropic scattering of a sky of uniform
+// radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
+// over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
+// L_ground) / 2 (the slab's w = 1/2). By height (sessions 1-24; CloudMarchSettings::ambientSlab false),
+// the cloud hides part of each hemisphere: the sky is scaled by a visibility rising linearly from
+// `bottomVisibility` at the base to 1 at the top of the shell, the ground by one falling from 1 at the
+// base to `bottomVisibility` at the top (after Hillaire 2016's top/bottom ambient gradient). Their sum is
+// 1 + bottomVisibility < 2, so a uniform field loses light in the cloud.
 SHARED_INLINE Real cloudSkyVisibility(Real ph, Real bottomVisibility) { return mix(bottomVisibility, 1.0, clamp(ph, 0.0, 1.0)); }
 SHARED_INLINE Real cloudGroundVisibility(Real ph, Real bottomVisibility) { return mix(1.0, bottomVisibility, clamp(ph, 0.0, 1.0)); }
 
