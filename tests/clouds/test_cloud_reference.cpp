@@ -32,16 +32,26 @@ CloudMedium cloudMediumFor(gpu::Context& context, const Scene& scene, const Clou
                      cloudWeatherMapForScene(scene), ground);
 }
 
-TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
-  // A thinner cumulus (extinction x 0.2: sigma_t <= 0.02 m^-1) keeps the paths short enough for a test.
-  Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                  "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500"});
+// A thinner cumulus (extinction x 0.2: sigma_t <= 0.02 m^-1) keeps the paths short enough for a test.
+Scene thinCumulusScene() {
+  return test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
+                           "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500"});
+}
+
+// A fine march (256 view, 16 light steps, no jitter), sunlight alone, no air in front.
+SkyRenderOptions fineMarchOptions() {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 256;
   o.clouds.lightSteps = 16;
   o.clouds.jitter = false;
   o.clouds.ambient = false;
   o.clouds.aerialPerspective = AerialPerspective::Off;
+  return o;
+}
+
+TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
+  Scene scene = thinCumulusScene();
+  SkyRenderOptions o = fineMarchOptions();
   RenderResult gpu = test::cloudRenderer().render(scene, o);
 
   CloudSettings settings = CloudSettings::fromScene(scene);
@@ -91,14 +101,8 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
 // cloud pixels of the scene above. The fast path's sky irradiance comes from its tables at each sample,
 // the path tracer's from the clear-sky reference at the layer's mid-height.
 TEST_F(CloudReference, AmbientAgainstPathTracerWithSkyAndGround) {
-  Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                  "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500"});
-  SkyRenderOptions o = test::smallCloudOptions();
-  o.clouds.viewSteps = 256;
-  o.clouds.lightSteps = 16;
-  o.clouds.jitter = false;
-  o.clouds.aerialPerspective = AerialPerspective::Off;
-  o.clouds.ambient = false;
+  const Scene scene = thinCumulusScene();
+  SkyRenderOptions o = fineMarchOptions();
   const RenderResult sunOnly = test::cloudRenderer().render(scene, o);
   o.clouds.ambient = true;
   const RenderResult withAmbient = test::cloudRenderer().render(scene, o);
