@@ -222,6 +222,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;
   if (msBuildUpScale) march.msBuildUpScale = *msBuildUpScale;
   if (ambientSlab) march.ambientSlab = *ambientSlab;
+  if (ambientThroughOtherLayers) march.ambientThroughOtherLayers = *ambientThroughOtherLayers;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

@@ -150,6 +150,10 @@ struct CloudMarchSettings {
   // the light the ambient adds 0.84 -> 1.11 of the path tracer's at noon, 1.09 -> 0.99 at the sunset,
   // 0.75 -> 1.02 under the overcast; docs/clouds.md "Lighting".
   bool ambientSlab = true;
+  // The slab's depths up and down include the other layers' whole columns above and below (the column
+  // map's, column_map.glsl columnMapOtherLayersOpticalDepths): a deck above dims the sky a layer below
+  // sees. Only with the column map (octaves > 1); without it each layer is its own slab, as in session 25.
+  bool ambientThroughOtherLayers = true;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -282,6 +286,7 @@ struct CloudOverrides {
   std::optional<bool> msScatteredOnly;
   std::optional<double> msBuildUpScale;
   std::optional<bool> ambientSlab;
+  std::optional<bool> ambientThroughOtherLayers;
   std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };

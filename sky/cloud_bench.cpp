@@ -300,6 +300,13 @@ std::vector<KnobValue> knobValues(bool quick) {
                        [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientSlab = false; }};
     byHeight.skyAndGround = true;
     v.push_back(byHeight);
+    // Each layer its own slab (session 25): the other layers' columns left out of the slab's depths.
+    KnobValue ownSlab{"ambient", "on, each layer its own slab (session 25), against the path tracer with the sky and ground", {},
+                      [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientThroughOtherLayers = false; }};
+    ownSlab.skyAndGround = true;
+    ownSlab.severalLayers = true;
+    ownSlab.everyScenario = true;
+    v.push_back(ownSlab);
   }
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});
@@ -722,6 +729,8 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       // The ambient as a slab's cost (CloudMarchSettings::ambientSlab): the ambient by height instead.
       {"ambient by height (sessions 1-24)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 1, true, false},
       {"ambient by height (sessions 1-24), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 16, true, false},
+      {"ambient, each layer its own slab (session 25)", [](SkyRenderOptions& o) { o.clouds.ambientThroughOtherLayers = false; }, 1, true, false, true},
+      {"ambient, each layer its own slab (session 25), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.ambientThroughOtherLayers = false; }, 16, true, false, true},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},
       {"view_steps 48, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 16, true, false},
       {"1x light samples across the other layers (sessions 9-14)", [](SkyRenderOptions& o) { o.clouds.otherLayerLightStepsScale = 1.0; }, 1, true, false, true},

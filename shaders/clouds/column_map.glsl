@@ -50,4 +50,52 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
   return vec2(above, max(total - above, 0.0));
 }
 
+// The other layers as the ambient's slab sees them (cloudAmbientGroundWeight): their similarity-scaled
+// optical depths above (x) and below (y) layer j, for a point p of layer j. In a plane-parallel column
+// the clear air between two layers changes nothing, only the optical depth counts, so a deck above dims
+// the sky a layer below sees and a layer below turns the sky's light back up. But a broken layer at a
+// distance D is seen through its gaps: the mean radiance J weighs every direction of the hemisphere
+// alike, and direction theta crosses the other layer at a horizontal offset D tan(theta). So each other
+// layer's diffuse transmission T = 1 / (1 + 3 tau' / 4) (the conservative slab's, Eddington with
+// Marshak's boundaries; tau' = (1 - g) tau of the column there) is averaged over 9 columns, three in
+// each third of the hemisphere's solid angle (cos(theta) 5/6, 1/2, 1/6: tan(theta) 0.66, 1.73, 5.92),
+// and given back as the depth of a uniform layer with that mean: tau' = (1/T - 1) 4/3. A uniform layer
+// comes back unchanged. `similarity` is 1 - g.
+vec2 columnMapOtherLayersOpticalDepths(sampler3D map, int j, vec3 p, float r, float similarity) {
+  vec3 q = p / r;
+  float R = cloud.columnAxisV.w;
+  float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
+  vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
+  float size = cloud.columnMap.z;
+  float K = cloud.columnMap.w;
+  float slices = float(cloud.image.w) * (K + 1.0);
+  CloudLayer own = layerAt(j);
+  float middle = 0.5 * (own.bottom_radius + own.top_radius);
+  const float kTan[3] = float[3](0.663, 1.732, 5.916);
+  vec2 depths = vec2(0.0);
+  for (int i = 0; i < cloud.image.w; ++i) {
+    if (i == j) continue;
+    CloudLayer other = layerAt(i);
+    float otherMiddle = 0.5 * (other.bottom_radius + other.top_radius);
+    float distance = max(abs(otherMiddle - r), 0.5 * (other.top_radius - other.bottom_radius));
+    float slice = (float(i) * (K + 1.0) + 0.5) / slices;
+    float meanTransmission = 0.0;
+    for (int band = 0; band < 3; ++band)
+      for (int k = 0; k < 3; ++k) {
+        float angle = 2.0943951 * float(k) + 1.0471976 * float(band);  // 120 deg apart, each band turned 60 deg
+        vec2 offset = distance * kTan[band] * vec2(cos(angle), sin(angle));
+        vec2 s = logWarpTexelCoordinate(a + offset, cloud.columnMap.x, cloud.columnMap.y);
+        vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+        float tau = similarity * textureLod(map, vec3(uv, slice), 0.0).r;
+        meanTransmission += (1.0 / 9.0) / (1.0 + 0.75 * tau);
+      }
+    float depth = (1.0 / max(meanTransmission, 1e-6) - 1.0) * (4.0 / 3.0);
+    if (otherMiddle > middle)
+      depths.x += depth;
+    else
+      depths.y += depth;
+  }
+  return depths;
+}
+
 #endif  // FIRMAMENT_COLUMN_MAP_GLSL

@@ -200,6 +200,7 @@ void main() {
   float earlyExit = cloud.march.y;
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
+  bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;  // CloudMarchSettings::ambientThroughOtherLayers
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
   float cone = kLightCone ? cloud.march.w : 0.0;
@@ -530,8 +531,12 @@ void main() {
         vec3 groundSun = transmittanceToSun(transmittanceLut, atmosphere, rg, muS) * atmosphere.solar_irradiance * max(muS, 0.0);
         vec3 groundSky = irradianceLookup(skyIrradianceLut, atmosphere, rg, muS);
         // J = (1 - w) L_sky + w L_ground written as (v_sky L_sky + v_ground L_ground) / 2.
-        float groundWeight = wantAmbientColumn ? cloudAmbientGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0),
-                                                                          (1.0 - phaseMeanCosine) * tauDown) : 0.5;
+        // With the other layers (from the column map only): their whole columns above and below.
+        vec2 othersUpDown = vec2(0.0);  // similarity-scaled already
+        if (wantAmbientColumn && ambientThroughOthers && columnsFromMap)
+          othersUpDown = columnMapOtherLayersOpticalDepths(columnMap, segmentLayer[s], p, rp, transportScale * (1.0 - phaseMeanCosine));
+        float groundWeight = wantAmbientColumn ? cloudAmbientGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0) + othersUpDown.x,
+                                                                          (1.0 - phaseMeanCosine) * tauDown + othersUpDown.y) : 0.5;
         float vSky = wantAmbientColumn ? 2.0 * (1.0 - groundWeight) : cloudSkyVisibility(ph, bottomVisibility);
         float vGround = wantAmbientColumn ? 2.0 * groundWeight : cloudGroundVisibility(ph, bottomVisibility);
         vec3 reflectance = atmosphere.ground_albedo / kPi;
