@@ -70,6 +70,12 @@ double mapLogWarpScale(const CloudMarchSettings& m) { return std::log(1.0 + (m.m
 // Whether this frame bakes the column map (clouds/column_map.glsl): the octaves' way from the top and
 // the diffusion floor need the vertical optical depths only with more than one octave.
 bool usesColumnMap(const CloudSettings& settings) { return settings.march.columnMap && settings.lighting.octaves > 1; }
+// The ambient's view of the other layers (bake_column_ambient.comp): more than one layer, the ambient on
+// as a slab that looks through them.
+bool usesColumnAmbient(const CloudSettings& settings) {
+  const CloudMarchSettings& m = settings.march;
+  return usesColumnMap(settings) && settings.layers.size() > 1 && m.ambient && m.ambientSlab && m.ambientThroughOtherLayers;
+}
 
 // Whether this frame bakes the other layers' map: light through the other layers, from the map, with
 // more than one layer.
@@ -218,6 +224,7 @@ CloudPass::CloudPass(gpu::Context& context)
       bakeShadow_(context, cloudBakeDesc("clouds/bake_shadow_map")),
       bakeOtherLayers_(context, cloudBakeDesc("clouds/bake_other_layers")),
       bakeColumns_(context, cloudBakeDesc("clouds/bake_columns")),
+      bakeColumnAmbient_(context, cloudBakeDesc("clouds/bake_column_ambient")),
       bakeDeepShadow_(context, cloudBakeDesc("clouds/bake_deep_shadow")),
       upsample_(context, {"clouds/upsample_clouds",
                           {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
@@ -456,11 +463,11 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
 }
 
 void CloudPass::recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels,
-                               size_t layers, const char* name, const char* pass, const AtmosphereLuts& luts,
+                               size_t layers, int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
                                const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                                gpu::CommandList& commands) {
   const uint32_t width = bake ? uint32_t(size) : 1u;
-  const uint32_t depth = bake ? uint32_t(layers) * uint32_t(levels + 1) : 2u;
+  const uint32_t depth = bake ? uint32_t(layers) * uint32_t(levels + 1) + uint32_t(extraSlices) : 2u;
   if (!image || image.width() != width || image.depth() != depth)
     image = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, name});
   if (!bake) return;
@@ -479,8 +486,18 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
     throw InputError("clouds: column_map_size " + std::to_string(size) + "; allowed: 8 to 4096 texels");
   if (bake && (levels < 1 || levels > 64))
     throw InputError("clouds: column_map_levels " + std::to_string(levels) + "; allowed: 1 to 64");
-  recordLevelMap(bakeColumns_, columnImage_, bake, size, levels, settings.layers.size(), "cloud column map", "clouds/bake_columns",
+  // Two more slices per layer: the ambient's view of the other layers (bake_column_ambient.comp), baked
+  // from the levels' whole columns where there are other layers and the ambient's slab looks through them.
+  const size_t layers = settings.layers.size();
+  recordLevelMap(bakeColumns_, columnImage_, bake, size, levels, layers, 2 * int(layers), "cloud column map", "clouds/bake_columns",
                  luts, skyIrradiance, skyFrame, commands);
+  if (bake && usesColumnAmbient(settings)) {
+    bindBake(bakeColumnAmbient_, columnImage_, luts, skyIrradiance, skyFrame, commands);
+    const uint32_t width = uint32_t(size);
+    const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+    commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(layers), "clouds/bake_column_ambient");
+    commands.barrier();
+  }
 }
 
 void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
@@ -494,7 +511,7 @@ void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const Atmosph
     throw InputError("clouds: deep_shadow_map_levels " + std::to_string(levels) + "; allowed: 1 to 128");
   if (m.deepShadowMap && m.deepShadowNearSteps < 0)
     throw InputError("clouds: deep_shadow_near_steps " + std::to_string(m.deepShadowNearSteps) + "; allowed: 0 or more");
-  recordLevelMap(bakeDeepShadow_, deepShadowImage_, usesDeepShadowMap(settings), size, levels, settings.layers.size(),
+  recordLevelMap(bakeDeepShadow_, deepShadowImage_, usesDeepShadowMap(settings), size, levels, settings.layers.size(), 0,
                  "cloud deep shadow map", "clouds/bake_deep_shadow", luts, skyIrradiance, skyFrame, commands);
 }
 

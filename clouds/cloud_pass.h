@@ -131,8 +131,9 @@ class CloudPass {
                            const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   // Bakes a map of K + 1 levels per layer (the column map, the deep shadow map: 3D R32F, size x size x
   // layers (K + 1); a 1x1x2 placeholder into `image` while off) on this frame's rows, a barrier after.
+  // extraSlices: slices after the layers' levels that the bake does not write (the column map's ambient).
   void recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels, size_t layers,
-                      const char* name, const char* pass, const AtmosphereLuts& luts,
+                      int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
   // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
   // unread) and `target`, the image it writes.
@@ -151,6 +152,7 @@ class CloudPass {
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline bakeOtherLayers_;  // clouds/bake_other_layers
   gpu::ComputePipeline bakeColumns_;      // clouds/bake_columns
+  gpu::ComputePipeline bakeColumnAmbient_;  // clouds/bake_column_ambient
   gpu::ComputePipeline bakeDeepShadow_;   // clouds/bake_deep_shadow
   gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
   gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)

@@ -482,7 +482,8 @@ double cloudPassMs(const RenderResult& r) {
   for (const auto& t : r.timings)
     if (t.label == "clouds/render_clouds" || t.label == "clouds/upsample_clouds" || t.label == "clouds/temporal_resolve" ||
         t.label == "sky/aerial_perspective_volume" || t.label == "clouds/bake_shadow_map" || t.label == "sky/cloud_light_shafts" ||
-        t.label == "clouds/bake_other_layers" || t.label == "clouds/bake_columns" || t.label == "clouds/bake_deep_shadow")
+        t.label == "clouds/bake_other_layers" || t.label == "clouds/bake_columns" ||
+        t.label == "clouds/bake_column_ambient" || t.label == "clouds/bake_deep_shadow")
       ms += t.milliseconds;
   return ms;
 }
@@ -817,7 +818,7 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       " renders after a warm-up (one render on a CPU device, 0.5 s of renders on a GPU so its clocks are up); temporal_update rows: the median of the 2 N reprojected frames of a sequence of 2 N + 1 at 30 "
       "frames per second ending at the view (the camera turning 7.5 deg/s, the wind 10 m/s; its first frame marches every "
       "pixel), compared at its last frame. cloud ms: clouds/render_clouds + clouds/upsample_clouds + clouds/temporal_resolve + "
-      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers + clouds/bake_columns + clouds/bake_deep_shadow; the light_shafts row's difference "
+      "sky/aerial_perspective_volume + clouds/bake_shadow_map + sky/cloud_light_shafts + clouds/bake_other_layers + clouds/bake_columns + clouds/bake_column_ambient + clouds/bake_deep_shadow; the light_shafts row's difference "
       "from the defaults is the shafts' effect (no reference has them); "
       "frame ms: every per-frame pass (sky included, the once-per-seed noise bake excluded); samples: density evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "

@@ -115,6 +115,12 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
       else
         plan.omitted.push_back({"clouds/bake_columns", !octaves ? "one octave: no way from the top, no diffusion floor"
                                                                 : "the column map off: the light march goes up and down"});
+      if (columnMap && octaves && layerCount > 1)
+        plan.passes.push_back({"clouds/bake_column_ambient", "per column and layer, the other layers' depths above and below as the ambient's slab sees them (9 columns each)",
+                               "the ambient: a deck above dims the sky a layer below sees", true});
+      else
+        plan.omitted.push_back({"clouds/bake_column_ambient", layerCount < 2 ? "one layer: no other layer dims its ambient"
+                                                                             : "no column map: each layer's ambient is its own slab"});
       if (options.cloudDeepShadowMap.value_or(defaults.deepShadowMap))
         plan.passes.push_back({"clouds/bake_deep_shadow", "each layer's optical depth from K levels up to its top along each sun line (1 in 4 to 16 of its rows per frame in a sequence)",
                                "the light march takes its first steps and reads the rest of the way to the sun from it", true});

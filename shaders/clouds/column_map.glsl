@@ -22,6 +22,11 @@
 // cloud.columnMap: x = the log warp's scale ln(1 + E / rho0), y = rho0 (m), z = texels per side N, w = levels K (0: no map).
 // cloud.columnOrigin.xyz = c, cloud.columnAxisU.xyz = u, cloud.columnAxisV.xyz = v, cloud.columnAxisV.w = R.
 
+// The map's slices: K + 1 levels per layer, then two per layer for the ambient (the other layers'
+// depths above and below, bake_column_ambient.comp).
+float columnMapSlices() { return float(cloud.image.w) * (cloud.columnMap.w + 1.0) + 2.0 * float(cloud.image.w); }
+int columnMapAmbientSlice(int j) { return cloud.image.w * (int(cloud.columnMap.w + 0.5) + 1) + 2 * j; }
+
 vec2 columnMapPlanePoint(vec2 s) { return logWarpPlanePoint(s, cloud.columnMap.x, cloud.columnMap.y); }
 float columnMapTexelSize(vec2 a) { return logWarpTexelSize(a, cloud.columnMap.x, cloud.columnMap.y, cloud.columnMap.z); }
 
@@ -42,7 +47,7 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
   vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
   vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
   float K = cloud.columnMap.w;
-  float slices = float(cloud.image.w) * (K + 1.0);
+  float slices = columnMapSlices();
   float z = clamp((r - layer.bottom_radius) / max(layer.top_radius - layer.bottom_radius, 1.0), 0.0, 1.0);
   float base = float(j) * (K + 1.0);
   float above = textureLod(map, vec3(uv, (base + z * K + 0.5) / slices), 0.0).r;
@@ -51,51 +56,19 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
 }
 
 // The other layers as the ambient's slab sees them (cloudAmbientGroundWeight): their similarity-scaled
-// optical depths above (x) and below (y) layer j, for a point p of layer j. In a plane-parallel column
-// the clear air between two layers changes nothing, only the optical depth counts, so a deck above dims
-// the sky a layer below sees and a layer below turns the sky's light back up. But a broken layer at a
-// distance D is seen through its gaps: the mean radiance J weighs every direction of the hemisphere
-// alike, and direction theta crosses the other layer at a horizontal offset D tan(theta). So each other
-// layer's diffuse transmission T = 1 / (1 + 3 tau' / 4) (the conservative slab's, Eddington with
-// Marshak's boundaries; tau' = (1 - g) tau of the column there) is averaged over 9 columns, three in
-// each third of the hemisphere's solid angle (cos(theta) 5/6, 1/2, 1/6: tan(theta) 0.66, 1.73, 5.92),
-// and given back as the depth of a uniform layer with that mean: tau' = (1/T - 1) 4/3. A uniform layer
-// comes back unchanged. `similarity` is 1 - g.
-vec2 columnMapOtherLayersOpticalDepths(sampler3D map, int j, vec3 p, float r, float similarity) {
+// optical depths above (x) and below (y) layer j at p's column, baked per column and layer by
+// bake_column_ambient.comp (why and how there), read linear.
+vec2 columnMapOtherLayersOpticalDepths(sampler3D map, int j, vec3 p, float r) {
   vec3 q = p / r;
   float R = cloud.columnAxisV.w;
   float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
   vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
   float size = cloud.columnMap.z;
-  float K = cloud.columnMap.w;
-  float slices = float(cloud.image.w) * (K + 1.0);
-  CloudLayer own = layerAt(j);
-  float middle = 0.5 * (own.bottom_radius + own.top_radius);
-  const float kTan[3] = float[3](0.663, 1.732, 5.916);
-  vec2 depths = vec2(0.0);
-  for (int i = 0; i < cloud.image.w; ++i) {
-    if (i == j) continue;
-    CloudLayer other = layerAt(i);
-    float otherMiddle = 0.5 * (other.bottom_radius + other.top_radius);
-    float distance = max(abs(otherMiddle - r), 0.5 * (other.top_radius - other.bottom_radius));
-    float slice = (float(i) * (K + 1.0) + 0.5) / slices;
-    float meanTransmission = 0.0;
-    for (int band = 0; band < 3; ++band)
-      for (int k = 0; k < 3; ++k) {
-        float angle = 2.0943951 * float(k) + 1.0471976 * float(band);  // 120 deg apart, each band turned 60 deg
-        vec2 offset = distance * kTan[band] * vec2(cos(angle), sin(angle));
-        vec2 s = logWarpTexelCoordinate(a + offset, cloud.columnMap.x, cloud.columnMap.y);
-        vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
-        float tau = similarity * textureLod(map, vec3(uv, slice), 0.0).r;
-        meanTransmission += (1.0 / 9.0) / (1.0 + 0.75 * tau);
-      }
-    float depth = (1.0 / max(meanTransmission, 1e-6) - 1.0) * (4.0 / 3.0);
-    if (otherMiddle > middle)
-      depths.x += depth;
-    else
-      depths.y += depth;
-  }
-  return depths;
+  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
+  vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  float slices = columnMapSlices();
+  float slice = float(columnMapAmbientSlice(j));
+  return vec2(textureLod(map, vec3(uv, (slice + 0.5) / slices), 0.0).r, textureLod(map, vec3(uv, (slice + 1.5) / slices), 0.0).r);
 }
 
 #endif  // FIRMAMENT_COLUMN_MAP_GLSL

@@ -534,7 +534,7 @@ void main() {
         // With the other layers (from the column map only): their whole columns above and below.
         vec2 othersUpDown = vec2(0.0);  // similarity-scaled already
         if (wantAmbientColumn && ambientThroughOthers && columnsFromMap)
-          othersUpDown = columnMapOtherLayersOpticalDepths(columnMap, segmentLayer[s], p, rp, transportScale * (1.0 - phaseMeanCosine));
+          othersUpDown = columnMapOtherLayersOpticalDepths(columnMap, segmentLayer[s], p, rp);
         float groundWeight = wantAmbientColumn ? cloudAmbientGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0) + othersUpDown.x,
                                                                           (1.0 - phaseMeanCosine) * tauDown + othersUpDown.y) : 0.5;
         float vSky = wantAmbientColumn ? 2.0 * (1.0 - groundWeight) : cloudSkyVisibility(ph, bottomVisibility);
