@@ -43,7 +43,7 @@ struct CloudBlock {
   float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
   float columnAxisV[4];                // its axis v; w = the planet radius R (m)
   float deepShadowMap[4];              // the deep shadow map (the other layers' map's placement): texels per side, levels K, near steps, baked (0: none)
-  float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers (1); unused
+  float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers (1); the flow's scale
 };
 static_assert(sizeof(CloudBlock) == (30 + kMaxLayers * 6) * 16);
 
@@ -379,7 +379,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.columnAxisV, maps_.columnV, luts.parameters().bottom_radius);
   put(b.deepShadowMap, double(std::max(m.deepShadowMapSize, 1)), double(std::max(m.deepShadowMapLevels, 1)),
       double(std::max(m.deepShadowNearSteps, 0)), usesDeepShadowMap(settings) ? 1.0 : 0.0);
-  put(b.buildUp, std::max(m.msBuildUpScale, 0.0), m.ambientSlab ? 1.0 : 0.0, m.ambientThroughOtherLayers ? 1.0 : 0.0, 0.0);
+  put(b.buildUp, std::max(m.msBuildUpScale, 0.0), m.ambientSlab ? 1.0 : 0.0, m.ambientThroughOtherLayers ? 1.0 : 0.0,
+      std::max(m.ambientFlow, 0.0));
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).

@@ -223,6 +223,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (msBuildUpScale) march.msBuildUpScale = *msBuildUpScale;
   if (ambientSlab) march.ambientSlab = *ambientSlab;
   if (ambientThroughOtherLayers) march.ambientThroughOtherLayers = *ambientThroughOtherLayers;
+  if (ambientFlow) march.ambientFlow = *ambientFlow;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

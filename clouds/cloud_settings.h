@@ -154,6 +154,9 @@ struct CloudMarchSettings {
   // map's, column_map.glsl columnMapOtherLayersOpticalDepths): a deck above dims the sky a layer below
   // sees. Only with the column map (octaves > 1); without it each layer is its own slab, as in session 25.
   bool ambientThroughOtherLayers = true;
+  // The slab's net flux turned towards the camera by the phase's forward lobe (common/cloud_lighting.glsl
+  // cloudAmbientViewGroundWeight), times this; 0: the slab's mean radiance J alone (session 25).
+  double ambientFlow = 1.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -287,6 +290,7 @@ struct CloudOverrides {
   std::optional<double> msBuildUpScale;
   std::optional<bool> ambientSlab;
   std::optional<bool> ambientThroughOtherLayers;
+  std::optional<double> ambientFlow;
   std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };

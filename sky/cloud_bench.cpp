@@ -300,12 +300,17 @@ std::vector<KnobValue> knobValues(bool quick) {
                        [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientSlab = false; }};
     byHeight.skyAndGround = true;
     v.push_back(byHeight);
+    // The slab's mean radiance J alone (session 25): without its flux turned towards the camera by the
+    // phase's forward lobe (CloudMarchSettings::ambientFlow).
+    KnobValue noFlow{"ambient", "on, the slab's J alone (session 25), against the path tracer with the sky and ground", {},
+                     [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientFlow = 0.0; }};
+    noFlow.skyAndGround = true;
+    v.push_back(noFlow);
     // Each layer its own slab (session 25): the other layers' columns left out of the slab's depths.
     KnobValue ownSlab{"ambient", "on, each layer its own slab (session 25), against the path tracer with the sky and ground", {},
                       [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientThroughOtherLayers = false; }};
     ownSlab.skyAndGround = true;
     ownSlab.severalLayers = true;
-    ownSlab.everyScenario = true;
     v.push_back(ownSlab);
   }
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
@@ -459,7 +464,9 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, own layer only"}, {"other_layer_map", "off (crossings marched)"},
       {"other_layer_map", "128 texels"}, {"other_layer_map", "512 texels"}, {"column_map", "off (vertical marches)"},
       {"early_exit", "0.1"}, {"early_exit", "0.03"}, {"early_exit", "0.001"},
-      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"ambient", "on (sky and ground), against the path tracer with them"}, {"ambient", "on, by height (sessions 1-24), against the path tracer with the sky and ground"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
+      {"early_exit", "0 (none)"}, {"early_exit", "0.01, rest dropped"}, {"single_scattering", "1 octave, no early exit"}, {"single_scattering", "1 octave, 256 view steps"}, {"ambient", "on (sky and ground), against the path tracer with them"}, {"ambient", "on, by height (sessions 1-24), against the path tracer with the sky and ground"},
+      {"ambient", "on, the slab's J alone (session 25), against the path tracer with the sky and ground"},
+      {"ambient", "on, each layer its own slab (session 25), against the path tracer with the sky and ground"}, {"noise_lod", "0 (level 0)"}, {"noise_lod", "2.0"},
       {"light_steps_falloff", "0.5, deep_shadow_map off"}, {"light_steps_falloff", "1.0, deep_shadow_map off"},
       {"light_steps_falloff", "2.0, deep_shadow_map off"}, {"light_steps_falloff", "1 from T 0.3, deep_shadow_map off"},
       {"light_steps_falloff", "1 from T 0.1, deep_shadow_map off"},
@@ -730,6 +737,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       // The ambient as a slab's cost (CloudMarchSettings::ambientSlab): the ambient by height instead.
       {"ambient by height (sessions 1-24)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 1, true, false},
       {"ambient by height (sessions 1-24), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; }, 16, true, false},
+      {"ambient, the slab's J alone (session 25)", [](SkyRenderOptions& o) { o.clouds.ambientFlow = 0.0; }, 1, true, false},
       {"ambient, each layer its own slab (session 25)", [](SkyRenderOptions& o) { o.clouds.ambientThroughOtherLayers = false; }, 1, true, false, true},
       {"ambient, each layer its own slab (session 25), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.ambientThroughOtherLayers = false; }, 16, true, false, true},
       {"view_steps 48", [](SkyRenderOptions& o) { o.clouds.viewSteps = 48; }, 1, true, false},

@@ -201,6 +201,7 @@ void main() {
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
   bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;  // CloudMarchSettings::ambientThroughOtherLayers
+  float ambientFlow = cloud.buildUp.w;  // CloudMarchSettings::ambientFlow (0: the slab's J alone)
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
   float cone = kLightCone ? cloud.march.w : 0.0;
@@ -535,8 +536,9 @@ void main() {
         vec2 othersUpDown = vec2(0.0);  // similarity-scaled already
         if (wantAmbientColumn && ambientThroughOthers && columnsFromMap)
           othersUpDown = columnMapOtherLayersOpticalDepths(columnMap, segmentLayer[s], p, rp);
-        float groundWeight = wantAmbientColumn ? cloudAmbientGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0) + othersUpDown.x,
-                                                                          (1.0 - phaseMeanCosine) * tauDown + othersUpDown.y) : 0.5;
+        float groundWeight = wantAmbientColumn ? cloudAmbientViewGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0) + othersUpDown.x,
+                                                                              (1.0 - phaseMeanCosine) * tauDown + othersUpDown.y,
+                                                                              ambientFlow * phaseMeanCosine, dot(dir, up)) : 0.5;
         float vSky = wantAmbientColumn ? 2.0 * (1.0 - groundWeight) : cloudSkyVisibility(ph, bottomVisibility);
         float vGround = wantAmbientColumn ? 2.0 * groundWeight : cloudGroundVisibility(ph, bottomVisibility);
         vec3 reflectance = atmosphere.ground_albedo / kPi;

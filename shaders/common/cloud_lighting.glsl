@@ -356,6 +356,23 @@ SHARED_INLINE Real cloudAmbientGroundWeight(Real tauUp, Real tauDown) {
   return (max(tauUp, 0.0) + 2.0 / 3.0) / (max(tauUp, 0.0) + max(tauDown, 0.0) + 4.0 / 3.0);
 }
 
+// The ground's share w' of the ambient light a sample scatters towards the camera, for a phase of mean
+// cosine g: the slab's mean radiance J carries no direction, but the slab's light flows from the
+// brighter side to the other, and a forward-scattering phase turns that flow on towards a camera it
+// faces. In Eddington's approximation L(omega) = J + (3 / 4pi) F.omega, with the net flux
+// F = -(4pi / 3) dJ/dtau' straight up (tau' the similarity-scaled depth; J linear in it between the
+// extrapolated boundaries: F_up = (4pi / 3)(L_ground - L_sky) / (tau' + 4/3)). Light scattered into
+// direction v gets S(v) = J + (3 / 4pi) g F.v. The light towards a camera looking along `dir` goes
+// along v = -dir, so with mu_view = dir.up:
+//     S = (1 - w') L_sky + w' L_ground,   w' = w - g mu_view / (tau'_up + tau'_down + 4/3),
+// clamped to [0, 1] (the linear radiance overshoots for a thin cloud and a strongly forward phase).
+// Looking up at a base (mu_view > 0) the sky behind the cloud shows through its forward lobe more
+// than the ground below does; looking down at a top, the ground's light. A uniform field stays uniform.
+SHARED_INLINE Real cloudAmbientViewGroundWeight(Real tauUp, Real tauDown, Real g, Real muView) {
+  Real tau = max(tauUp, 0.0) + max(tauDown, 0.0);
+  return clamp(cloudAmbientGroundWeight(tauUp, tauDown) - g * muView / (tau + 4.0 / 3.0), 0.0, 1.0);
+}
+
 // Ambient light on a cloud sample (docs/clouds.md, "Lighting"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
 // over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +

@@ -1,7 +1,9 @@
 // The ambient's sky and ground weights (common/cloud_lighting.glsl cloudAmbientGroundWeight, used with
 // CloudMarchSettings::ambientSlab): Eddington's conservative slab under a uniform sky above and a uniform
 // ground below, against a Monte Carlo of that slab (isotropic scattering, where the similarity scaling is
-// the identity), and the properties the march relies on.
+// the identity), and the properties the march relies on; and the slab's flux turned towards the camera
+// by a forward phase (cloudAmbientViewGroundWeight, CloudMarchSettings::ambientFlow) against a Monte
+// Carlo of a Henyey-Greenstein slab.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@ namespace firmament {
 namespace {
 
 using shared::cloudAmbientGroundWeight;
+using shared::cloudAmbientViewGroundWeight;
 
 // The mean radiance J in `bins` equal depth bins of a conservative, isotropically scattering slab of optical
 // thickness tau, lit from above by a uniform radiance 1 and black below: photons enter the top
@@ -62,6 +65,76 @@ TEST(CloudAmbient, SlabWeightsAgreeWithMonteCarlo) {
   }
 }
 
+// The light a Henyey-Greenstein (g) slab of optical thickness tau, lit from above by a uniform radiance 1
+// and black below, scatters straight down (towards a camera below looking up: `down` true) or straight
+// up, in `bins` equal depth bins: S(v) = integral of p(omega.v) L(omega) over directions, by the track
+// length estimator S = (pi / N) sum(track length p(omega.v)) / dtau.
+std::vector<double> slabSourceMonteCarlo(double tau, double g, bool down, int bins, int photons, uint64_t seed) {
+  std::vector<double> source(bins, 0.0);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double pi = 3.14159265358979323846;
+  auto hg = [g, pi](double cosine) { return (1.0 - g * g) / (4.0 * pi * std::pow(1.0 + g * g - 2.0 * g * cosine, 1.5)); };
+  for (int n = 0; n < photons; ++n) {
+    // mu: the cosine with the downward vertical; the photon's azimuth does not matter for v vertical.
+    double z = 0.0, mu = std::sqrt(uniform(rng));
+    while (true) {
+      const double z1 = z + mu * -std::log(1.0 - uniform(rng));
+      const double lo = std::min(z, std::clamp(z1, 0.0, tau)), hi = std::max(z, std::clamp(z1, 0.0, tau));
+      const double phase = hg(down ? mu : -mu);
+      for (int i = 0; i < bins; ++i) {
+        const double overlap = std::min(hi, tau * (i + 1) / bins) - std::max(lo, tau * i / bins);
+        if (overlap > 0.0) source[i] += overlap / std::abs(mu) * phase;
+      }
+      if (z1 < 0.0 || z1 > tau) break;
+      z = z1;
+      // Scatter: HG deflection cosine t (inverse CDF), a uniform azimuth phi.
+      const double xi = uniform(rng);
+      const double t = std::abs(g) < 1e-6 ? 2.0 * xi - 1.0
+                                          : (1.0 + g * g - std::pow((1.0 - g * g) / (1.0 - g + 2.0 * g * xi), 2.0)) / (2.0 * g);
+      const double phi = 2.0 * pi * uniform(rng);
+      const double sinMu = std::sqrt(std::max(0.0, 1.0 - mu * mu)), sinT = std::sqrt(std::max(0.0, 1.0 - t * t));
+      mu = std::clamp(mu * t + sinMu * sinT * std::cos(phi), -1.0, 1.0);
+    }
+  }
+  for (double& l : source) l *= pi / photons / (tau / bins);
+  return source;
+}
+
+TEST(CloudAmbient, FlowTowardsTheCameraAgreesWithMonteCarlo) {
+  // S = 1 - w' with w' = cloudAmbientViewGroundWeight over the similarity-scaled depths, against a
+  // Monte Carlo of a HG slab, looking up from below (mu_view 1) and down from above (-1), at each
+  // bin's middle depth; and the slab's J alone (w, session 25) for comparison. Measured (20000 photons;
+  // printed): mean |error| 0.029 with the flow against 0.219 for J alone; the worst bin 0.098 (g 0.8,
+  // tau 0.5 or 2, looking down, where the clamp to [0, 1] holds the linear radiance's overshoot).
+  double flowError = 0.0, meanError = 0.0, worst = 0.0;
+  int n = 0;
+  for (double g : {0.5, 0.8})
+    for (double tau : {0.5, 2.0, 8.0, 32.0})
+      for (bool lookingUp : {true, false}) {
+        const int bins = 8;
+        const std::vector<double> mc = slabSourceMonteCarlo(tau, g, lookingUp, bins, 20000, 11);
+        std::printf("g %.1f tau %5.1f %s  S Monte Carlo / flow / J alone:", g, tau, lookingUp ? "up  " : "down");
+        for (int i = 0; i < bins; ++i) {
+          const double depth = tau * (i + 0.5) / bins, s = 1.0 - g;
+          const double flow = 1.0 - cloudAmbientViewGroundWeight(s * depth, s * (tau - depth), g, lookingUp ? 1.0 : -1.0);
+          const double alone = 1.0 - cloudAmbientGroundWeight(s * depth, s * (tau - depth));
+          std::printf(" %.3f/%.3f/%.3f", mc[i], flow, alone);
+          flowError += std::abs(flow - mc[i]);
+          meanError += std::abs(alone - mc[i]);
+          worst = std::max(worst, std::abs(flow - mc[i]));
+          ++n;
+        }
+        std::printf("\n");
+      }
+  flowError /= n;
+  meanError /= n;
+  std::printf("mean |error|: with the flow %.3f, J alone %.3f; the flow's worst bin %.3f\n", flowError, meanError, worst);
+  EXPECT_LT(flowError, 0.25 * meanError);
+  EXPECT_LT(flowError, 0.04);
+  EXPECT_LT(worst, 0.12);
+}
+
 TEST(CloudAmbient, SlabWeightsKeepAUniformFieldAndTurnWithTheDepth) {
   for (double tau : {0.0, 1e-6, 0.1, 1.0, 10.0, 1e4}) {
     double last = -1.0;
@@ -82,6 +155,20 @@ TEST(CloudAmbient, SlabWeightsKeepAUniformFieldAndTurnWithTheDepth) {
   EXPECT_LT(cloudAmbientGroundWeight(0.0, 1e4), 1e-3);             // the top of a thick deck sees the sky
   EXPECT_GT(cloudAmbientGroundWeight(1e4, 0.0), 1.0 - 1e-3);       // its base the ground
   EXPECT_EQ(cloudAmbientGroundWeight(-1.0, 2.0), cloudAmbientGroundWeight(0.0, 2.0));  // "not known" depths read as 0
+  // The flow: in [0, 1], none without a forward lobe or from a horizontal view, less of the ground
+  // looking up (mu_view > 0), more looking down, fading in a thick slab's interior.
+  for (double mu : {-1.0, -0.3, 0.0, 0.3, 1.0})
+    for (double tau : {0.0, 1.0, 1e4}) {
+      const double w = cloudAmbientViewGroundWeight(0.5 * tau, 0.5 * tau, 0.8, mu);
+      ASSERT_TRUE(std::isfinite(w));
+      EXPECT_GE(w, 0.0);
+      EXPECT_LE(w, 1.0);
+    }
+  EXPECT_EQ(cloudAmbientViewGroundWeight(1.0, 2.0, 0.0, 1.0), cloudAmbientGroundWeight(1.0, 2.0));
+  EXPECT_EQ(cloudAmbientViewGroundWeight(1.0, 2.0, 0.8, 0.0), cloudAmbientGroundWeight(1.0, 2.0));
+  EXPECT_LT(cloudAmbientViewGroundWeight(1.0, 2.0, 0.8, 0.5), cloudAmbientGroundWeight(1.0, 2.0));
+  EXPECT_GT(cloudAmbientViewGroundWeight(1.0, 2.0, 0.8, -0.5), cloudAmbientGroundWeight(1.0, 2.0));
+  EXPECT_NEAR(cloudAmbientViewGroundWeight(5e3, 5e3, 0.8, 1.0), 0.5, 1e-3);
 }
 
 }  // namespace
