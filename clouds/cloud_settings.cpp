@@ -224,6 +224,7 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (ambientSlab) march.ambientSlab = *ambientSlab;
   if (ambientThroughOtherLayers) march.ambientThroughOtherLayers = *ambientThroughOtherLayers;
   if (ambientFlow) march.ambientFlow = *ambientFlow;
+  if (octaveLowSunMu) march.octaveLowSunMu = *octaveLowSunMu;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

@@ -419,6 +419,13 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"light_cone", std::to_string(cone).substr(0, 4), {}, [cone](SkyRenderOptions& o) { o.clouds.lightCone = cone; }});
   for (int n : quick ? std::vector<int>{1, 6} : std::vector<int>{1, 2, 4, 6})
     v.push_back({"octaves", std::to_string(n), {"/clouds/lighting/ms_octaves=" + std::to_string(n)}, [](SkyRenderOptions&) {}});
+  // The octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0) (CloudMarchSettings::
+  // octaveLowSunMu, off by default; session 26): measured, not fitted.
+  for (double mu : {0.34, 0.56}) {
+    v.push_back({"octave_low_sun", "mu_0 " + std::to_string(mu).substr(0, 4) + " (not fitted)", {},
+                 [mu](SkyRenderOptions& o) { o.clouds.octaveLowSunMu = mu; }});
+    v.back().everyScenario = true;
+  }
   // Reduced resolution: the march on a coarser grid, interpolated bilinearly to the image.
   for (int d : quick ? std::vector<int>{2} : std::vector<int>{2, 4})
     v.push_back({"resolution_divisor", std::to_string(d), {}, [d](SkyRenderOptions& o) { o.clouds.resolutionDivisor = d; }});

@@ -501,6 +501,9 @@ void main() {
                                                                   : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
+      // The low-sun scale (CloudMarchSettings::octaveLowSunMu; 1 when off or the sun is high).
+      float lowSunScale = cloud.lowSun.x > 0.0 ? min(1.0, max(muS, 0.0) / cloud.lowSun.x) : 1.0;
+      msSum *= lowSunScale;
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
       // through p, straight up and down, its weight the layer's ms_d; the better of it and the octaves.
       // Two samples down (and tau_up above) for the floor and the ambient: both are smooth functions of
@@ -521,7 +524,7 @@ void main() {
       float msFromSunSide = msSum;  // the octaves and the floor: what builds up along the view (below)
       // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
       if (reflects && sunVisible)
-        msSum += reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
+        msSum += lowSunScale * reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
       float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);
