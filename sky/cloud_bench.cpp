@@ -421,7 +421,7 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"octaves", std::to_string(n), {"/clouds/lighting/ms_octaves=" + std::to_string(n)}, [](SkyRenderOptions&) {}});
   // The octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0) (CloudMarchSettings::
   // octaveLowSunMu, off by default; session 26): measured, not fitted.
-  for (double mu : {0.34, 0.56}) {
+  for (double mu : quick ? std::vector<double>{} : std::vector<double>{0.34, 0.56}) {
     v.push_back({"octave_low_sun", "mu_0 " + std::to_string(mu).substr(0, 4) + " (not fitted)", {},
                  [mu](SkyRenderOptions& o) { o.clouds.octaveLowSunMu = mu; }});
     v.back().everyScenario = true;
