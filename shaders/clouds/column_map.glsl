@@ -36,16 +36,22 @@ vec3 columnMapDirection(vec2 a) {
   return normalize(cloud.columnOrigin.xyz + (a.x / R) * cloud.columnAxisU.xyz + (a.y / R) * cloud.columnAxisV.xyz);
 }
 
-// The optical depths from p (radius r, in `layer`, index j) straight up to the top (x) and straight down
-// to the base (y), read from the map (linear, clamp).
-vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, float r) {
+// The map coordinate of p's column (p at radius r): its plane point by the gnomonic projection, log-warped,
+// clamped to the outermost texel centres.
+vec2 columnMapCoordinate(vec3 p, float r) {
   vec3 q = p / r;
   float R = cloud.columnAxisV.w;
   float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
   vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
   float size = cloud.columnMap.z;
   vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
-  vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  return clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+}
+
+// The optical depths from p (radius r, in `layer`, index j) straight up to the top (x) and straight down
+// to the base (y), read from the map (linear, clamp).
+vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, float r) {
+  vec2 uv = columnMapCoordinate(p, r);
   float K = cloud.columnMap.w;
   float slices = columnMapSlices();
   float z = clamp((r - layer.bottom_radius) / max(layer.top_radius - layer.bottom_radius, 1.0), 0.0, 1.0);
@@ -59,13 +65,7 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
 // optical depths above (x) and below (y) layer j at p's column, baked per column and layer by
 // bake_column_ambient.comp (why and how there), read linear.
 vec2 columnMapOtherLayersOpticalDepths(sampler3D map, int j, vec3 p, float r) {
-  vec3 q = p / r;
-  float R = cloud.columnAxisV.w;
-  float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
-  vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
-  float size = cloud.columnMap.z;
-  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
-  vec2 uv = clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  vec2 uv = columnMapCoordinate(p, r);
   float slices = columnMapSlices();
   float slice = float(columnMapAmbientSlice(j));
   return vec2(textureLod(map, vec3(uv, (slice + 0.5) / slices), 0.0).r, textureLod(map, vec3(uv, (slice + 1.5) / slices), 0.0).r);
