@@ -139,6 +139,43 @@ TEST_F(CloudRender, BuildUpAlongTheViewOnlyDarkensWhereTheCloudBehindIsThin) {
   EXPECT_GT(opaqueSeen, 100);  // measured 316, all in the view up 10 deg
 }
 
+// The octaves' low-sun scale (CloudMarchSettings::octaveLowSunMu, an option, off by default): sun 80 deg
+// from the zenith (mu_s 0.174). With mu_0 below mu_s nothing changes (bit for bit); with mu_0 0.34 the
+// higher orders' light scales by 0.51, so every pixel gets no brighter and the image darker; one octave
+// (single scattering) is not touched. The transmittance never changes.
+TEST_F(CloudRender, OctaveLowSunScaleOnlyDimsTheHigherOrdersBelowItsSun) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.ambient = false;
+  for (const char* octaves : {"/clouds/lighting/ms_octaves=3", "/clouds/lighting/ms_octaves=1"}) {
+    const Scene scene = test::cloudScene({"/sun/zenith_deg=80", octaves});
+    o.clouds.octaveLowSunMu = 0.0;
+    const RenderResult off = test::cloudRenderer().render(scene, o);
+    o.clouds.octaveLowSunMu = 0.1;
+    const RenderResult above = test::cloudRenderer().render(scene, o);
+    o.clouds.octaveLowSunMu = 0.34;
+    const RenderResult scaled = test::cloudRenderer().render(scene, o);
+    double sumOff = 0.0, sumScaled = 0.0;
+    for (size_t i = 0; i < off.clouds.pixelCount(); ++i) {
+      const float* a = &off.clouds.pixels[4 * i];
+      const float* b = &above.clouds.pixels[4 * i];
+      const float* c = &scaled.clouds.pixels[4 * i];
+      ASSERT_EQ(a[3], c[3]) << octaves << " pixel " << i;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(a[k], b[k]) << octaves << " pixel " << i;
+        ASSERT_TRUE(std::isfinite(c[k]) && c[k] >= 0.0f) << octaves << " pixel " << i;
+        ASSERT_LE(c[k], a[k] * (1.0f + 1e-5f) + 1e-6f) << octaves << " pixel " << i;
+      }
+      sumOff += luminanceRec709(a);
+      sumScaled += luminanceRec709(c);
+    }
+    std::printf("%s: luminance with mu_0 0.34 / off %.3f\n", octaves, sumScaled / sumOff);
+    if (std::string(octaves).back() == '1')
+      EXPECT_NEAR(sumScaled, sumOff, 1e-5 * sumOff);  // single scattering alone: unchanged
+    else
+      EXPECT_LT(sumScaled, 0.9 * sumOff);  // measured 0.821
+  }
+}
+
 // Two layers (cumulus under cirrus): the camera under, in, between and above them, the sun overhead,
 // grazing and below the horizon, rays up, level and down. Finite, non-negative, T <= 1 with all
 // octaves; and with one octave (single scattering) the light through the other layer only takes light
