@@ -43,7 +43,7 @@ struct CloudBlock {
   float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
   float columnAxisV[4];                // its axis v; w = the planet radius R (m)
   float deepShadowMap[4];              // the deep shadow map (the other layers' map's placement): texels per side, levels K, near steps, baked (0: none)
-  float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers (1); the flow's scale
+  float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers, baked this frame (1); the flow's scale
   float lowSun[4];                     // the octaves' and the reflected light's low-sun scale: mu_0 (0: off); unused x3
 };
 static_assert(sizeof(CloudBlock) == (31 + kMaxLayers * 6) * 16);
@@ -380,7 +380,9 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.columnAxisV, maps_.columnV, luts.parameters().bottom_radius);
   put(b.deepShadowMap, double(std::max(m.deepShadowMapSize, 1)), double(std::max(m.deepShadowMapLevels, 1)),
       double(std::max(m.deepShadowNearSteps, 0)), usesDeepShadowMap(settings) ? 1.0 : 0.0);
-  put(b.buildUp, std::max(m.msBuildUpScale, 0.0), m.ambientSlab ? 1.0 : 0.0, m.ambientThroughOtherLayers ? 1.0 : 0.0,
+  // z: whether this frame bakes the column map's ambient slices (one layer, or the column map off: none,
+  // and the march must not read them).
+  put(b.buildUp, std::max(m.msBuildUpScale, 0.0), m.ambientSlab ? 1.0 : 0.0, usesColumnAmbient(settings) ? 1.0 : 0.0,
       std::max(m.ambientFlow, 0.0));
   put(b.lowSun, std::clamp(m.octaveLowSunMu, 0.0, 1.0), 0.0, 0.0, 0.0);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
@@ -460,7 +462,7 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
     otherLayerImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
   if (!bake) return;
   bindBake(bakeOtherLayers_, otherLayerImage_, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (height - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+  const uint32_t rows = bakedRows(height);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, 1, "clouds/bake_other_layers");
   commands.barrier();
 }
@@ -475,7 +477,7 @@ void CloudPass::recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image
     image = gpu::Image(context_, {width, width, depth, gpu::Format::R32F, true, true, name});
   if (!bake) return;
   bindBake(pipeline, image, luts, skyIrradiance, skyFrame, commands);
-  const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+  const uint32_t rows = bakedRows(width);
   commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(layers), pass);
   commands.barrier();
 }
@@ -497,7 +499,7 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
   if (bake && usesColumnAmbient(settings)) {
     bindBake(bakeColumnAmbient_, columnImage_, luts, skyIrradiance, skyFrame, commands);
     const uint32_t width = uint32_t(size);
-    const uint32_t rows = (width - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+    const uint32_t rows = bakedRows(width);
     commands.dispatch((width + 7) / 8, (rows + 7) / 8, uint32_t(layers), "clouds/bake_column_ambient");
     commands.barrier();
   }

@@ -135,6 +135,10 @@ class CloudPass {
   void recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels, size_t layers,
                       int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+  // The rows of a map `height` rows high that this frame bakes: every rowStride-th from firstRow.
+  uint32_t bakedRows(uint32_t height) const {
+    return (height - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
+  }
   // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
   // unread) and `target`, the image it writes.
   void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,

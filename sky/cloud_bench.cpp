@@ -299,26 +299,27 @@ std::vector<KnobValue> knobValues(bool quick) {
   // that see a constant sky and ground where they leave the shells. Every other row has sunlight alone
   // on both sides.
   if (!quick) {
-    KnobValue ambient{"ambient", "on (sky and ground), against the path tracer with them", {}, [](SkyRenderOptions& o) { o.clouds.ambient = true; }};
-    ambient.skyAndGround = true;
-    v.push_back(ambient);
+    // Each row turns the ambient on, then `apply` picks the model.
+    auto ambientRow = [&v](const std::string& value, void (*apply)(SkyRenderOptions&), bool severalLayers = false) {
+      KnobValue k{"ambient", value, {}, [apply](SkyRenderOptions& o) {
+                    o.clouds.ambient = true;
+                    apply(o);
+                  }};
+      k.skyAndGround = true;
+      k.severalLayers = severalLayers;
+      v.push_back(k);
+    };
+    ambientRow("on (sky and ground), against the path tracer with them", [](SkyRenderOptions&) {});
     // The ambient by height (sessions 1-24): visibilities linear in the height in the layer.
-    KnobValue byHeight{"ambient", "on, by height (sessions 1-24), against the path tracer with the sky and ground", {},
-                       [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientSlab = false; }};
-    byHeight.skyAndGround = true;
-    v.push_back(byHeight);
+    ambientRow("on, by height (sessions 1-24), against the path tracer with the sky and ground",
+               [](SkyRenderOptions& o) { o.clouds.ambientSlab = false; });
     // The slab's mean radiance J alone (session 25): without its flux turned towards the camera by the
     // phase's forward lobe (CloudMarchSettings::ambientFlow).
-    KnobValue noFlow{"ambient", "on, the slab's J alone (session 25), against the path tracer with the sky and ground", {},
-                     [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientFlow = 0.0; }};
-    noFlow.skyAndGround = true;
-    v.push_back(noFlow);
+    ambientRow("on, the slab's J alone (session 25), against the path tracer with the sky and ground",
+               [](SkyRenderOptions& o) { o.clouds.ambientFlow = 0.0; });
     // Each layer its own slab (session 25): the other layers' columns left out of the slab's depths.
-    KnobValue ownSlab{"ambient", "on, each layer its own slab (session 25), against the path tracer with the sky and ground", {},
-                      [](SkyRenderOptions& o) { o.clouds.ambient = true; o.clouds.ambientThroughOtherLayers = false; }};
-    ownSlab.skyAndGround = true;
-    ownSlab.severalLayers = true;
-    v.push_back(ownSlab);
+    ambientRow("on, each layer its own slab (session 25), against the path tracer with the sky and ground",
+               [](SkyRenderOptions& o) { o.clouds.ambientThroughOtherLayers = false; }, true);
   }
   v.push_back({"single_scattering", "1 octave, no early exit", {"/clouds/lighting/ms_octaves=1"},
                [](SkyRenderOptions& o) { o.clouds.earlyExitTransmittance = 0.0; }, true});

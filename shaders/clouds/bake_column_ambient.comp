@@ -11,15 +11,14 @@
 // turns the sky's light back up. But a broken layer a distance D away is seen through its gaps: the
 // mean radiance J weighs every direction of the hemisphere alike, and direction theta crosses the
 // other layer at a horizontal offset D tan(theta). So each other layer's diffuse transmission
-//   T = 1 / (1 + 3 tau' / 4)
-// (a conservative slab's under diffuse light, Eddington with Marshak's boundaries; tau' = (1 - g) tau of
-// the column there, similarity-scaled) is averaged over 9 columns, three in each third of the
+//   T = (4/3) / (4/3 + tau')
+// (cloudDiffuseSlabTransmission: a conservative slab's under diffuse light, Eddington with Marshak's
+// boundaries; tau' = (1 - g) tau of the column there, similarity-scaled) is averaged over 9 columns, three in each third of the
 // hemisphere's solid angle (cos(theta) 5/6, 1/2, 1/6: tan(theta) 0.663, 1.732, 5.916), and given back
-// as the depth of a uniform layer with that mean, tau' = (1/T - 1) 4/3. A uniform layer comes back
+// as the depth of a uniform layer with that mean, tau' = (1/T - 1) 4/3 (cloudDiffuseSlabDepth). A uniform layer comes back
 // unchanged. D is from the middle of layer j to the middle of the other (at least half the other's
 // thickness). Marching these 9 lookups per lit sample instead cost 18 % of two_layers' still (session 26).
 #include "clouds/cloud_sampling.glsl"
-#include "common/cloud_lighting.glsl"
 #include "clouds/column_map.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -27,9 +26,7 @@ layout(set = 0, binding = 13, r32f) uniform image3D columnImage;
 
 // The whole column of layer i at plane point a (nearest texel, clamped to the map).
 float wholeColumn(vec2 a, int i, int K) {
-  int size = int(cloud.columnMap.z + 0.5);
-  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
-  ivec2 texel = clamp(ivec2(floor((0.5 * s + 0.5) * float(size))), ivec2(0), ivec2(size - 1));
+  ivec2 texel = ivec2(floor(columnMapPlaneCoordinate(a) * cloud.columnMap.z));
   return imageLoad(columnImage, ivec3(texel, i * (K + 1))).r;
 }
 
@@ -43,11 +40,7 @@ void main() {
   vec2 a = columnMapPlanePoint((vec2(texel) + 0.5) / float(size) * 2.0 - 1.0);
   // The similarity scale 1 - g of the light paths' phase (δ-scaled: the scaled medium's, times its
   // sigma_t' / sigma_t), as the march takes it.
-  float albedo = cloud.phase.w;
-  float peakShare = cloud.phaseLight.y;
-  float transportScale = 1.0 - peakShare * albedo;
-  float g = (cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x) - peakShare) / max(1.0 - peakShare, 1e-3);
-  float similarity = transportScale * (1.0 - g);
+  float similarity = cloudLightTransportScale() * (1.0 - cloudLightPhaseMeanCosine());
   CloudLayer own = layerAt(j);
   float middle = 0.5 * (own.bottom_radius + own.top_radius);
   const float kTan[3] = float[3](0.663, 1.732, 5.916);
@@ -62,9 +55,9 @@ void main() {
       for (int k = 0; k < 3; ++k) {
         float angle = 2.0943951 * float(k) + 1.0471976 * float(band);  // 120 deg apart, each band turned 60 deg
         vec2 offset = distance * kTan[band] * vec2(cos(angle), sin(angle));
-        meanTransmission += (1.0 / 9.0) / (1.0 + 0.75 * similarity * wholeColumn(a + offset, i, K));
+        meanTransmission += (1.0 / 9.0) * cloudDiffuseSlabTransmission(similarity * wholeColumn(a + offset, i, K));
       }
-    float depth = (1.0 / max(meanTransmission, 1e-6) - 1.0) * (4.0 / 3.0);
+    float depth = cloudDiffuseSlabDepth(meanTransmission);
     if (otherMiddle > middle)
       depths.x += depth;
     else

@@ -5,6 +5,7 @@
 #define FIRMAMENT_CLOUD_SAMPLING_GLSL
 
 #include "common/cloud_density.glsl"
+#include "common/cloud_lighting.glsl"
 #include "common/cloud_weather.glsl"
 
 layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
@@ -42,9 +43,21 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 columnAxisU;      // its axis u; w: the bake writes every w-th row from the first
   vec4 columnAxisV;      // its axis v; w: the planet radius R of its projection (m)
   vec4 deepShadowMap;    // the deep shadow map (clouds/deep_shadow_map.glsl; placed as the other layers' map): texels per side, levels K, near light steps, baked (0: no map)
-  vec4 buildUp;          // x: the higher orders' build-up along the view, k (CloudMarchSettings::msBuildUpScale; 0: off); y: 1 for the ambient as a slab (CloudMarchSettings::ambientSlab); z: 1 for the slab through the other layers (ambientThroughOtherLayers); w: the slab's flow towards the camera (ambientFlow)
+  vec4 buildUp;          // x: the higher orders' build-up along the view, k (CloudMarchSettings::msBuildUpScale; 0: off); y: 1 for the ambient as a slab (CloudMarchSettings::ambientSlab); z: 1 where the column map's ambient slices are baked this frame (the slab through the other layers: ambientThroughOtherLayers, more than one layer, the column map); w: the slab's flow towards the camera (ambientFlow)
   vec4 lowSun;           // x: the octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0), mu_0 (CloudMarchSettings::octaveLowSunMu; 0: off); yzw unused
 } cloud;
+
+// δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
+// so light paths see sigma_t' = (1 - f omega) sigma_t; 1 without a peak.
+float cloudLightTransportScale() { return 1.0 - cloud.phaseLight.y * cloud.phase.w; }
+
+// The phase's mean cosine as the light paths see it (the diffusion floor, the ambient's slab). With
+// δ-scaling the scaled medium's phase keeps the rest after the peak's share f went straight on:
+// g = f + (1 - f) g', so g' = (g - f) / (1 - f) (f = 0: unchanged).
+float cloudLightPhaseMeanCosine() {
+  float peakShare = cloud.phaseLight.y;
+  return (cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x) - peakShare) / max(1.0 - peakShare, 1e-3);
+}
 
 layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (common/cloud_weather.glsl)
 

@@ -36,16 +36,19 @@ vec3 columnMapDirection(vec2 a) {
   return normalize(cloud.columnOrigin.xyz + (a.x / R) * cloud.columnAxisU.xyz + (a.y / R) * cloud.columnAxisV.xyz);
 }
 
-// The map coordinate of p's column (p at radius r): its plane point by the gnomonic projection, log-warped,
-// clamped to the outermost texel centres.
+// The map coordinate of plane point a: log-warped, clamped to the outermost texel centres.
+vec2 columnMapPlaneCoordinate(vec2 a) {
+  float size = cloud.columnMap.z;
+  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
+  return clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+}
+
+// The map coordinate of p's column (p at radius r): its plane point by the gnomonic projection.
 vec2 columnMapCoordinate(vec3 p, float r) {
   vec3 q = p / r;
   float R = cloud.columnAxisV.w;
   float g = max(dot(q, cloud.columnOrigin.xyz), 1e-3);
-  vec2 a = R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g;
-  float size = cloud.columnMap.z;
-  vec2 s = logWarpTexelCoordinate(a, cloud.columnMap.x, cloud.columnMap.y);
-  return clamp(0.5 * s + 0.5, vec2(0.5 / size), vec2(1.0 - 0.5 / size));
+  return columnMapPlaneCoordinate(R * vec2(dot(q, cloud.columnAxisU.xyz), dot(q, cloud.columnAxisV.xyz)) / g);
 }
 
 // The optical depths from p (radius r, in `layer`, index j) straight up to the top (x) and straight down

@@ -187,20 +187,16 @@ void main() {
   bool ambientOn = (cloud.steps.w & 4) != 0;
   float lightLength = cloud.phaseLight.w;
   float albedo = cloud.phase.w;
-  // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
-  // so light paths see sigma_t' = (1 - f omega) sigma_t; 1 without a peak.
-  float transportScale = 1.0 - cloud.phaseLight.y * albedo;
-  // The phase's mean cosine, for the diffusion floor (its weight is per layer: `diffusion`). With
-  // δ-scaling the floor sees the scaled medium, whose phase keeps the rest after the peak's share f went
-  // straight on: g = f + (1 - f) g', so g' = (g - f) / (1 - f) (f = 0: unchanged).
-  float peakShare = cloud.phaseLight.y;
-  float phaseMeanCosine = (cloudPhaseMeanCosine(cloud.phase.x, cloud.phase.y, cloud.phase.z, cloud.phaseLight.x) - peakShare) /
-                          max(1.0 - peakShare, 1e-3);
+  // The light paths' δ-scaled transport and phase mean cosine (cloud_sampling.glsl; the floor's weight is
+  // per layer: `diffusion`).
+  float transportScale = cloudLightTransportScale();
+  float phaseMeanCosine = cloudLightPhaseMeanCosine();
   float bottomVisibility = cloud.march.x;
   float earlyExit = cloud.march.y;
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
-  bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;  // CloudMarchSettings::ambientThroughOtherLayers
+  // CloudMarchSettings::ambientThroughOtherLayers, where the column map's ambient slices are baked
+  bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;
   float ambientFlow = cloud.buildUp.w;  // CloudMarchSettings::ambientFlow (0: the slab's J alone)
   int coarse = max(int(cloud.march.z + 0.5), 1);
   float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
@@ -537,7 +533,7 @@ void main() {
         // J = (1 - w) L_sky + w L_ground written as (v_sky L_sky + v_ground L_ground) / 2.
         // With the other layers (from the column map only): their whole columns above and below.
         vec2 othersUpDown = vec2(0.0);  // similarity-scaled already
-        if (wantAmbientColumn && ambientThroughOthers && columnsFromMap)
+        if (wantAmbientColumn && ambientThroughOthers)
           othersUpDown = columnMapOtherLayersOpticalDepths(columnMap, segmentLayer[s], p, rp);
         float groundWeight = wantAmbientColumn ? cloudAmbientViewGroundWeight((1.0 - phaseMeanCosine) * max(tauUp, 0.0) + othersUpDown.x,
                                                                               (1.0 - phaseMeanCosine) * tauDown + othersUpDown.y,

@@ -356,6 +356,13 @@ SHARED_INLINE Real cloudAmbientGroundWeight(Real tauUp, Real tauDown) {
   return (max(tauUp, 0.0) + 2.0 / 3.0) / (max(tauUp, 0.0) + max(tauDown, 0.0) + 4.0 / 3.0);
 }
 
+// A conservative slab's transmission of diffuse light, T = (4/3) / (4/3 + tau') (two-stream Eddington
+// with Marshak's boundaries, tau' the similarity-scaled optical depth; 1 - T is the reflectance in
+// cloudReflectedSource), and its inverse: the depth of the uniform slab that transmits T. The ambient's
+// view of a broken layer (bake_column_ambient.comp) averages T over columns and takes the depth back.
+SHARED_INLINE Real cloudDiffuseSlabTransmission(Real tauScaled) { return (4.0 / 3.0) / (4.0 / 3.0 + max(tauScaled, 0.0)); }
+SHARED_INLINE Real cloudDiffuseSlabDepth(Real transmission) { return (4.0 / 3.0) * (1.0 / max(transmission, 1e-6) - 1.0); }
+
 // The ground's share w' of the ambient light a sample scatters towards the camera, for a phase of mean
 // cosine g: the slab's mean radiance J carries no direction, but the slab's light flows from the
 // brighter side to the other, and a forward-scattering phase turns that flow on towards a camera it

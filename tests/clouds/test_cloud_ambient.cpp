@@ -12,6 +12,8 @@
 #include <random>
 #include <vector>
 
+#include "atmosphere/reference_path_tracer.h"
+#include "common/atmosphere_medium.glsl"
 #include "common/cloud_lighting.glsl"
 
 namespace firmament {
@@ -20,27 +22,37 @@ namespace {
 using shared::cloudAmbientGroundWeight;
 using shared::cloudAmbientViewGroundWeight;
 
-// The mean radiance J in `bins` equal depth bins of a conservative, isotropically scattering slab of optical
-// thickness tau, lit from above by a uniform radiance 1 and black below: photons enter the top
-// cosine-weighted (the incident flux pi), and J = (pi / N) sum(track length) / (4 pi dtau).
-std::vector<double> slabMeanRadianceMonteCarlo(double tau, int bins, int photons, uint64_t seed) {
-  std::vector<double> length(bins, 0.0);
+// Photons through a conservative slab of optical thickness tau, lit from above by a uniform radiance 1
+// and black below: each enters the top cosine-weighted (the incident flux pi) and scatters with cosine
+// `deflect(mu, uniform)` until it leaves. `tally(bin, track length, mu)` gets each straight track's
+// length inside each of `bins` equal depth bins, mu its cosine with the downward vertical.
+template <class Deflect, class Tally>
+void traceSlabPhotons(double tau, int bins, int photons, uint64_t seed, Deflect deflect, Tally tally) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  auto draw = [&] { return uniform(rng); };
   for (int n = 0; n < photons; ++n) {
-    double z = 0.0, mu = std::sqrt(uniform(rng));  // depth, and the cosine with the downward vertical
+    double z = 0.0, mu = std::sqrt(draw());  // depth, and the cosine with the downward vertical
     while (true) {
-      const double z1 = z + mu * -std::log(1.0 - uniform(rng));
+      const double z1 = z + mu * -std::log(1.0 - draw());
       const double lo = std::min(z, std::clamp(z1, 0.0, tau)), hi = std::max(z, std::clamp(z1, 0.0, tau));
       for (int i = 0; i < bins; ++i) {
         const double overlap = std::min(hi, tau * (i + 1) / bins) - std::max(lo, tau * i / bins);
-        if (overlap > 0.0) length[i] += overlap / std::abs(mu);
+        if (overlap > 0.0) tally(i, overlap / std::abs(mu), mu);
       }
       if (z1 < 0.0 || z1 > tau) break;
       z = z1;
-      mu = 2.0 * uniform(rng) - 1.0;
+      mu = deflect(mu, draw);
     }
   }
+}
+
+// The mean radiance J in `bins` equal depth bins of that slab, scattering isotropically:
+// J = (pi / N) sum(track length) / (4 pi dtau).
+std::vector<double> slabMeanRadianceMonteCarlo(double tau, int bins, int photons, uint64_t seed) {
+  std::vector<double> length(bins, 0.0);
+  traceSlabPhotons(tau, bins, photons, seed, [](double, auto& draw) { return 2.0 * draw() - 1.0; },
+                   [&](int i, double l, double) { length[i] += l; });
   for (double& l : length) l /= 4.0 * photons * (tau / bins);
   return length;
 }
@@ -71,32 +83,17 @@ TEST(CloudAmbient, SlabWeightsAgreeWithMonteCarlo) {
 // length estimator S = (pi / N) sum(track length p(omega.v)) / dtau.
 std::vector<double> slabSourceMonteCarlo(double tau, double g, bool down, int bins, int photons, uint64_t seed) {
   std::vector<double> source(bins, 0.0);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const double pi = 3.14159265358979323846;
-  auto hg = [g, pi](double cosine) { return (1.0 - g * g) / (4.0 * pi * std::pow(1.0 + g * g - 2.0 * g * cosine, 1.5)); };
-  for (int n = 0; n < photons; ++n) {
-    // mu: the cosine with the downward vertical; the photon's azimuth does not matter for v vertical.
-    double z = 0.0, mu = std::sqrt(uniform(rng));
-    while (true) {
-      const double z1 = z + mu * -std::log(1.0 - uniform(rng));
-      const double lo = std::min(z, std::clamp(z1, 0.0, tau)), hi = std::max(z, std::clamp(z1, 0.0, tau));
-      const double phase = hg(down ? mu : -mu);
-      for (int i = 0; i < bins; ++i) {
-        const double overlap = std::min(hi, tau * (i + 1) / bins) - std::max(lo, tau * i / bins);
-        if (overlap > 0.0) source[i] += overlap / std::abs(mu) * phase;
-      }
-      if (z1 < 0.0 || z1 > tau) break;
-      z = z1;
-      // Scatter: HG deflection cosine t (inverse CDF), a uniform azimuth phi.
-      const double xi = uniform(rng);
-      const double t = std::abs(g) < 1e-6 ? 2.0 * xi - 1.0
-                                          : (1.0 + g * g - std::pow((1.0 - g * g) / (1.0 - g + 2.0 * g * xi), 2.0)) / (2.0 * g);
-      const double phi = 2.0 * pi * uniform(rng);
-      const double sinMu = std::sqrt(std::max(0.0, 1.0 - mu * mu)), sinT = std::sqrt(std::max(0.0, 1.0 - t * t));
-      mu = std::clamp(mu * t + sinMu * sinT * std::cos(phi), -1.0, 1.0);
-    }
-  }
+  // A HG deflection cosine t and a uniform azimuth phi; the photon's own azimuth does not matter for v
+  // vertical.
+  auto deflect = [g, pi](double mu, auto& draw) {
+    const double t = reference::sampleHenyeyGreensteinCosine(g, draw());
+    const double phi = 2.0 * pi * draw();
+    const double sinMu = std::sqrt(std::max(0.0, 1.0 - mu * mu)), sinT = std::sqrt(std::max(0.0, 1.0 - t * t));
+    return std::clamp(mu * t + sinMu * sinT * std::cos(phi), -1.0, 1.0);
+  };
+  traceSlabPhotons(tau, bins, photons, seed, deflect,
+                   [&](int i, double l, double mu) { source[i] += l * shared::henyeyGreensteinPhase(g, down ? mu : -mu); });
   for (double& l : source) l *= pi / photons / (tau / bins);
   return source;
 }
