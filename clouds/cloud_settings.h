@@ -160,8 +160,8 @@ struct CloudMarchSettings {
   // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0) (session 26,
   // a measured option, off: 0). Under a low sun the octaves give about twice the path tracer's higher
   // orders everywhere in a cumulus field (bench scenario cumulus_low_sun); in the tests' thin cumulus
-  // the factor they would need is 0.95, 0.83, 0.61, 0.31 at mu_s 0.77, 0.50, 0.34, 0.17, which
-  // min(1, mu_s / 0.56) follows. Not fitted: docs/clouds.md "Left for later".
+  // the factor they would need is 0.83, 0.61, 0.31 at mu_s 0.50, 0.34, 0.17, which
+  // min(1, mu_s / 0.56) follows within 0.06. Not fitted: docs/clouds.md "Left for later".
   double octaveLowSunMu = 0.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
