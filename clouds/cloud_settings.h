@@ -26,7 +26,9 @@ struct CloudLayerSettings {
   // 0: off, 1: the slab's own value), /clouds/lighting/ms_d or the type's.
   // msR, msRA: the weight r and depth scale a_r of the light the cloud behind a sample (along the sun)
   // turns back towards the sun (cloudReflectedSource; 0: off), /clouds/lighting/ms_r|ms_ra or the type's.
-  double msA = 0.5, msB = 0.5, msC = 0.5, msD = 0.0, msR = 0.0, msRA = 0.0;
+  // msLowSunMu: the octaves' low-sun scale's mu_0 (cloudOctaveLowSunScale; 0: off),
+  // /clouds/lighting/ms_low_sun_mu or the type's.
+  double msA = 0.5, msB = 0.5, msC = 0.5, msD = 0.0, msR = 0.0, msRA = 0.0, msLowSunMu = 0.0;
 };
 
 // How the air between the camera and the clouds is applied (docs/clouds.md "Aerial perspective"):
@@ -161,8 +163,10 @@ struct CloudMarchSettings {
   // a measured option, off: 0). Under a low sun the octaves give about twice the path tracer's higher
   // orders everywhere in a cumulus field (bench scenario cumulus_low_sun); in the tests' thin cumulus
   // the factor they would need is 0.83, 0.61, 0.31 at mu_s 0.50, 0.34, 0.17, which
-  // min(1, mu_s / 0.56) follows within 0.06. Not fitted: docs/clouds.md "Left for later".
-  double octaveLowSunMu = 0.0;
+  // min(1, mu_s / 0.56) follows within 0.06. Since session 27 mu_0 is per layer (CloudLayerSettings::
+  // msLowSunMu, the type's fit or the scene's ms_low_sun_mu); this, where >= 0, overrides it for every
+  // layer (0: off everywhere). Negative: each layer's own.
+  double octaveLowSunMu = -1.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -316,6 +320,7 @@ double cloudTypeExtinction(int kind);
 struct CloudMultipleScattering {
   double a, b, c, d;
   double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale (0: off)
+  double lowSunMu = 0.0;     // the octaves' low-sun scale min(1, mu_s / mu_0): mu_0 (0: off)
 };
 // reflectedLight (/clouds/lighting/reflected_light, default true): the fit with the reflected light
 // (cloudReflectedSource; session 18: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves alone (session 9's fits).

@@ -71,6 +71,16 @@ std::vector<CalibrationScene> calibrationScenes(bool quick) {
        scene(79, 45, 300, 200, 20, R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 2800, "coverage": 0.45, "extinction_scale": 0.3})")},
       {"cu_morning", "cumulus", "cumulus 1300-3000 m, coverage 0.7, seed 83; sun 65 deg, 50 deg to the side of the view; looking up 25 deg",
        scene(83, 65, 100, 150, 25, R"({"kind": "cumulus", "bottom_m": 1300, "top_m": 3000, "coverage": 0.7, "extinction_scale": 0.3})")},
+      // Session 27: four cumulus fields under a low sun (76-85 deg). Until now the lowest cumulus sun was
+      // 70 deg, and the bench's cumulus_low_sun (80 deg) came out +92 % with constants fitted above it.
+      {"cu_low_side", "cumulus", "cumulus 1400-2900 m, coverage 0.55, seed 87; sun 78 deg, to the left; looking up 20 deg",
+       scene(87, 78, 270, 0, 20, R"({"kind": "cumulus", "bottom_m": 1400, "top_m": 2900, "coverage": 0.55, "extinction_scale": 0.3})")},
+      {"cu_low_away", "cumulus", "cumulus 1600-3100 m, coverage 0.6, seed 89; sun 82 deg, behind; looking away from it, up 25 deg",
+       scene(89, 82, 180, 0, 25, R"({"kind": "cumulus", "bottom_m": 1600, "top_m": 3100, "coverage": 0.6, "extinction_scale": 0.3})")},
+      {"cu_low_towards", "cumulus", "cumulus 1300-2700 m, coverage 0.5, seed 91; sun 76 deg; looking 35 deg right of it, up 15 deg",
+       scene(91, 76, 60, 95, 15, R"({"kind": "cumulus", "bottom_m": 1300, "top_m": 2700, "coverage": 0.5, "extinction_scale": 0.3})")},
+      {"cu_dawn", "cumulus", "cumulus 1500-3300 m, coverage 0.65, seed 97; sun 85 deg, 75 deg right of the view; looking up 15 deg",
+       scene(97, 85, 135, 60, 15, R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3300, "coverage": 0.65, "extinction_scale": 0.3})")},
       {"sc_afternoon", "stratocumulus", "stratocumulus 800-1800 m, coverage 0.8, seed 3; sun 60 deg; looking away, up 30 deg",
        scene(3, 60, 200, 20, 30, R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1800, "coverage": 0.8, "extinction_scale": 0.3})")},
       {"sc_dusk", "stratocumulus", "stratocumulus 1200-2000 m, coverage 0.6, seed 17; sun 80 deg; 50 deg left of it, up 20 deg",
@@ -174,7 +184,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   // The errors of one parameter set on the scenes of a group. With `pixelsColumn` (--images, the final
   // set) each scene's pixels are also written beside the reference's, from the same render
   // (DIR/images/SCENE_pixels.csv, the column so named).
-  auto evaluate = [&](const std::string& group, double a, double b, double c, double d, double r, double ra,
+  auto evaluate = [&](const std::string& group, double a, double b, double c, double d, double r, double ra, double mu0,
                       std::vector<CloudCalibrationSceneError>& out, const std::string& pixelsColumn = "") {
     out.clear();
     double sum = 0.0;
@@ -185,7 +195,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
                                         "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
                                         "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
                                         "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
-                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra)});
+                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra),
+                                        "/clouds/lighting/ms_low_sun_mu=" + number(mu0)});
       const RenderResult rendered = p.renderer->render(scene, options);
       if (!pixelsColumn.empty()) {
         std::filesystem::create_directories(config.outDir / "images");
@@ -200,10 +211,10 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   };
 
   // The pixels CSV's column for a final parameter set (empty without --images: none written).
-  auto pixelsColumn = [&](const char* what, double a, double b, double c, double d, double r, double ra) {
+  auto pixelsColumn = [&](const char* what, double a, double b, double c, double d, double r, double ra, double mu0) {
     if (!config.images) return std::string();
-    char column[160];
-    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f", what, a, b, c, d, r, ra);
+    char column[200];
+    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f", what, a, b, c, d, r, ra, mu0);
     return std::string(column);
   };
 
@@ -227,22 +238,57 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
         group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, false);
     auto f = [&](const Point& x) {
       ++fit.evaluations;
-      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], scratch);
-      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], scratch);
+      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], shipped0.lowSunMu, scratch);
+      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], shipped0.lowSunMu, scratch);
     };
     // The group's shipped constants: its type's, or for "all" the joint fit.
     const CloudMultipleScattering shipped =
         group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
+    fit.lowSunMu = shipped.lowSunMu;
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
-      fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
-      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit,
-                                  pixelsColumn("shipped", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra));
-      char line[200];
-      std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f",
-                    group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveFit));
+      fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, 0.0, fit.start);
+      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
+                                  pixelsColumn("shipped", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
+      char line[220];
+      std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f: rms rel RMSE %.4f",
+                    group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, std::sqrt(fit.objectiveFit));
       logInfo(line);
+      result.fits.push_back(std::move(fit));
+      continue;
+    }
+    if (config.lowSunOnly) {
+      // mu_0 alone: a sweep (the objective against mu_0 is worth seeing whole, and cheap: one parameter),
+      // then golden sections inside the best point's neighbours.
+      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
+      fit.objectiveStart = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, 0.0, fit.start);
+      std::vector<CloudCalibrationSweepPoint> sweep;
+      for (int k = 0; k <= 16; ++k) {
+        CloudCalibrationSweepPoint point{group, 0.05 * k, 0.0, {}};
+        point.objective = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, point.lowSunMu, point.scenes);
+        ++fit.evaluations;
+        logInfo("calibrate clouds: " + group + " mu_0 " + number(point.lowSunMu) + ": rms rel RMSE " + number(std::sqrt(point.objective)));
+        sweep.push_back(std::move(point));
+      }
+      const size_t best = size_t(std::min_element(sweep.begin(), sweep.end(), [](const auto& x, const auto& y) { return x.objective < y.objective; }) -
+                                 sweep.begin());
+      double lo = sweep[best > 0 ? best - 1 : 0].lowSunMu, hi = sweep[std::min(best + 1, sweep.size() - 1)].lowSunMu;
+      const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
+      double f1 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x1, scratch);
+      double f2 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x2, scratch);
+      fit.evaluations += 2;
+      for (int k = 0; k < 6; ++k, ++fit.evaluations) {
+        if (f1 < f2) hi = x2, x2 = x1, f2 = f1, x1 = hi - phi * (hi - lo), f1 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x1, scratch);
+        else lo = x1, x1 = x2, f1 = f2, x2 = lo + phi * (hi - lo), f2 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x2, scratch);
+      }
+      fit.lowSunMu = sweep[best].objective <= std::min(f1, f2) ? sweep[best].lowSunMu : f1 < f2 ? x1 : x2;
+      fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
+                                  pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
+      logInfo("calibrate clouds: " + group + " low-sun mu_0 " + number(fit.lowSunMu) + ": rms rel RMSE " + number(std::sqrt(fit.objectiveStart)) +
+              " (off) -> " + number(std::sqrt(fit.objectiveFit)));
+      result.lowSunSweep.insert(result.lowSunSweep.end(), sweep.begin(), sweep.end());
       result.fits.push_back(std::move(fit));
       continue;
     }
@@ -261,7 +307,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     }
     std::array<double, 7> value{};
     for (int i = 0; i <= N; ++i) value[i] = f(simplex[i]);
-    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, fit.start);
+    fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, 0.0, fit.start);
     while (fit.evaluations < config.maxEvaluations) {
       std::vector<int> order(size_t(N) + 1);
       for (int i = 0; i <= N; ++i) order[size_t(i)] = i;
@@ -310,8 +356,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.r = 4.0 * x[4];
     fit.ra = x[5];
     if (rOnly) fit.a = shipped0.a, fit.b = shipped0.b, fit.c = shipped0.c, fit.d = shipped0.d, fit.r = 4.0 * x[0], fit.ra = x[1];
-    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.fit,
-                                pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra));
+    fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
+                                pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
     char line[256];
     std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
                   group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit),
@@ -324,7 +370,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 }
 
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
-  std::string csv = "group,a,b,c,d,r,a_r,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
+  std::string csv = "group,a,b,c,d,r,a_r,low_sun_mu,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
   std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
                    "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
                    "sc_thin x 0.15, the cumulonimbus x 0.1, cirrus at its own extinction), " +
@@ -339,16 +385,21 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
   if (config.evaluateDefaults)
     md += "**No fit (`--evaluate-defaults`)**: the columns `a b c d` and `at the fit` are each group's shipped constants "
           "(cloudTypeMultipleScattering; `all`: the joint fit) and their errors.\n\n";
+  if (config.lowSunOnly)
+    md += "**The low-sun scale's mu_0 alone (`--low-sun`)**: every other constant at the group's shipped fit (with the reflected "
+          "light); `start` is those constants with the scale off (mu_0 = 0), `at the fit` with the fitted mu_0. The sweep's points "
+          "are in clouds_calibration_low_sun.csv.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   char line[512];
   std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
                 result.fitSeconds, result.device.c_str());
   md += line;
-  md += "| group | a | b | c | d | r | a_r | evaluations | rms rel RMSE at a = b = c = 0.5, d = 1 | at the fit |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md += std::string("| group | a | b | c | d | r | a_r | mu_0 | evaluations | rms rel RMSE at ") +
+        (config.lowSunOnly ? "mu_0 = 0" : "a = b = c = 0.5, d = 1") + " | at the fit |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& f : result.fits) {
-    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b,
-                  f.c, f.d, f.r, f.ra, f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
+    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b,
+                  f.c, f.d, f.r, f.ra, f.lowSunMu, f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
     md += line;
   }
   md += "\n| group | scene | rel RMSE start | corrected | bias | rel RMSE fit | corrected | noise | bias |\n"
@@ -362,14 +413,25 @@ void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const Cl
                     e.meanBias);
       md += line;
       for (const auto* x : {&s, &e}) {
-        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
-                      x == &s ? 0.5 : f.a, x == &s ? 0.5 : f.b, x == &s ? 0.5 : f.c, x == &s ? 1.0 : f.d, x == &s ? 0.0 : f.r,
-                      x == &s ? 0.0 : f.ra, x->scene.c_str(), x->relRmse,
+        const bool start = x == &s && !config.lowSunOnly;  // the low-sun fit's start is the shipped constants, mu_0 0
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
+                      start ? 0.5 : f.a, start ? 0.5 : f.b, start ? 0.5 : f.c, start ? 1.0 : f.d, start ? 0.0 : f.r,
+                      start ? 0.0 : f.ra, x == &s ? 0.0 : f.lowSunMu, x->scene.c_str(), x->relRmse,
                       x->noiseCorrected, x->noiseFloor, x->meanBias, x == &s ? "start" : "fit");
         csv += line;
       }
     }
   writeTextFileAtomically(config.outDir / "clouds_calibration.csv", csv);
+  if (!result.lowSunSweep.empty()) {
+    std::string sweep = "group,low_sun_mu,rms_rel_rmse,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias\n";
+    for (const CloudCalibrationSweepPoint& p : result.lowSunSweep)
+      for (const CloudCalibrationSceneError& e : p.scenes) {
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.6g,%s,%.6g,%.6g,%.6g,%.6g\n", p.group.c_str(), p.lowSunMu, std::sqrt(p.objective),
+                      e.scene.c_str(), e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias);
+        sweep += line;
+      }
+    writeTextFileAtomically(config.outDir / "clouds_calibration_low_sun.csv", sweep);
+  }
   writeTextFileAtomically(config.outDir / "clouds_calibration.md", md);
 }
 

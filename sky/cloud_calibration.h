@@ -40,6 +40,10 @@ struct CloudCalibrationConfig {
   bool reflection = false;
   // Fit r and a_r alone, the octaves' a, b, c, d fixed at their own fit (without the reflected light).
   bool reflectionOnly = false;
+  // Fit the octaves' low-sun scale's mu_0 alone (cloudOctaveLowSunScale), every other constant at the
+  // group's shipped fit with the reflected light: a sweep over mu_0 in 0, 0.05, ..., 0.8 (each point's
+  // per-scene errors in clouds_calibration_low_sun.csv), the best point refined by golden sections.
+  bool lowSunOnly = false;
   // /clouds/lighting/phase on both sides: the octaves' c scales the phase's lobes, so each phase model
   // needs its own a, b, c ("dual_henyey_greenstein" or "approximate_mie").
   std::string phase = "dual_henyey_greenstein";
@@ -55,13 +59,22 @@ struct CloudCalibrationFit {
   std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all" (the cumulus and stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
   double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale
+  double lowSunMu = 0.0;     // the octaves' low-sun scale's mu_0 (0: off)
   int evaluations = 0;
   double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
   std::vector<CloudCalibrationSceneError> start, fit;  // per scene
 };
 
+// One point of the low-sun sweep (CloudCalibrationConfig::lowSunOnly).
+struct CloudCalibrationSweepPoint {
+  std::string group;
+  double lowSunMu = 0.0, objective = 0.0;  // mean squared rel RMSE over the group
+  std::vector<CloudCalibrationSceneError> scenes;
+};
+
 struct CloudCalibrationResult {
   std::vector<CloudCalibrationFit> fits;
+  std::vector<CloudCalibrationSweepPoint> lowSunSweep;
   std::string device;
   double referenceSeconds = 0.0, fitSeconds = 0.0;
 };

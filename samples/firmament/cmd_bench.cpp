@@ -89,7 +89,10 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.lightSteps = args.integer("light-steps", 0, 1, 64);
   config.evaluateDefaults = args.has("evaluate-defaults");
   config.images = args.has("images");
-  config.reflection = args.has("reflection") || args.has("reflection-only");
+  config.lowSunOnly = args.has("low-sun");
+  if (config.lowSunOnly && (args.has("reflection-only") || args.has("evaluate-defaults")))
+    throw InputError("--low-sun: not with --reflection-only or --evaluate-defaults (it fits mu_0 alone, the rest at the shipped fit)");
+  config.reflection = args.has("reflection") || args.has("reflection-only") || config.lowSunOnly;
   config.reflectionOnly = args.has("reflection-only");
   if (config.reflection) config.maxEvaluations = 150;  // six dimensions instead of four
   config.group = args.getOr("group", "");
@@ -196,7 +199,7 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only]] [--device D]",
+    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only|--low-sun]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
@@ -210,6 +213,7 @@ const CommandRegistration registration{Command{
         {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
         {"reflection", "", "with --calibrate: also fit the reflected light's r and a_r (cloudReflectedSource)"},
         {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants fixed at their own fit"},
+        {"low-sun", "", "with --calibrate: fit the octaves' low-sun scale's mu_0 alone (a sweep, then golden sections), the rest at the shipped fit"},
         {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
         {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images (with --calibrate: each scene's per-pixel CSV at the fit)"},

@@ -228,6 +228,7 @@ void main() {
   float diffusion = 0.0;  // that layer's diffusion-floor weight d
   float baseLimb = 0.0;   // and its base's limb darkening (cloudBaseLimbFactor's strength)
   float reflectWeight = 0.0, reflectDepthScale = 0.0;  // that layer's reflected light's r and a_r
+  float lowSunMu = 0.0;                                // that layer's low-sun scale's mu_0 (0: off)
   vec2 texels = vec2(1.0);  // that layer's noise texel sizes (noiseTexels)
 
   float transmittance = 1.0;       // the true one: the alpha, opacity and depth
@@ -334,6 +335,7 @@ void main() {
       baseLimb = cloud.layerLighting[phaseLayer].w;
       reflectWeight = cloud.layerLighting[phaseLayer].y;
       reflectDepthScale = cloud.layerLighting[phaseLayer].z;
+      lowSunMu = cloud.layerLowSun[phaseLayer / 4][phaseLayer % 4];
       float weightScale = cloudOctaveWeightScale(b, octaves);
       for (int o = 0; o < octaves; ++o) {
         phaseOctave[o] = cloudPhase(cloud.phase.x * cloudOctaveEccentricityScale(c, o), cloud.phase.y * cloudOctaveEccentricityScale(c, o),
@@ -497,8 +499,8 @@ void main() {
                                                                   : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
-      // The low-sun scale (CloudMarchSettings::octaveLowSunMu; 1 when off or the sun is high).
-      float lowSunScale = cloud.lowSun.x > 0.0 ? min(1.0, max(muS, 0.0) / cloud.lowSun.x) : 1.0;
+      // The layer's low-sun scale (cloudOctaveLowSunScale; 1 when off or the sun is high).
+      float lowSunScale = cloudOctaveLowSunScale(muS, lowSunMu);
       msSum *= lowSunScale;
       // The diffusion floor (cloudEddingtonSlabSource): the layer as a slab between its top and base
       // through p, straight up and down, its weight the layer's ms_d; the better of it and the octaves.
