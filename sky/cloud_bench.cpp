@@ -420,10 +420,12 @@ std::vector<KnobValue> knobValues(bool quick) {
     v.push_back({"light_cone", std::to_string(cone).substr(0, 4), {}, [cone](SkyRenderOptions& o) { o.clouds.lightCone = cone; }});
   for (int n : quick ? std::vector<int>{1, 6} : std::vector<int>{1, 2, 4, 6})
     v.push_back({"octaves", std::to_string(n), {"/clouds/lighting/ms_octaves=" + std::to_string(n)}, [](SkyRenderOptions&) {}});
-  // The octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0) (CloudMarchSettings::
-  // octaveLowSunMu, off by default; session 26): measured, not fitted.
-  for (double mu : quick ? std::vector<double>{} : std::vector<double>{0.34, 0.56}) {
-    v.push_back({"octave_low_sun", "mu_0 " + std::to_string(mu).substr(0, 4) + " (not fitted)", {},
+  // The octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0) (cloudOctaveLowSunScale): each
+  // layer's type's mu_0 by default (cumulus 0.412 since session 27, fitted on the calibration's low-sun
+  // scenes); here off, or one mu_0 for every layer (CloudMarchSettings::octaveLowSunMu; session 26's
+  // measured values, not fitted).
+  for (double mu : quick ? std::vector<double>{} : std::vector<double>{0.0, 0.34, 0.56}) {
+    v.push_back({"octave_low_sun", mu == 0.0 ? std::string("off (session 26)") : "mu_0 " + std::to_string(mu).substr(0, 4) + " for every layer", {},
                  [mu](SkyRenderOptions& o) { o.clouds.octaveLowSunMu = mu; }});
     v.back().everyScenario = true;
   }

@@ -139,8 +139,8 @@ TEST_F(CloudRender, BuildUpAlongTheViewOnlyDarkensWhereTheCloudBehindIsThin) {
   EXPECT_GT(opaqueSeen, 100);  // measured 316, all in the view up 10 deg
 }
 
-// The octaves' low-sun scale (CloudMarchSettings::octaveLowSunMu, an option, off by default): sun 80 deg
-// from the zenith (mu_s 0.174). With mu_0 below mu_s nothing changes (bit for bit); with mu_0 0.34 the
+// The octaves' low-sun scale (cloudOctaveLowSunScale; each layer's mu_0, here overridden for all by
+// CloudMarchSettings::octaveLowSunMu): sun 80 deg from the zenith (mu_s 0.174). With mu_0 below mu_s nothing changes (bit for bit); with mu_0 0.34 the
 // higher orders' light scales by 0.51, so every pixel gets no brighter and the image darker; one octave
 // (single scattering) is not touched. The transmittance never changes.
 TEST_F(CloudRender, OctaveLowSunScaleOnlyDimsTheHigherOrdersBelowItsSun) {
@@ -183,6 +183,32 @@ TEST_F(CloudRender, OctaveLowSunScaleOnlyDimsTheHigherOrdersBelowItsSun) {
 // same samples; 1e-5 relative for float rounding). With more octaves it may add light, as it should:
 // their scattered-only attenuation e^(-a^i tau) - e^(-tau) grows with tau while tau is small (light the
 // other layer scattered towards the sample; a side view under a high sun measured +13 % at one pixel).
+// Each layer takes its own type's low-sun mu_0 into the march (CloudLayerSettings::msLowSunMu): under a
+// sun 80 deg from the zenith a cumulus layer renders bit for bit as with mu_0 0.412 for every layer, a
+// stratocumulus layer as with the scale off, and the two together as neither (the check can fail: one
+// shared value would match one of them).
+TEST_F(CloudRender, LayerTypesTakeTheirOwnLowSunScale) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.ambient = false;
+  const std::string cumulus = R"({"kind": "cumulus", "bottom_m": 2500, "top_m": 4000, "coverage": 0.6})";
+  const std::string stratocumulus = R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1600, "coverage": 0.6})";
+  auto render = [&](const std::string& layers, double mu0) {
+    const Scene scene = test::cloudScene({"/sun/zenith_deg=80", "/camera/pitch_deg=20"}, test::cloudSceneText(layers));
+    o.clouds.octaveLowSunMu = mu0;
+    return test::cloudRenderer().render(scene, o).clouds.pixels;
+  };
+  const double cumulusMu0 = cloudTypeMultipleScattering(shared::kCloudCumulus).lowSunMu;
+  ASSERT_GT(cumulusMu0, 0.174);
+  ASSERT_EQ(cloudTypeMultipleScattering(shared::kCloudStratocumulus).lowSunMu, 0.0);
+  EXPECT_EQ(render(cumulus, -1.0), render(cumulus, cumulusMu0));
+  EXPECT_NE(render(cumulus, -1.0), render(cumulus, 0.0));
+  EXPECT_EQ(render(stratocumulus, -1.0), render(stratocumulus, 0.0));
+  const std::string both = stratocumulus + ", " + cumulus;
+  const auto own = render(both, -1.0);
+  EXPECT_NE(own, render(both, 0.0));
+  EXPECT_NE(own, render(both, cumulusMu0));
+}
+
 TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 24;
@@ -655,6 +681,14 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_d=3"}, twoLayers)), InputError);
   EXPECT_EQ(given.layers[1].msC, 0.7);
   EXPECT_EQ(given.layers[0].msB, sc.b);
+  // The low-sun scale's mu_0 (session 27): cumulus's fit, none for stratocumulus; the scene's for every layer.
+  EXPECT_EQ(typed.layers[1].msLowSunMu, cu.lowSunMu);
+  EXPECT_GT(cu.lowSunMu, 0.0);
+  EXPECT_EQ(typed.layers[0].msLowSunMu, sc.lowSunMu);
+  const CloudSettings lowSunGiven = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=0.2"}, twoLayers));
+  EXPECT_EQ(lowSunGiven.layers[0].msLowSunMu, 0.2);
+  EXPECT_EQ(lowSunGiven.layers[1].msLowSunMu, 0.2);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=1.5"}, twoLayers)), InputError);
 }
 
 // The quality presets change the march's steps only. The octave parameters are fitted for 3 octaves: a
