@@ -120,6 +120,7 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --timing-only --images", {"--timing-only", "--images"}},
       {"bench clouds --timing-only --reference-spp 64", {"--timing-only", "--reference-spp"}},
       {"bench clouds --calibrate --timing-only", {"--timing-only", "--calibrate"}},
+      {"bench clouds --calibrate --low-sun --reflection-only", {"--low-sun", "--reflection-only"}},
       {"bench clouds --timing-only --timing-size 1920", {"--timing-size 1920", "WxH", "8..8192"}},
       {"bench clouds --timing-only --timing-size 4x4", {"--timing-size 4x4", "WxH"}},
       {"bench clouds --timing-setting quality", {"--timing-setting", "--timing-only"}},
