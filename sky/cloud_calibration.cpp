@@ -234,16 +234,17 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       return x;
     };
     std::vector<CloudCalibrationSceneError> scratch;
+    // The group's shipped constants: its type's, or for "all" the joint fit.
+    const CloudMultipleScattering shipped =
+        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
     const CloudMultipleScattering shipped0 =
         group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, false);
     auto f = [&](const Point& x) {
       ++fit.evaluations;
-      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], shipped0.lowSunMu, scratch);
-      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], shipped0.lowSunMu, scratch);
+      // The low-sun scale stays at the group's shipped mu_0 while the other constants are fitted.
+      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], shipped.lowSunMu, scratch);
+      return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], shipped.lowSunMu, scratch);
     };
-    // The group's shipped constants: its type's, or for "all" the joint fit.
-    const CloudMultipleScattering shipped =
-        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
     fit.lowSunMu = shipped.lowSunMu;
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
