@@ -159,13 +159,12 @@ struct CloudMarchSettings {
   // The slab's net flux turned towards the camera by the phase's forward lobe (common/cloud_lighting.glsl
   // cloudAmbientViewGroundWeight), times this; 0: the slab's mean radiance J alone (session 25).
   double ambientFlow = 1.0;
-  // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0) (session 26,
-  // a measured option, off: 0). Under a low sun the octaves give about twice the path tracer's higher
-  // orders everywhere in a cumulus field (bench scenario cumulus_low_sun); in the tests' thin cumulus
-  // the factor they would need is 0.83, 0.61, 0.31 at mu_s 0.50, 0.34, 0.17, which
-  // min(1, mu_s / 0.56) follows within 0.06. Since session 27 mu_0 is per layer (CloudLayerSettings::
-  // msLowSunMu, the type's fit or the scene's ms_low_sun_mu); this, where >= 0, overrides it for every
-  // layer (0: off everywhere). Negative: each layer's own.
+  // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0)
+  // (cloudOctaveLowSunScale). Under a low sun the octaves gave up to three times the path tracer's
+  // higher orders in cumulus fields (bench scenario cumulus_low_sun, the calibration's low-sun scenes).
+  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.412 since session 27,
+  // or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere;
+  // session 26's option); negative: each layer's own.
   double octaveLowSunMu = -1.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
