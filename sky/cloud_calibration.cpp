@@ -263,11 +263,14 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       // mu_0 alone: a sweep (the objective against mu_0 is worth seeing whole, and cheap: one parameter),
       // then golden sections inside the best point's neighbours.
       fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
-      fit.objectiveStart = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, 0.0, fit.start);
+      auto atMu = [&](double mu0, std::vector<CloudCalibrationSceneError>& out) {
+        return evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, mu0, out);
+      };
+      fit.objectiveStart = atMu(0.0, fit.start);
       std::vector<CloudCalibrationSweepPoint> sweep;
       for (int k = 0; k <= 16; ++k) {
         CloudCalibrationSweepPoint point{group, 0.05 * k, 0.0, {}};
-        point.objective = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, point.lowSunMu, point.scenes);
+        point.objective = atMu(point.lowSunMu, point.scenes);
         ++fit.evaluations;
         logInfo("calibrate clouds: " + group + " mu_0 " + number(point.lowSunMu) + ": rms rel RMSE " + number(std::sqrt(point.objective)));
         sweep.push_back(std::move(point));
@@ -277,12 +280,16 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       double lo = sweep[best > 0 ? best - 1 : 0].lowSunMu, hi = sweep[std::min(best + 1, sweep.size() - 1)].lowSunMu;
       const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
       double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
-      double f1 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x1, scratch);
-      double f2 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x2, scratch);
+      double f1 = atMu(x1, scratch), f2 = atMu(x2, scratch);
       fit.evaluations += 2;
       for (int k = 0; k < 6; ++k, ++fit.evaluations) {
-        if (f1 < f2) hi = x2, x2 = x1, f2 = f1, x1 = hi - phi * (hi - lo), f1 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x1, scratch);
-        else lo = x1, x1 = x2, f1 = f2, x2 = lo + phi * (hi - lo), f2 = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, x2, scratch);
+        if (f1 < f2) {
+          hi = x2, x2 = x1, f2 = f1, x1 = hi - phi * (hi - lo);
+          f1 = atMu(x1, scratch);
+        } else {
+          lo = x1, x1 = x2, f1 = f2, x2 = lo + phi * (hi - lo);
+          f2 = atMu(x2, scratch);
+        }
       }
       fit.lowSunMu = sweep[best].objective <= std::min(f1, f2) ? sweep[best].lowSunMu : f1 < f2 ? x1 : x2;
       fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,

@@ -184,7 +184,7 @@ SHARED_INLINE Real cloudFloorLowSunFactor(Real mu0) {
 
 // The octaves' (i >= 1) and the reflected light's low-sun scale min(1, mu_s / mu_0) (mu_0 <= 0: off, 1).
 // Measured, not derived: in broken cumulus fields under a low sun the octaves, fitted under higher suns,
-// give about twice the path tracer's higher orders everywhere (docs/clouds.md "Lighting", the low sun),
+// give up to three times the path tracer's higher orders, nearly uniformly over the image (docs/clouds.md "Lighting", the low sun),
 // while the single scattering is right. mu_0 is fitted per cloud type on calibration scenes with suns at
 // 76-85 deg (the `--low-sun` fit of `bench clouds --calibrate`).
 SHARED_INLINE Real cloudOctaveLowSunScale(Real muS, Real mu0) {
@@ -310,6 +310,15 @@ SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real viewTran
   return 1.0 - strength * 0.6 * exp(-m / 0.15) * min(exp(-max(tauBelow, 0.0) / m), clamp(viewTransmittance, 0.0, 1.0));
 }
 
+// A conservative slab's transmission of diffuse light, T = (4/3) / (4/3 + tau') (two-stream Eddington
+// with Marshak's boundaries, tau' the similarity-scaled optical depth), its reflectance 1 - T =
+// tau' / (4/3 + tau') (written so, exact as tau' -> 0: cloudReflectedSource), and the inverse of T: the
+// depth of the uniform slab that transmits T. The ambient's view of a broken layer
+// (bake_column_ambient.comp) averages T over columns and takes the depth back.
+SHARED_INLINE Real cloudDiffuseSlabTransmission(Real tauScaled) { return (4.0 / 3.0) / (4.0 / 3.0 + max(tauScaled, 0.0)); }
+SHARED_INLINE Real cloudDiffuseSlabReflectance(Real tauScaled) { return max(tauScaled, 0.0) / (4.0 / 3.0 + max(tauScaled, 0.0)); }
+SHARED_INLINE Real cloudDiffuseSlabDepth(Real transmission) { return (4.0 / 3.0) * (1.0 / max(transmission, 1e-6) - 1.0); }
+
 // The light that the cloud behind a sample (further from the sun along the sun's line) turns back
 // towards the sun, as a source for octaves i >= 1, per unit solar irradiance and per steradian
 // (docs/clouds.md, "Multiple scattering"). The octaves carry light on along the sun's direction
@@ -317,7 +326,7 @@ SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real viewTran
 // light reflected by the cloud under it, which they lack (session 8: that quarter of the noon pixels
 // -21 % without the diffusion floor). Three factors:
 //   - the reflectance of the medium behind, optical depth tauBehind along the sun: s tau / (4/3 + s tau)
-//     with s = 1 - g, the diffuse reflectance of a conservative slab in the two-stream (Eddington) form
+//     with s = 1 - g (cloudDiffuseSlabReflectance), the diffuse reflectance of a conservative slab in the two-stream (Eddington) form
 //     1 - T, T = (4/3) / (4/3 + (1 - g) tau) (Shettle and Weinman 1970): 0 for a thin wisp, towards 1
 //     for a deep cloud;
 //   - exp(-depthScale tauSun): the sunlight reaching the reflecting medium and the reflected light
@@ -326,9 +335,7 @@ SHARED_INLINE Real cloudBaseLimbFactor(Real muDown, Real tauBelow, Real viewTran
 //     the sun, so a camera with the sun behind it (nu -> -1) sees it scattered forward, a camera looking
 //     towards the sun sees little of it.
 SHARED_INLINE Real cloudReflectedSource(Real tauBehind, Real tauSun, Real g, Real depthScale, Real nu) {
-  Real t = (1.0 - g) * max(tauBehind, 0.0);
-  Real reflectance = t / (4.0 / 3.0 + t);
-  return reflectance * exp(-depthScale * max(tauSun, 0.0)) * (1.0 - nu) / (4.0 * kPi);
+  return cloudDiffuseSlabReflectance((1.0 - g) * max(tauBehind, 0.0)) * exp(-depthScale * max(tauSun, 0.0)) * (1.0 - nu) / (4.0 * kPi);
 }
 
 // The higher orders' build-up along the view ray (docs/clouds.md, "Build-up along the view"). The
@@ -364,13 +371,6 @@ SHARED_INLINE Real cloudBuildUpStepWeight(Real k, Real dTau) { return exp(-0.5 *
 SHARED_INLINE Real cloudAmbientGroundWeight(Real tauUp, Real tauDown) {
   return (max(tauUp, 0.0) + 2.0 / 3.0) / (max(tauUp, 0.0) + max(tauDown, 0.0) + 4.0 / 3.0);
 }
-
-// A conservative slab's transmission of diffuse light, T = (4/3) / (4/3 + tau') (two-stream Eddington
-// with Marshak's boundaries, tau' the similarity-scaled optical depth; 1 - T is the reflectance in
-// cloudReflectedSource), and its inverse: the depth of the uniform slab that transmits T. The ambient's
-// view of a broken layer (bake_column_ambient.comp) averages T over columns and takes the depth back.
-SHARED_INLINE Real cloudDiffuseSlabTransmission(Real tauScaled) { return (4.0 / 3.0) / (4.0 / 3.0 + max(tauScaled, 0.0)); }
-SHARED_INLINE Real cloudDiffuseSlabDepth(Real transmission) { return (4.0 / 3.0) * (1.0 / max(transmission, 1e-6) - 1.0); }
 
 // The ground's share w' of the ambient light a sample scatters towards the camera, for a phase of mean
 // cosine g: the slab's mean radiance J carries no direction, but the slab's light flows from the

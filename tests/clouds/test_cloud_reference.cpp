@@ -51,6 +51,14 @@ SkyRenderOptions fineMarchOptions() {
   return o;
 }
 
+// The reference's standard error of its mean over the cloud pixels that `e` compared, relative to that mean.
+double relativeStandardErrorOfMean(const CloudReferenceImage& ref, const CloudReferenceError& e) {
+  double se2 = 0.0;
+  for (size_t i = 0; i < ref.image.pixelCount(); ++i)
+    if (ref.image.pixels[4 * i + 3] < 0.95) se2 += ref.luminanceStandardError[i] * ref.luminanceStandardError[i];
+  return e.pixels > 0 ? std::sqrt(se2) / e.pixels / e.meanReference : 0.0;
+}
+
 TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   Scene scene = thinCumulusScene();
   SkyRenderOptions o = fineMarchOptions();
@@ -122,11 +130,8 @@ TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
   const CloudReferenceImage ref = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, view.cameraRadius), view.camera, 0);
   const CloudReferenceError e = compareWithCloudReference(shipped.clouds, ref);
   const CloudReferenceError eOff = compareWithCloudReference(off.clouds, ref);
-  double se2 = 0.0;
-  for (size_t i = 0; i < ref.image.pixelCount(); ++i)
-    if (ref.image.pixels[4 * i + 3] < 0.95) se2 += ref.luminanceStandardError[i] * ref.luminanceStandardError[i];
   ASSERT_GT(e.pixels, 20);
-  const double meanSe = std::sqrt(se2) / e.pixels / e.meanReference;  // relative
+  const double meanSe = relativeStandardErrorOfMean(ref, e);
   std::printf("sun 80 deg, %d cloud pixels: the shipped model bias %+.3f (rel RMSE %.3f noise-corrected), without the low-sun "
               "scale %+.3f (%.3f); reference SE of the mean %.3f\n",
               e.pixels, e.meanBias, e.noiseCorrected, eOff.meanBias, eOff.noiseCorrected, meanSe);
@@ -308,10 +313,7 @@ SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scen
   r.march = compareWithCloudReference(gpu.clouds, ref);
   r.fixedLength = compareWithCloudReference(fixedLength.clouds, ref);
   r.ownLayerOnly = compareWithCloudReference(ownLayerOnly.clouds, ref);
-  double se2 = 0.0;
-  for (size_t i = 0; i < ref.image.pixelCount(); ++i)
-    if (ref.image.pixels[4 * i + 3] < 0.95) se2 += ref.luminanceStandardError[i] * ref.luminanceStandardError[i];
-  r.meanStandardError = r.march.pixels > 0 ? std::sqrt(se2) / r.march.pixels / r.march.meanReference : 0.0;
+  r.meanStandardError = relativeStandardErrorOfMean(ref, r.march);
   std::printf("single scattering, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), mean %.1f vs %.1f "
               "(bias %+.3f, reference SE of the mean %.3f); milestone 1's fixed-length light march: bias %+.3f; own layer "
               "only: corrected %.3f, bias %+.3f\n",
