@@ -317,7 +317,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   b.steps[3] = (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
                (m.lightMarchToExit ? 16 : 0) | (m.msZenithDepth ? 32 : 0) |
                (m.msScatteredOnly ? 64 : 0) | (m.lightStepsPerThickness ? 128 : 0) |
-               (m.lightThroughOtherLayers ? 256 : 0) | (m.earlyExitRemainder ? 512 : 0);
+               (m.lightThroughOtherLayers ? 256 : 0) | (m.earlyExitRemainder ? 512 : 0) |
+               (m.reflectedLowSunDepth ? 1024 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
   const double thickest = cloudThickestLayer(settings);
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);

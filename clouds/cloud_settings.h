@@ -166,6 +166,11 @@ struct CloudMarchSettings {
   // or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere;
   // session 26's option); negative: each layer's own.
   double octaveLowSunMu = -1.0;
+  // Under that low-sun scale s < 1 the reflected light's depth scale a_r becomes a_r / s too
+  // (cloudReflectedLowSunDepthScale): the sun line then crosses kilometres of broken field, and the light
+  // reflected back from deep along it was what stayed too bright (session 28: the view away from a sun 82 deg
+  // from the zenith +26 %, its far cloud bases 2.1x). Off: a_r whatever the sun (session 27).
+  bool reflectedLowSunDepth = true;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -301,6 +306,7 @@ struct CloudOverrides {
   std::optional<bool> ambientThroughOtherLayers;
   std::optional<double> ambientFlow;
   std::optional<double> octaveLowSunMu;
+  std::optional<bool> reflectedLowSunDepth;
   std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };

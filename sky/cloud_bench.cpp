@@ -421,12 +421,19 @@ std::vector<KnobValue> knobValues(bool quick) {
   for (int n : quick ? std::vector<int>{1, 6} : std::vector<int>{1, 2, 4, 6})
     v.push_back({"octaves", std::to_string(n), {"/clouds/lighting/ms_octaves=" + std::to_string(n)}, [](SkyRenderOptions&) {}});
   // The octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0) (cloudOctaveLowSunScale): each
-  // layer's type's mu_0 by default (cumulus 0.412 since session 27, fitted on the calibration's low-sun
-  // scenes); here off, or one mu_0 for every layer (CloudMarchSettings::octaveLowSunMu; session 26's
-  // measured values, not fitted).
+  // layer's type's mu_0 by default (cumulus 0.412 in session 27, 0.358 since session 28, fitted on the
+  // calibration's low-sun scenes); here off, or one mu_0 for every layer (CloudMarchSettings::octaveLowSunMu;
+  // session 26's measured values, not fitted).
   for (double mu : quick ? std::vector<double>{} : std::vector<double>{0.0, 0.34, 0.56}) {
     v.push_back({"octave_low_sun", mu == 0.0 ? std::string("off (session 26)") : "mu_0 " + std::to_string(mu).substr(0, 4) + " for every layer", {},
                  [mu](SkyRenderOptions& o) { o.clouds.octaveLowSunMu = mu; }});
+    v.back().everyScenario = true;
+  }
+  // The reflected light's depth scale under that scale: a_r / s by default, a_r whatever the sun (session
+  // 27) here (cloudReflectedLowSunDepthScale; CloudMarchSettings::reflectedLowSunDepth).
+  if (!quick) {
+    v.push_back({"reflected_low_sun_depth", "a_r whatever the sun (session 27)", {},
+                 [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }});
     v.back().everyScenario = true;
   }
   // Reduced resolution: the march on a coarser grid, interpolated bilinearly to the image.

@@ -225,7 +225,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     CloudCalibrationFit fit;
     fit.group = group;
     // The simplex's dimension: (b, a/b, c, d/2[, r/4, a_r]), or (r/4, a_r) alone with the octaves'
-    // constants fixed at their own fit (reflectionOnly).
+    // constants fixed at the shipped fit (reflectionOnly).
     const bool rOnly = config.reflectionOnly;
     const int N = rOnly ? 2 : config.reflection ? 6 : 4;
     using Point = std::array<double, 6>;
@@ -234,15 +234,15 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       return x;
     };
     std::vector<CloudCalibrationSceneError> scratch;
-    // The group's shipped constants: its type's, or for "all" the joint fit.
+    // The group's shipped constants: its type's, or for "all" the joint fit. --reflection-only fits r and
+    // a_r over the shipped reflected-light fit's octaves (until session 28 over the octaves-alone fit's,
+    // which for cumulus are not the shipped ones).
     const CloudMultipleScattering shipped =
         group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
-    const CloudMultipleScattering shipped0 =
-        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, false);
     auto f = [&](const Point& x) {
       ++fit.evaluations;
       // The low-sun scale stays at the group's shipped mu_0 while the other constants are fitted.
-      if (rOnly) return evaluate(group, shipped0.a, shipped0.b, shipped0.c, shipped0.d, 4.0 * x[0], x[1], shipped.lowSunMu, scratch);
+      if (rOnly) return evaluate(group, shipped.a, shipped.b, shipped.c, shipped.d, 4.0 * x[0], x[1], shipped.lowSunMu, scratch);
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], shipped.lowSunMu, scratch);
     };
     fit.lowSunMu = shipped.lowSunMu;
@@ -363,7 +363,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.d = 2.0 * x[3];
     fit.r = 4.0 * x[4];
     fit.ra = x[5];
-    if (rOnly) fit.a = shipped0.a, fit.b = shipped0.b, fit.c = shipped0.c, fit.d = shipped0.d, fit.r = 4.0 * x[0], fit.ra = x[1];
+    if (rOnly) fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = 4.0 * x[0], fit.ra = x[1];
     fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
                                 pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
     char line[256];

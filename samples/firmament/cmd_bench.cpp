@@ -212,7 +212,7 @@ const CommandRegistration registration{Command{
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
         {"reflection", "", "with --calibrate: also fit the reflected light's r and a_r (cloudReflectedSource)"},
-        {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants fixed at their own fit"},
+        {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants at the shipped fit"},
         {"low-sun", "", "with --calibrate: fit the octaves' low-sun scale's mu_0 alone (a sweep, then golden sections), the rest at the shipped fit"},
         {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
         {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},

@@ -208,6 +208,7 @@ void main() {
   bool lightScaled = (cloud.steps.w & 128) != 0;
   bool throughOthers = kOtherLayers && (cloud.steps.w & 256) != 0 && cloud.image.w > 1;
   bool exitRemainder = (cloud.steps.w & 512) != 0;
+  bool reflectedLowSunDepth = (cloud.steps.w & 1024) != 0;  // CloudMarchSettings::reflectedLowSunDepth
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
   float lightFalloffStart = cloud.aerial.w;  // CloudMarchSettings::lightStepsFalloffStart T0
   float lightFalloff = kLightFalloff ? cloud.phaseLight.z : 0.0;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
@@ -520,9 +521,12 @@ void main() {
                                cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));
       }
       float msFromSunSide = msSum;  // the octaves and the floor: what builds up along the view (below)
-      // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves.
-      if (reflects && sunVisible)
-        msSum += lowSunScale * reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, reflectDepthScale, nu);
+      // The light the cloud behind p turns back towards the sun (cloudReflectedSource), added to the octaves;
+      // under a low sun its depth scale grows with the scale's inverse (cloudReflectedLowSunDepthScale).
+      if (reflects && sunVisible) {
+        float depthScale = reflectedLowSunDepth ? cloudReflectedLowSunDepthScale(reflectDepthScale, lowSunScale) : reflectDepthScale;
+        msSum += lowSunScale * reflectWeight * cloudReflectedSource(tauBehind, tau, phaseMeanCosine, depthScale, nu);
+      }
       float octaveSum = phaseOctave[0] * exp(-tau) + msSum;
       vec3 sunSource = sunLight * octaveSum;
       vec3 skySource = vec3(0.0);

@@ -338,6 +338,18 @@ SHARED_INLINE Real cloudReflectedSource(Real tauBehind, Real tauSun, Real g, Rea
   return cloudDiffuseSlabReflectance((1.0 - g) * max(tauBehind, 0.0)) * exp(-depthScale * max(tauSun, 0.0)) * (1.0 - nu) / (4.0 * kPi);
 }
 
+// The reflected light's depth scale under the low-sun scale s = cloudOctaveLowSunScale (1 above mu_0):
+// a_r / s, so e^(-a_r tau_sun / s). Measured, not derived: a_r was fitted under suns whose line crosses
+// about one cloud; under a low sun it crosses kilometres of broken field, and with a_r alone the light
+// reflected from deep along it stayed bright (session 28: in the calibration's view away from a sun 82 deg
+// from the zenith, +26 % over the image and 2.1x on the far cloud bases, the reflected light more than
+// half the model's light there). Refitting a_r itself for every sun did as well on the low-sun scenes but
+// worse on the held-out views from above (session 27); this leaves suns above mu_0 exactly as they were.
+// s is clamped at 1e-3 (the sun at the horizon: the term is then ~0, as the scale makes it anyway).
+SHARED_INLINE Real cloudReflectedLowSunDepthScale(Real depthScale, Real lowSunScale) {
+  return depthScale / max(lowSunScale, 1e-3);
+}
+
 // The higher orders' build-up along the view ray (docs/clouds.md, "Build-up along the view"). The
 // octaves and the floor give a sample p a source of orders >= 2 from the sun's side of p only. But the
 // light of orders >= 2 that p sends towards the camera was mostly travelling nearly that way already

@@ -58,5 +58,32 @@ TEST(CloudReflectedLight, FallsWithTheDepthFromTheSunAndStaysFinite) {
       }
 }
 
+// Under the low-sun scale s (cloudOctaveLowSunScale) the depth scale is a_r / s
+// (cloudReflectedLowSunDepthScale): a_r itself for suns above mu_0 (s = 1: bit for bit), and the source
+// falls as the sun lowers at any depth from it but the surface; finite for a sun at the horizon (s = 0).
+TEST(CloudReflectedLight, LowSunDepthScaleLeavesHighSunsAndFallsAsTheSunLowers) {
+  const double aR = 0.043, mu0 = 0.358;
+  EXPECT_EQ(shared::cloudReflectedLowSunDepthScale(aR, shared::cloudOctaveLowSunScale(0.5, mu0)), aR);
+  EXPECT_EQ(shared::cloudReflectedLowSunDepthScale(aR, shared::cloudOctaveLowSunScale(0.9, 0.0)), aR);  // scale off
+  EXPECT_NEAR(shared::cloudReflectedLowSunDepthScale(aR, 0.5), 2.0 * aR, 1e-15);
+  const double atHorizon = shared::cloudReflectedLowSunDepthScale(aR, shared::cloudOctaveLowSunScale(0.0, mu0));
+  EXPECT_TRUE(std::isfinite(atHorizon));
+  EXPECT_GE(atHorizon, aR);
+  for (double tauSun : {0.0, 1.0, 10.0, 1e4}) {
+    double previous = 1e300;
+    for (double muS : {0.6, 0.358, 0.3, 0.2, 0.1, 0.01, 0.0}) {
+      const double s = shared::cloudOctaveLowSunScale(muS, mu0);
+      const double v = s * shared::cloudReflectedSource(5.0, tauSun, 0.47, shared::cloudReflectedLowSunDepthScale(aR, s), -0.5);
+      EXPECT_TRUE(std::isfinite(v));
+      EXPECT_GE(v, 0.0);
+      EXPECT_LE(v, previous);
+      if (tauSun > 0.0 && muS < mu0 && muS > 0.0) {
+        EXPECT_LT(v, s * shared::cloudReflectedSource(5.0, tauSun, 0.47, aR, -0.5));
+      }
+      previous = v;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace firmament

@@ -184,7 +184,7 @@ TEST_F(CloudRender, OctaveLowSunScaleOnlyDimsTheHigherOrdersBelowItsSun) {
 // their scattered-only attenuation e^(-a^i tau) - e^(-tau) grows with tau while tau is small (light the
 // other layer scattered towards the sample; a side view under a high sun measured +13 % at one pixel).
 // Each layer takes its own type's low-sun mu_0 into the march (CloudLayerSettings::msLowSunMu): under a
-// sun 80 deg from the zenith a cumulus layer renders bit for bit as with mu_0 0.412 for every layer, a
+// sun 80 deg from the zenith a cumulus layer renders bit for bit as with its mu_0 (0.358) for every layer, a
 // stratocumulus layer as with the scale off, and the two together as neither (the check can fail: one
 // shared value would match one of them).
 TEST_F(CloudRender, LayerTypesTakeTheirOwnLowSunScale) {
@@ -207,6 +207,32 @@ TEST_F(CloudRender, LayerTypesTakeTheirOwnLowSunScale) {
   const auto own = render(both, -1.0);
   EXPECT_NE(own, render(both, 0.0));
   EXPECT_NE(own, render(both, cumulusMu0));
+}
+
+// The reflected light's depth scale a_r / s under the low-sun scale (CloudMarchSettings::reflectedLowSunDepth,
+// cloudReflectedLowSunDepthScale): a cumulus layer under a sun 40 deg from the zenith (above mu_0) renders bit
+// for bit with it off; under a sun 80 deg from the zenith it takes light away (no pixel brighter, the image
+// darker: the check can fail).
+TEST_F(CloudRender, ReflectedLowSunDepthOnlyUnderALowSun) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  o.clouds.ambient = false;
+  const std::string cumulus = R"({"kind": "cumulus", "bottom_m": 2500, "top_m": 4000, "coverage": 0.6})";
+  auto render = [&](double zenith, bool depth) {
+    const Scene scene = test::cloudScene({"/sun/zenith_deg=" + std::to_string(zenith), "/camera/pitch_deg=20"}, test::cloudSceneText(cumulus));
+    o.clouds.reflectedLowSunDepth = depth;
+    return test::cloudRenderer().render(scene, o).clouds.pixels;
+  };
+  EXPECT_EQ(render(40.0, true), render(40.0, false));
+  const auto on = render(80.0, true), off = render(80.0, false);
+  ASSERT_EQ(on.size(), off.size());
+  double sumOn = 0.0, sumOff = 0.0;
+  for (size_t i = 0; i < on.size(); i += 4)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(on[i + c], off[i + c] * (1.0f + 1e-5f) + 1e-6f);
+      sumOn += on[i + c], sumOff += off[i + c];
+    }
+  std::printf("sun 80 deg: the image's light with a_r / s %.4f of that with a_r\n", sumOn / sumOff);
+  EXPECT_LT(sumOn, 0.99 * sumOff);
 }
 
 TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
