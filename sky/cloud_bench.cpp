@@ -755,6 +755,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"reflected_light off", [](SkyRenderOptions&) {}, 1, true, false, false, {"/clouds/lighting/reflected_light=false"}},
       {"reflected_light off, temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true, false, false,
        {"/clouds/lighting/reflected_light=false"}},
+      // The reflected light's low-sun depth scale's cost (a_r / s; CloudMarchSettings::reflectedLowSunDepth).
+      {"reflected_low_sun_depth off (session 27)", [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }, 1, true, false},
+      {"reflected_low_sun_depth off (session 27), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }, 16, true, false},
       // The build-up along the view's cost (CloudMarchSettings::msBuildUpScale).
       {"build-up along the view off", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 1, true, false},
       {"build-up along the view off, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 16, true, false},
