@@ -100,6 +100,13 @@ std::vector<Scenario> scenarios(bool quick) {
        R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 80, "azimuth_deg": 90},
            "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 20, "fov_deg": 70, )" + size + R"(},
            "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.5, "extinction_scale": 0.3}]}})", false},
+      // Not in the issue's list: the same field with the low sun behind the camera (session 28), where the
+      // reflected light is most of the model's light (the calibration's cu_low_away: the far cloud bases
+      // 2.1x the path tracer's with session 27's model). Held out of the fit that changed it.
+      {"cumulus_low_sun_behind", "cumulus 1500-3000 m, coverage 0.5, extinction x 0.3; sun 84 deg from the zenith, behind to the left; looking up 20 deg",
+       R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 84, "azimuth_deg": 200},
+           "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 20, "fov_deg": 70, )" + size + R"(},
+           "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.5, "extinction_scale": 0.3}]}})", false},
   };
   list.insert(list.end(), more.begin(), more.end());
   return list;
