@@ -93,7 +93,8 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // scenes +18 % to +198 % -> -11 % to +26 %, the eleven others unchanged but cu_backlit (70 deg, 0.107).
   // Session 28: refitted (the same command) with the reflected light's depth scale a_r / s under the scale s
   // (cloudReflectedLowSunDepthScale): rms 0.1920 -> 0.1772 at mu_0 0.358 (cu_low_away 0.351 / +26.3 % ->
-  // 0.245 / +6.7 %); the scenes with mu_s >= 0.412 unchanged.
+  // 0.245 / +6.7 %, cu_backlit 0.107 -> 0.105); the ten scenes with suns at most 65 deg from the zenith
+  // unchanged.
   static constexpr CloudMultipleScatteringFits dualHenyeyGreensteinReflected{
       {0.445, 0.995, 0.671, 0.623, 0.860, 0.043, 0.358}, {0.619, 0.979, 0.788, 0.963, 0.335, 0.180}, dualHenyeyGreenstein.all,
       dualHenyeyGreenstein.stratus, dualHenyeyGreenstein.cirrus};
