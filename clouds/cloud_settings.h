@@ -162,7 +162,7 @@ struct CloudMarchSettings {
   // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0)
   // (cloudOctaveLowSunScale). Under a low sun the octaves gave up to three times the path tracer's
   // higher orders in cumulus fields (bench scenario cumulus_low_sun, the calibration's low-sun scenes).
-  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.412 since session 27,
+  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.358 since session 28, 0.412 in session 27,
   // or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere;
   // session 26's option); negative: each layer's own.
   double octaveLowSunMu = -1.0;

@@ -38,7 +38,8 @@ struct CloudCalibrationConfig {
   // Without it the octaves alone are fitted, from their own shipped fit, with r = 0
   // (cloudTypeMultipleScattering's reflectedLight false).
   bool reflection = false;
-  // Fit r and a_r alone, the octaves' a, b, c, d fixed at their own fit (without the reflected light).
+  // Fit r and a_r alone, the octaves' a, b, c, d fixed at the group's shipped fit with the reflected light
+  // (until session 28 at the octaves-alone fit's).
   bool reflectionOnly = false;
   // Fit the octaves' low-sun scale's mu_0 alone (cloudOctaveLowSunScale), every other constant at the
   // group's shipped fit with the reflected light: a sweep over mu_0 in 0, 0.05, ..., 0.8 (each point's

@@ -185,7 +185,7 @@ SHARED_INLINE Real cloudFloorLowSunFactor(Real mu0) {
 // The octaves' (i >= 1) and the reflected light's low-sun scale min(1, mu_s / mu_0) (mu_0 <= 0: off, 1).
 // Measured, not derived: in broken cumulus fields under a low sun the octaves, fitted under higher suns,
 // give up to three times the path tracer's higher orders, nearly uniformly over the image (docs/clouds.md "Lighting", the low sun),
-// while the single scattering is right. mu_0 is fitted per cloud type on calibration scenes with suns at
+// while the single scattering is within ~10 % (the deep shadow map's, docs/clouds.md "The deep shadow map"). mu_0 is fitted per cloud type on calibration scenes with suns at
 // 76-85 deg (the `--low-sun` fit of `bench clouds --calibrate`).
 SHARED_INLINE Real cloudOctaveLowSunScale(Real muS, Real mu0) {
   return mu0 > 0.0 ? min(1.0, max(muS, 0.0) / mu0) : 1.0;
