@@ -204,7 +204,8 @@ const CommandRegistration registration{Command{
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
         {"scenario", "NAME", "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
-                               "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus)"},
+                               "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
+                               "above_clouds, cumulus_low_sun, cumulus_low_sun_behind)"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
