@@ -45,8 +45,9 @@ struct CloudBlock {
   float deepShadowMap[4];              // the deep shadow map (the other layers' map's placement): texels per side, levels K, near steps, baked (0: none)
   float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers, baked this frame (1); the flow's scale
   float layerLowSun[kMaxLayers / 4][4];  // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
+  float topEntry[4];                   // the shadowed top (CloudMarchSettings::topEntryShadow): 1 on, the top's threshold, unused x2
 };
-static_assert(sizeof(CloudBlock) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (31 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
 
 // The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
 // clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from the map's origin within which
@@ -387,6 +388,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
       std::max(m.ambientFlow, 0.0));
   for (size_t i = 0; i < layers.size(); ++i)
     b.layerLowSun[i / 4][i % 4] = float(std::clamp(m.octaveLowSunMu >= 0.0 ? m.octaveLowSunMu : settings.layers[i].msLowSunMu, 0.0, 1.0));
+  put(b.topEntry, m.topEntryShadow ? 1.0 : 0.0, std::max(m.topEntryThreshold, 0.0), 0.0, 0.0);
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).

@@ -234,6 +234,8 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (ambientFlow) march.ambientFlow = *ambientFlow;
   if (octaveLowSunMu) march.octaveLowSunMu = *octaveLowSunMu;
   if (reflectedLowSunDepth) march.reflectedLowSunDepth = *reflectedLowSunDepth;
+  if (topEntryShadow) march.topEntryShadow = *topEntryShadow;
+  if (topEntryThreshold) march.topEntryThreshold = *topEntryThreshold;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

@@ -171,6 +171,15 @@ struct CloudMarchSettings {
   // reflected back from deep along it was what stayed too bright (session 28: the view away from a sun 82 deg
   // from the zenith +26 %, its far cloud bases 2.1x). Off: a_r whatever the sun (session 27).
   bool reflectedLowSunDepth = true;
+  // The sun's shadow on the column's cloud top (docs/clouds.md "The shadowed top", session 29): the way
+  // down from the layer top and the diffusion floor assume sunlight falls on the top of p's column;
+  // under a low sun a taller cloud upsun shadows it. With it on the column's cloud top (the lowest
+  // column-map level above p with at most topEntryThreshold optical depth above it) takes the sun's
+  // optical depth there from the deep shadow map, tau_top: octave i's way from the top passes
+  // e^(-a^i (tau_up + tau_top)) and the floor's flux e^(-(1 - g) tau_top). Needs the column map and the
+  // deep shadow map (else no effect).
+  bool topEntryShadow = false;
+  double topEntryThreshold = 1.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -307,6 +316,8 @@ struct CloudOverrides {
   std::optional<double> ambientFlow;
   std::optional<double> octaveLowSunMu;
   std::optional<bool> reflectedLowSunDepth;
+  std::optional<bool> topEntryShadow;
+  std::optional<double> topEntryThreshold;
   std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };

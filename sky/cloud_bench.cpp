@@ -273,6 +273,9 @@ std::vector<KnobValue> knobValues(bool quick) {
   // Sessions 9-23's model: the octaves' and the floor's source without the build-up along the view
   // (CloudMarchSettings::msBuildUpScale), the constants unchanged (they were not refitted with it).
   v.push_back({"ms_model", "no build-up along the view", {}, [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }});
+  // Session 29: the sun's shadow on the column's cloud top (CloudMarchSettings::topEntryShadow; the top
+  // at the lowest column-map level with at most one optical depth above it).
+  v.push_back({"ms_model", "shadowed top", {}, [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }});
   v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
                  o.clouds.msZenithDepth = false;
                  o.clouds.msScatteredOnly = false;
@@ -485,6 +488,7 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"single_scattering", "1 octave, 48 view steps"},                       {"light_steps", "4"},
       {"light_steps", "16"},       {"ms_model", "no diffusion floor"},        {"ms_model", "no reflected light"},
       {"ms_model", "no build-up along the view"},
+      {"ms_model", "shadowed top"},
       {"temporal_update", "16"},
       {"quality", "low (32v/4l/3o)"}, {"quality", "low, 2 octaves (the preset until session 17)"}, {"quality", "high (128v/8l/3o)"},
       {"phase", "approximate mie 20 um"}, {"light_through_other_layers", "off (own layer only)"},
@@ -765,6 +769,9 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       // The reflected light's low-sun depth scale's cost (a_r / s; CloudMarchSettings::reflectedLowSunDepth).
       {"reflected_low_sun_depth off (session 27)", [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }, 1, true, false},
       {"reflected_low_sun_depth off (session 27), temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }, 16, true, false},
+      // The shadowed top's cost (CloudMarchSettings::topEntryShadow: 4 density samples per lit sample).
+      {"shadowed top", [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }, 1, true, false},
+      {"shadowed top, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }, 16, true, false},
       // The build-up along the view's cost (CloudMarchSettings::msBuildUpScale).
       {"build-up along the view off", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 1, true, false},
       {"build-up along the view off, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 16, true, false},

@@ -45,6 +45,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 deepShadowMap;    // the deep shadow map (clouds/deep_shadow_map.glsl; placed as the other layers' map): texels per side, levels K, near light steps, baked (0: no map)
   vec4 buildUp;          // x: the higher orders' build-up along the view, k (CloudMarchSettings::msBuildUpScale; 0: off); y: 1 for the ambient as a slab (CloudMarchSettings::ambientSlab); z: 1 where the column map's ambient slices are baked this frame (the slab through the other layers: ambientThroughOtherLayers, more than one layer, the column map); w: the slab's flow towards the camera (ambientFlow)
   vec4 layerLowSun[2];   // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0), mu_0 (CloudLayerSettings::msLowSunMu, or CloudMarchSettings::octaveLowSunMu for all; 0: off)
+  vec4 topEntry;         // x: 1 for the shadowed top (CloudMarchSettings::topEntryShadow); y: the top's optical-depth threshold (topEntryThreshold)
 } cloud;
 
 // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,

@@ -485,6 +485,41 @@ void main() {
         tauUp = depths.x;
         tauDown = depths.y;
       }
+      // The shadowed top (CloudMarchSettings::topEntryShadow). The way from the top and the floor assume
+      // sunlight falls on the cloud top above p; under a low sun a taller cloud upsun shadows it. From q,
+      // the cloud top above p (columnMapCloudTop: the lowest column-map level with at most the threshold's
+      // optical depth above it), tau_top is the sun's optical depth from q less q's own straight up, which
+      // the way down tau_up already crosses: ~0 for a sun overhead (its line is the column), the taller
+      // neighbours' shadow under a low one. Both are taken the same way, so that what the maps' texels
+      // blur cancels: the first rise of one deep-map level spacing H / K marched (2 samples each, along
+      // the sun and straight up), the rest read from the deep shadow map and the column map. (Reading both
+      // from the maps alone, or the sun's from q against the column map's T(k), darkened a sun 10 deg from
+      // the zenith by 3-5 %: the maps' vertical interpolation and their different texels.)
+      float tauTop = 0.0;
+      if (kColumnMap && kDeepShadowMap && columnsFromMap && cloud.topEntry.x > 0.5 && cloud.deepShadowMap.w > 0.0 && lightToExit && muS > 0.0 &&
+          (wantTop || wantFloor)) {
+        int topLayer = kSeveralLayers ? segmentLayer[s] : 0;
+        vec3 q = p * (columnMapCloudTop(columnMap, topLayer, layer, p, rp, cloud.topEntry.y).x / rp);
+        vec3 upQ = q / length(q);
+        float rise = (layer.top_radius - layer.bottom_radius) / cloud.deepShadowMap.y;
+        float sunLength = min(rise / max(muS, 1e-3), cloudSunExitDistance(layer, q, sun, lightLength));
+        float upLength = min(rise, cloudSunExitDistance(layer, q, upQ, lightLength));
+        const int topSteps = 2;
+        float tauSunTop = 0.0, tauUpTop = 0.0;
+        for (int k = 0; k < topSteps; ++k) {
+          float f = (float(k) + 0.5) / float(topSteps);
+          tauSunTop += densityAt(layer, q + sun * (f * sunLength), lod);
+          tauUpTop += densityAt(layer, q + upQ * (f * upLength), lod);
+        }
+        lightCount += uint(2 * topSteps);
+        tauSunTop *= layer.extinction * sunLength / float(topSteps);
+        tauUpTop *= layer.extinction * upLength / float(topSteps);
+        vec3 qSun = q + sun * sunLength, qUp = q + upQ * upLength;
+        vec2 planePoint = deepShadowMapPlanePoint(qSun);
+        tauSunTop += deepShadowMapOpticalDepth(deepShadowMap, topLayer, layer, qSun, planePoint, deepShadowMapTexel(planePoint));
+        tauUpTop += columnMapOpticalDepths(columnMap, topLayer, layer, qUp, length(qUp)).x;
+        tauTop = transportScale * max(tauSunTop - tauUpTop, 0.0);
+      }
       int upSteps = !kColumnMarch || columnsFromMap ? 0 : wantTop ? max(lightSteps / 2, 2) : wantFloor || wantAmbientColumn ? floorSteps : 0;
       if (upSteps > 0) {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
@@ -495,9 +530,9 @@ void main() {
         float attenuation = sunAttenuation[o];
         // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
         if (wantTop)
-          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp, tauOther, deckLight,
+          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp + tauTop, tauOther, deckLight,
                                                                                                           octaveShare[o], msScattered)
-                                                                  : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
+                                                                  : cloudOctaveTransmittance(octaveScale[o], tauUp + tauTop + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       // The layer's low-sun scale (cloudOctaveLowSunScale; 1 when off or the sun is high).
@@ -515,7 +550,7 @@ void main() {
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
-        float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
+        float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * (tauOther + tauTop));
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudFloorSunFactor(muS) *
                                cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
                                cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));
