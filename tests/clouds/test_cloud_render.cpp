@@ -25,6 +25,15 @@ double maxAbsDifference(const Image& a, const Image& b) {
   return m;
 }
 
+// The robustness sweeps render 16x9 images, whose time goes almost all to the per-frame maps' bakes at
+// their default 256 texels (~0.5 s a render on lavapipe); at 64 texels the same shaders run in about a
+// sixteenth of it.
+void useSmallMaps(SkyRenderOptions& o) {
+  o.clouds.deepShadowMapSize = 64;
+  o.clouds.columnMapSize = 64;
+  o.clouds.otherLayerMapSize = 64;
+}
+
 void expectFiniteNonNegative(const Image& image, const std::string& what) {
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     ASSERT_TRUE(std::isfinite(image.pixels[i])) << what << " at " << i;
@@ -75,6 +84,7 @@ TEST_F(CloudRender, FiniteAndNonNegativeEverywhere) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 24;
   o.clouds.lightSteps = 3;
+  useSmallMaps(o);
   const double ground = 500.0;
   for (AerialPerspective air : {AerialPerspective::Volume, AerialPerspective::March})
   for (double height : {2.0, 1500.0, 2700.0, 4000.0, 6000.0}) {
@@ -282,6 +292,7 @@ TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 24;
   o.clouds.lightSteps = 3;
+  useSmallMaps(o);
   const std::string layers = test::cloudSceneText(
       R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.7}, {"kind": "cirrus", "bottom_m": 7000, "top_m": 9000, "coverage": 0.8, "extinction_scale": 10})");
   int darker = 0;
@@ -499,8 +510,10 @@ TEST_F(CloudRender, OtherLayerMapMatchesTheMarchedCrossings) {
 // reads the rest of the way to the top. Measured relative RMS of the clouds' luminance: the default map
 // (256 texels, 16 levels) 0.3-1.2 % from the march with the sun 35 degrees from the zenith and 1.0-3.5 %
 // at 80 (neighbouring sun lines a texel apart pass through different heights of the layer when the sun
-// is low), the fine map (1024 texels, 64 levels) 0.2-0.9 %; the march itself is 0.2-0.6 % from one with
-// 4x its light steps. Against the path tracer: CloudReference.SingleScatteringAgreesWithFirstOrder.
+// is low), the fine map (512 texels, 32 levels) 0.2-1.8 %, about half the default's where that is over
+// 2 % (1024 texels and 64 levels gave 0.2-0.9 % but cost 64x the default's bake: 130 of this test's 160
+// s, so the suite checks the step below it); the march itself is 0.2-0.6 % from one with 4x its light
+// steps. Against the path tracer: CloudReference.SingleScatteringAgreesWithFirstOrder.
 TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.viewSteps = 32;
@@ -516,8 +529,8 @@ TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
       const RenderResult marched = test::cloudRenderer().render(s, o);
       o.clouds.deepShadowMap = true;
       const RenderResult map = test::cloudRenderer().render(s, o);
-      o.clouds.deepShadowMapSize = 1024;
-      o.clouds.deepShadowMapLevels = 64;
+      o.clouds.deepShadowMapSize = 512;
+      o.clouds.deepShadowMapLevels = 32;
       const RenderResult fine = test::cloudRenderer().render(s, o);
       o.clouds.deepShadowMapSize = 256;
       o.clouds.deepShadowMapLevels = 16;
@@ -525,11 +538,12 @@ TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
       expectFiniteNonNegative(fine.clouds, name);
       const double error = relativeRmsLuminance(map.clouds, marched.clouds);
       const double fineError = relativeRmsLuminance(fine.clouds, marched.clouds);
-      std::printf("%s: the map against the march %.4f (256 texels, 16 levels), %.4f (1024, 64); against the march with 4x light steps: march %.4f map %.4f fine map %.4f\n", name.c_str(), error, fineError,
+      std::printf("%s: the map against the march %.4f (256 texels, 16 levels), %.4f (512, 32); against the march with 4x light steps: march %.4f map %.4f fine map %.4f\n", name.c_str(), error, fineError,
                   relativeRmsLuminance(marched.clouds, marchedFine.clouds), relativeRmsLuminance(map.clouds, marchedFine.clouds), relativeRmsLuminance(fine.clouds, marchedFine.clouds));
       EXPECT_LT(error, 0.05) << name;
-      EXPECT_LT(fineError, 0.015) << name;
+      EXPECT_LT(fineError, 0.03) << name;
       EXPECT_LT(fineError, error) << name;
+      if (error > 0.02) EXPECT_LT(fineError, 0.65 * error) << name;  // where the texels dominate, the finer map halves it
       EXPECT_GT(map.cloudSamples.mapPerPixel, 0.0) << name;
       EXPECT_LT(map.cloudSamples.lightPerPixel, marched.cloudSamples.lightPerPixel) << name;
     }
