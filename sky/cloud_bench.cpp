@@ -201,14 +201,21 @@ void requireFinite(const RenderResult& r, const std::string& name, const std::ve
 // The scene `text` with `overrides`, warmed up (one render: tables, noise, lavapipe's JIT; on a GPU
 // then warmUpGpu): with temporalUpdate 1, `repeats` stills;
 // above 1, a sequence of 2 N + 1 frames ending at the view (the constants above) whose reprojected
-// frames are timed.
+// frames are timed. A still without `timeFrames` (CloudBenchConfig::timeFrames) is that first render.
 TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::string& name,
                     const std::vector<std::string>& overrides, const SkyRenderOptions& options, int temporalUpdate, int repeats,
-                    bool expectReprojection = true) {
+                    bool expectReprojection, bool timeFrames) {
   const Scene scene = Scene::parse(text, name, overrides);
   TimedRuns run;
   run.last = renderer.render(scene, options);
   requireFinite(run.last, name, overrides);
+  if (!timeFrames && temporalUpdate <= 1) {
+    run.cloudMs.push_back(cloudPassMs(run.last));
+    run.frameMs.push_back(frameMs(run.last));
+    run.samplesPerPixel = run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel + run.last.cloudSamples.mapPerPixel;
+    run.mapSamplesPerPixel = run.last.cloudSamples.mapPerPixel;
+    return run;
+  }
   warmUpGpu(renderer, scene, options);
   // Only the first warm-up and the last timed render download their images (checked, compared): the
   // others stay on the GPU, so that a GPU is kept busy between frames (SkyRenderOptions::downloadImages).
@@ -636,7 +643,7 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
       SkyRenderOptions o = base;
       k.apply(o);
       TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + k.knob + " " + k.value + ">", k.sceneOverrides, o, k.temporalUpdate, config.repeats,
-                                !sc.cameraInLayer);
+                                !sc.cameraInLayer, config.timeFrames);
       const RenderResult& r = run.last;
       CloudBenchRow row;
       if (k.againstFineAirMarch) {
@@ -831,7 +838,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       std::vector<std::string> overrides = sizeOverrides;
       overrides.insert(overrides.end(), setting.sceneOverrides.begin(), setting.sceneOverrides.end());
       const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + setting.name + ">", overrides, o, setting.temporalUpdate,
-                                      config.repeats, !sc.cameraInLayer);
+                                      config.repeats, !sc.cameraInLayer, config.timeFrames);
       const RenderResult& r = run.last;
       CloudTimingRow row{sc.name, setting.name, width, height, median(run.cloudMs), median(run.frameMs), run.samplesPerPixel,
                          run.mapSamplesPerPixel};
@@ -916,6 +923,7 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
                    "Mie phase (20 um droplets) on both sides: its path tracer renders with that phase, delta-scaled with TMS, and "
                    "leaves out the pixels within its aureole cone around the sun (1.5 deg); the second phase row turns the "
                    "march's delta-scaling off.\n\n";
+  if (!config.timeFrames) md += "Not timed: each still's frame ms is its one cold render (pipeline compilation included).\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   md += "| scenario | knob | value | against | frame ms | rel RMSE | corrected | noise | bias | dark / bright quarter | PSNR dB | max rel err | samples/pixel |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
