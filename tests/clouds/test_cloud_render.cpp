@@ -543,7 +543,9 @@ TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
       EXPECT_LT(error, 0.05) << name;
       EXPECT_LT(fineError, 0.03) << name;
       EXPECT_LT(fineError, error) << name;
-      if (error > 0.02) EXPECT_LT(fineError, 0.65 * error) << name;  // where the texels dominate, the finer map halves it
+      if (error > 0.02) {  // where the texels dominate, the finer map halves it
+        EXPECT_LT(fineError, 0.65 * error) << name;
+      }
       EXPECT_GT(map.cloudSamples.mapPerPixel, 0.0) << name;
       EXPECT_LT(map.cloudSamples.lightPerPixel, marched.cloudSamples.lightPerPixel) << name;
     }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cerrno>  // program_invocation_short_name: one cache folder per test binary (CTest runs them in parallel)
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -25,7 +26,11 @@ class GpuTest : public ::testing::Test {
   static gpu::Context& context() {
     static std::unique_ptr<gpu::Context> shared = [] {
       gpu::ContextOptions options;
-      options.cacheDir = scratchDir(std::string("gpu-test-pipeline-cache-") + program_invocation_short_name);
+      // A sharded folder's entries (tests/CMakeLists.txt, SHARDS) run the same binary side by side: one
+      // folder each, since each clears its own at start and counts the files it adds.
+      const char* shard = std::getenv("GTEST_SHARD_INDEX");
+      options.cacheDir = scratchDir(std::string("gpu-test-pipeline-cache-") + program_invocation_short_name +
+                                    (shard ? std::string("-shard") + shard : std::string()));
       return std::make_unique<gpu::Context>(options);
     }();
     return *shared;
