@@ -207,13 +207,17 @@ TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::s
                     bool expectReprojection, bool timeFrames) {
   const Scene scene = Scene::parse(text, name, overrides);
   TimedRuns run;
+  // One timed frame: its times, and its samples summed (averaged over the frames at the end).
+  auto recordLast = [&run]() {
+    run.cloudMs.push_back(cloudPassMs(run.last));
+    run.frameMs.push_back(frameMs(run.last));
+    run.samplesPerPixel += run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel + run.last.cloudSamples.mapPerPixel;
+    run.mapSamplesPerPixel += run.last.cloudSamples.mapPerPixel;
+  };
   run.last = renderer.render(scene, options);
   requireFinite(run.last, name, overrides);
   if (!timeFrames && temporalUpdate <= 1) {
-    run.cloudMs.push_back(cloudPassMs(run.last));
-    run.frameMs.push_back(frameMs(run.last));
-    run.samplesPerPixel = run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel + run.last.cloudSamples.mapPerPixel;
-    run.mapSamplesPerPixel = run.last.cloudSamples.mapPerPixel;
+    recordLast();
     return run;
   }
   warmUpGpu(renderer, scene, options);
@@ -242,10 +246,7 @@ TimedRuns timedRuns(SkyRenderer& renderer, const std::string& text, const std::s
       run.last = renderer.render(scene, frameOptions);
     }
     if (i + 1 == frames) requireFinite(run.last, name, overrides);
-    run.cloudMs.push_back(cloudPassMs(run.last));
-    run.frameMs.push_back(frameMs(run.last));
-    run.samplesPerPixel += run.last.cloudSamples.viewPerPixel + run.last.cloudSamples.lightPerPixel + run.last.cloudSamples.mapPerPixel;
-    run.mapSamplesPerPixel += run.last.cloudSamples.mapPerPixel;
+    recordLast();
   }
   run.samplesPerPixel /= double(run.cloudMs.size());
   run.mapSamplesPerPixel /= double(run.cloudMs.size());
@@ -923,7 +924,7 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
                    "Mie phase (20 um droplets) on both sides: its path tracer renders with that phase, delta-scaled with TMS, and "
                    "leaves out the pixels within its aureole cone around the sun (1.5 deg); the second phase row turns the "
                    "march's delta-scaling off.\n\n";
-  if (!config.timeFrames) md += "Not timed: each still's frame ms is its one cold render (pipeline compilation included).\n\n";
+  if (!config.timeFrames) md += "Not timed: each still's frame ms is its one cold render (with any pipeline compilation it needed).\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   md += "| scenario | knob | value | against | frame ms | rel RMSE | corrected | noise | bias | dark / bright quarter | PSNR dB | max rel err | samples/pixel |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";

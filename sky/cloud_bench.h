@@ -20,9 +20,9 @@ struct CloudBenchConfig {
   std::filesystem::path outDir;
   bool quick = false;
   int repeats = 3;    // frame timing: median of this many after a warm-up
-  // false: each still is rendered once, without the warm-up, and timed as that cold render (lavapipe's
-  // JIT included). Its image, errors and samples are the same. For the tests, which check the rows, not
-  // the times.
+  // false: each still is rendered once, without the warm-up, and timed as that cold render (with any
+  // pipeline compilation it needed). Its image, errors and samples are the same. For the tests, which
+  // check the rows, not the times.
   bool timeFrames = true;
   int threads = 0;    // path tracer threads (0: all cores)
   int samplesPerPixel = 0;  // paths per reference pixel (0: 64, quick 16); more makes `corrected` robust
