@@ -327,7 +327,7 @@ struct CloudOverrides {
 // extinction efficiency 2): cumulus LWC 0.5-1 g/m^3, r_e 10 um -> 0.075-0.15; stratus 0.3 g/m^3 -> 0.045.
 double cloudTypeExtinction(int kind);
 // The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
-// tracer by `firmament bench clouds --calibrate` (sky/cloud_calibration.h; docs/clouds.md "Calibration"):
+// tracer by `firmament bench clouds --calibrate` (eval/cloud_calibration.h; docs/clouds.md "Calibration"):
 // cumulus, stratocumulus, stratus (since session 8) and cirrus (since session 9) on their own
 // calibration scenes (the approximate Mie phase's stratus takes stratocumulus's, its cirrus the joint
 // fit); cumulonimbus takes cumulus's. Per phase

@@ -1,5 +1,5 @@
 #pragma once
-// Summary statistics the benchmarks report (bench/, `firmament bench`).
+// Summary statistics the benchmarks report (eval/, `firmament bench`).
 #include <algorithm>
 #include <vector>
 

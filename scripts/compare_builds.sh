@@ -3,9 +3,9 @@
 #
 #   scripts/compare_builds.sh OLD_FIRMAMENT NEW_FIRMAMENT [OUT_DIR]
 #
-# What is rendered: every scene under scenes/ at its own size, every scenario under eval/scenarios/
-# (the benchmark and calibration scenes) at its own size, and a three-frame reprojected sequence of
-# scenes/cumulus.json (the temporal history). Each build gets an empty cache folder of its own
+# What is rendered: every scene under scenes/ at its own size, every scene file under eval/scenarios/
+# (the benchmark and calibration scenes; not the index files) at its own size, and a three-frame
+# reprojected sequence of scenes/cumulus.json (the temporal history). Each build gets an empty cache folder of its own
 # (FIRMAMENT_CACHE_DIR), so neither reads the other's atmosphere tables or noise textures.
 # The pixels are compared with NEW_FIRMAMENT's `compare` (its "identical" field: every float equal);
 # the EXR headers differ anyway (timings). Exit code 0: all identical; 1: some differ; 2: bad usage.
@@ -34,7 +34,7 @@ if [ -d eval/scenarios ]; then
   while IFS= read -r s; do
     rel=${s#eval/scenarios/}
     cases+=("scenario_$(echo "${rel%.json}" | tr '/' '_')|$s|")
-  done < <(find eval/scenarios -name '*.json' | sort)
+  done < <(find eval/scenarios -name '*.json' ! -name index.json | sort)
 fi
 cases+=("cumulus_sequence|scenes/cumulus.json|--frames 3 --yaw-rate 0.5")
 

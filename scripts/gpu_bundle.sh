@@ -12,7 +12,7 @@ build=${BUILD_DIR:-build}
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 
-binaries=("$build/samples/firmament" "$build/bench/bench_sky_frame" "$build"/tests/test_*)
+binaries=("$build/samples/firmament" "$build/eval/micro/bench_sky_frame" "$build"/tests/test_*)
 for b in "${binaries[@]}"; do
   [ -x "$b" ] || { echo "gpu_bundle: $b is missing; run scripts/run.sh build first" >&2; exit 2; }
   mkdir -p "$stage/$(dirname "$b")"

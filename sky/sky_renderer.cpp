@@ -2,15 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
-#include <nlohmann/json.hpp>
-
-#include "core/atomic_file.h"
-#include "core/color.h"
-#include "core/exr_io.h"
 #include "core/error.h"
-#include "core/tonemap.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/scene_weather.h"
 
@@ -363,66 +356,6 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     image.metadata["firmament.timing." + t.label + "_ms"] = ms;
   }
   return result;
-}
-
-double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const RenderResult& result,
-                          const std::string& deviceDescription) {
-  namespace fs = std::filesystem;
-  fs::path exr(exrPath);
-  fs::path png = fs::path(exr).replace_extension(".png");
-  fs::path stats = fs::path(exr).replace_extension(".json");
-
-  const ExposureSettings exposure = sceneExposure(scene);
-
-  writeExr(exr, result.image);
-  double ev100 = writePngPreview(png, result.image, exposure);
-
-  // Luminance statistics of the image, for quick checks without opening the EXR.
-  const Image& image = result.image;
-  double sum = 0.0, maxY = 0.0, logSum = 0.0;
-  size_t nonFinite = 0, counted = 0;
-  for (size_t i = 0; i < image.pixelCount(); ++i) {
-    const float* p = image.pixels.data() + i * size_t(image.channels);
-    double y = luminanceRec709(p);
-    if (!std::isfinite(y)) {
-      ++nonFinite;
-      continue;
-    }
-    sum += y;
-    maxY = std::max(maxY, y);
-    logSum += std::log(std::max(y, 1e-6));
-    ++counted;
-  }
-  nlohmann::json j;
-  j["scene"] = scene.source();
-  j["scene_hash"] = scene.hash();
-  j["device"] = deviceDescription;
-  j["width"] = image.width;
-  j["height"] = image.height;
-  j["sun"] = {{"zenith_deg", result.view.sunZenith * kRadToDeg},
-              {"azimuth_deg", result.view.sunAzimuth * kRadToDeg},
-              {"source", result.view.sunSource},
-              {"distance_au", result.view.sunDistanceAu}};
-  j["passes"] = nlohmann::json::array();
-  for (const auto& t : result.timings) j["passes"].push_back({{"name", t.label}, {"gpu_ms", t.milliseconds}});
-  j["precompute_ms"] = result.precomputeMilliseconds;
-  j["frame_ms"] = result.frameMilliseconds;
-  j["tables"] = result.tablesSource;
-  j["spectral_samples"] = result.spectralSamples;
-  if (result.clouds.pixelCount() > 0)
-    j["clouds"] = {{"view_samples_per_pixel", result.cloudSamples.viewPerPixel},
-                   {"light_samples_per_pixel", result.cloudSamples.lightPerPixel},
-                   {"reprojected", result.cloudsReprojected},
-                   {"noise", result.cloudNoiseSource}};
-  if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
-  j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
-                          {"max", maxY},
-                          {"log_average", counted ? std::exp(logSum / double(counted)) : 0.0}};
-  j["non_finite_pixels"] = nonFinite;
-  j["preview"] = {{"ev100", ev100}, {"tonemap", exposure.tonemap}};
-  j["outputs"] = {{"exr", exr.string()}, {"png", png.string()}, {"stats", stats.string()}};
-  writeTextFileAtomically(stats, j.dump(2) + "\n");
-  return ev100;
 }
 
 std::vector<float> SkyRenderer::cloudShadowMap() const {

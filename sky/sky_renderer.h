@@ -113,9 +113,4 @@ class SkyRenderer {
   std::string skyViewKey_;
 };
 
-// Writes <out>.exr, <out>.png (preview with the scene's exposure) and <out>.json (stats), each
-// atomically. Returns the EV100 used for the preview.
-double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const RenderResult& result,
-                          const std::string& deviceDescription);
-
 }  // namespace firmament

@@ -11,9 +11,9 @@
 #include "core/log.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
-#include "sky/atmosphere_bench.h"
-#include "sky/cloud_bench.h"
-#include "sky/cloud_calibration.h"
+#include "eval/atmosphere_bench.h"
+#include "eval/cloud_bench.h"
+#include "eval/cloud_calibration.h"
 
 namespace firmament::cli {
 namespace {
@@ -77,7 +77,7 @@ int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
   return kExitOk;
 }
 
-// `bench clouds --calibrate`: fit the octave parameters to the path tracer (sky/cloud_calibration.h).
+// `bench clouds --calibrate`: fit the octave parameters to the path tracer (eval/cloud_calibration.h).
 int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   if (args.has("timing-only")) throw InputError("--timing-only: not with --calibrate (a calibration times nothing)");
   CloudCalibrationConfig config;

@@ -11,6 +11,7 @@
 #include "core/scene.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
+#include "samples/firmament/render_outputs.h"
 #include "sky/render_plan.h"
 #include "sky/sky_renderer.h"
 

@@ -10,7 +10,7 @@
 #include "core/log.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
-#include "sky/kider_validation.h"
+#include "eval/kider_validation.h"
 
 namespace firmament::cli {
 namespace {

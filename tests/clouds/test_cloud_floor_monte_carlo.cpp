@@ -5,7 +5,7 @@
 // Monte Carlos are exact up to their noise (a standard error of 0.3 to 2.9 %, bounded per check), so these
 // are the floor's own errors: where the two-stream solution holds (the bulk of a thick slab, and the
 // radiance leaving its base except at grazing exits) and what its two corrections take out. The wider
-// sweeps those corrections were fitted to: `build/bench/bench_floor_slab`.
+// sweeps those corrections were fitted to: `build/eval/micro/bench_floor_slab`.
 #include <gtest/gtest.h>
 
 #include <cmath>
