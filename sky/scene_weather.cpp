@@ -116,9 +116,7 @@ CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* in
   if (!continued) {
     weather::WeatherConfig config = weather::configFromJson(scene.at("/weather"));
     config.surfacePressure_Pa = weather::surfacePressureFromHeight(scene.number("/location/height_m"));
-    WeatherModel model(config, [location, start](double t) {
-      return astro::sunPosition(astro::makeAstroTime(astro::addSeconds(start, t)), location).elevation();
-    });
+    WeatherModel model(config, astro::sunElevationAfter(location, start));
     from.emplace(Checkpoint{std::move(model), {}, {}});
   }
   // The map between two whole steps is the linear interpolation of theirs: the model's operators act

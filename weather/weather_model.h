@@ -16,7 +16,7 @@
 #include "weather/compensating_subsidence.h"
 #include "weather/parcel_table.h"
 #include "weather/preset_schedule.h"
-#include "weather/solar_day.h"
+#include "weather/sun_elevation.h"
 #include "weather/transport.h"
 #include "weather/weather_config.h"
 #include "weather/weather_map.h"

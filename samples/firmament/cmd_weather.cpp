@@ -43,14 +43,6 @@ void writeRgbPng(const fs::path& path, int width, int height, const std::vector<
   writePng(path, width, height, 3, rgb.data());
 }
 
-// Sun elevation (radians) at `t` seconds after `start`, from the ephemeris.
-weather::SunElevationFunction ephemerisSunElevation(const astro::GeodeticLocation& location,
-                                                    const astro::UtcTime& start) {
-  return [location, start](double t) {
-    return astro::sunPosition(astro::makeAstroTime(astro::addSeconds(start, t)), location).elevation();
-  };
-}
-
 int runWeather(const Args& args) {
   using namespace firmament::weather;
   const std::string scenePath = args.positionals.at(0);
@@ -78,7 +70,7 @@ int runWeather(const Args& args) {
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create " + dir.string() + ": " + ec.message());
 
-  WeatherModel model(config, ephemerisSunElevation(location, start));
+  WeatherModel model(config, astro::sunElevationAfter(location, start));
   RegionPlacement placement{latitude, longitude, 6360000.0};
   const double duration = hours * 3600.0, interval = intervalMin * 60.0;
   const double statsInterval = std::min(interval, std::max(600.0, config.timeStep_s));

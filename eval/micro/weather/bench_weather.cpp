@@ -17,11 +17,13 @@
 #include <numbers>
 #include <vector>
 
+#include "astro/sun.h"
 #include "core/statistics.h"
 #include "weather/weather_model.h"
 
 using firmament::median;
 using namespace firmament::weather;
+namespace astro = firmament::astro;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -36,8 +38,7 @@ double threadCpuSeconds() {
 
 // 21 June at 46.55° N, 7.98° E (the default scene), from 03:00 UTC (03:32 local mean solar time).
 SunElevationFunction summerDay() {
-  return analyticSunElevationFunction(46.55 * std::numbers::pi / 180.0, 7.98 * std::numbers::pi / 180.0,
-                                      parseUtc("2026-06-21T03:00:00Z"));
+  return astro::sunElevationAfter(astro::GeodeticLocation::fromDegrees(46.55, 7.98, 0.0), astro::parseUtc("2026-06-21T03:00:00Z"));
 }
 double localSolarHours(double t_s) { return 3.0 + 7.98 / 15.0 + t_s / 3600.0; }
 
