@@ -90,33 +90,66 @@ int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool
   return sunZenithRad * kRadToDeg >= kSpectralSamplesAutoZenithDeg ? 12 : 3;
 }
 
-RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& requestedOptions) {
+// What one render() carries from step to step.
+struct SkyRenderer::Frame {
+  SkyRenderOptions options;  // the request, its automatic choices resolved (spectral samples)
+  bool useTables = false;    // Bruneton's 4D tables read per pixel instead of the f_ms march
+  bool useSkyView = false;   // the sky-view table read per pixel (else a march per pixel per batch)
+  bool derivedRecorded = false;   // the derived tables (4D tables or the ground's skylight) were recomputed
+  bool lutsComputed = false;      // the atmosphere LUTs were computed (not from memory or disk)
+  std::unique_ptr<CloudSettings> clouds;  // null without cloud layers
+  std::unique_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
+  gpu::TileDispatch tiles{};
+};
+
+RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
   RenderResult result;
-  const bool useTables = requestedOptions.multipleScattering == MultipleScattering::BrunetonTables;
-  if (useTables && requestedOptions.luts.spectralSamples != 3 && requestedOptions.luts.spectralSamples != kSpectralSamplesAuto)
+  Frame frame = plan(scene, options, result);
+  prepareTables(frame, result);
+  prepareClouds(scene, frame, result);
+  gpu::CommandList commands(context_);
+  recordSky(frame, result, commands);
+  if (frame.clouds) recordClouds(frame, result, commands);
+  resolve(scene, frame, commands, result);
+  return result;
+}
+
+// Plan: the scene's view, the options' automatic choices, the passes the scene needs (render_plan.h).
+SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions& requested, RenderResult& result) {
+  Frame frame;
+  frame.useTables = requested.multipleScattering == MultipleScattering::BrunetonTables;
+  if (frame.useTables && requested.luts.spectralSamples != 3 && requested.luts.spectralSamples != kSpectralSamplesAuto)
     throw InputError("the 4D scattering tables carry three wavelengths: use spectral samples 3 with them");
   result.view = makeSceneView(scene);
-  const SceneView& view = result.view;
-  SkyRenderOptions options = requestedOptions;
+  frame.options = requested;
   const bool hasClouds = sceneHasCloudLayers(scene);
-  options.luts.spectralSamples = resolveSpectralSamples(options.luts.spectralSamples, view.sunZenith, hasClouds, useTables);
-  result.spectralSamples = options.luts.spectralSamples;
-  result.plan = planRender(scene, planOptions(options));
-  const int width = view.camera.width;
-  const int height = view.camera.height;
+  if (hasClouds && frame.useTables) throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
+  frame.options.luts.spectralSamples =
+      resolveSpectralSamples(frame.options.luts.spectralSamples, result.view.sunZenith, hasClouds, frame.useTables);
+  result.spectralSamples = frame.options.luts.spectralSamples;
+  result.plan = planRender(scene, planOptions(frame.options));
+  if (hasClouds) {
+    frame.clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
+    frame.options.clouds.apply(frame.clouds->march);
+  }
+  return frame;
+}
 
-  // Tables first, in their own submission, so their cost is reported apart from the frame's.
+// Prepare the tables, in their own submission so that their cost is reported apart from the frame's:
+// the atmosphere LUTs, then the tables derived from them (the 4D scattering tables, or the f_ms path's
+// ground skylight). Each is reused while its inputs are unchanged.
+void SkyRenderer::prepareTables(Frame& frame, RenderResult& result) {
+  const SkyRenderOptions& options = frame.options;
   AtmosphereLutSettings lutSettings = options.luts;
-  lutSettings.multipleScatteringLut = !useTables;  // the 4D tables replace Psi_ms
-  AtmosphereLuts::Update tables = luts_.update(view.atmosphere, lutSettings);
+  lutSettings.multipleScatteringLut = !frame.useTables;  // the 4D tables replace Psi_ms
+  AtmosphereLuts::Update tables = luts_.update(result.view.atmosphere, lutSettings);
   for (const auto& t : tables.timings) {
     result.timings.push_back(t);
     result.precomputeMilliseconds += t.milliseconds;
   }
-  // Tables derived from those: the 4D scattering tables, or the f_ms path's ground skylight.
   gpu::CommandList derived(context_);
   bool recorded = false;
-  if (useTables) {
+  if (frame.useTables) {
     if (!tables_) tables_ = std::make_unique<ScatteringTables>(context_);
     recorded = tables_->update(luts_, options.tables, derived);
   } else {
@@ -133,49 +166,59 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
       result.precomputeMilliseconds += t.milliseconds;
     }
   }
-  result.tablesReused = tables.source != AtmosphereLuts::Source::Computed && !recorded;
-  result.tablesSource = tables.source == AtmosphereLuts::Source::Computed ? "computed"
+  frame.derivedRecorded = recorded;
+  frame.lutsComputed = tables.source == AtmosphereLuts::Source::Computed;
+  result.tablesReused = !frame.lutsComputed && !recorded;
+  result.tablesSource = frame.lutsComputed                                ? "computed"
                         : tables.source == AtmosphereLuts::Source::Memory ? "memory"
                                                                           : "disk cache";
+}
 
-  // Clouds (docs/clouds.md): the noise is baked once per seed, apart from the frame's passes.
-  std::unique_ptr<CloudSettings> clouds;
-  if (hasClouds) {
-    if (useTables) throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
-    clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
-    options.clouds.apply(clouds->march);
-    if (!clouds_) clouds_ = std::make_unique<CloudPass>(context_);
-    // The weather map (sky/scene_weather.h): the simulation's (CPU, cached) or the procedural one.
-    clouds_->setWeatherMap(options.cloudWeather ? *options.cloudWeather : cloudWeatherMapForScene(scene));
-    gpu::CommandList bake(context_);
-    if (clouds_->prepareNoise(*clouds, options.cloudNoise, bake)) {
-      bake.submitAndWait();
-      clouds_->noise().storeBaked();
-      for (const auto& t : bake.passTimings()) {
-        result.timings.push_back(t);
-        result.precomputeMilliseconds += t.milliseconds;
-      }
+// Prepare the clouds (docs/clouds.md): the weather map of the scene's time, and the noise, baked once
+// per seed apart from the frame's passes.
+void SkyRenderer::prepareClouds(const Scene& scene, Frame& frame, RenderResult& result) {
+  if (!frame.clouds) return;
+  if (!clouds_) clouds_ = std::make_unique<CloudPass>(context_);
+  // The weather map (sky/scene_weather.h): the simulation's (CPU, cached) or the procedural one.
+  clouds_->setWeatherMap(frame.options.cloudWeather ? *frame.options.cloudWeather : cloudWeatherMapForScene(scene));
+  gpu::CommandList bake(context_);
+  if (clouds_->prepareNoise(*frame.clouds, frame.options.cloudNoise, bake)) {
+    bake.submitAndWait();
+    clouds_->noise().storeBaked();
+    for (const auto& t : bake.passTimings()) {
+      result.timings.push_back(t);
+      result.precomputeMilliseconds += t.milliseconds;
     }
-    result.cloudNoiseSource = clouds_->noise().source();
   }
+  result.cloudNoiseSource = clouds_->noise().source();
+}
 
-  FrameBlock frame{};
-  put(frame.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
-  put(frame.cameraForward, view.camera.forward, view.camera.fov);
-  put(frame.cameraRight, view.camera.right, view.camera.yaw);
-  put(frame.cameraUp, view.camera.up);
-  put(frame.sunDirection, view.sunDirection);
-  frame.image[0] = width;
-  frame.image[1] = height;
-  frame.image[2] = view.camera.projection;
-  frame.image[3] = options.viewSteps;
+// Record the sky: the frame block, the sky-view table (when its inputs changed), then the image's
+// in-scattering by one of three methods (the sky-view table, a march per pixel, the 4D tables).
+void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands) {
+  const SkyRenderOptions& options = frame.options;
+  const SceneView& view = result.view;
+  const int width = view.camera.width;
+  const int height = view.camera.height;
+  const bool useTables = frame.useTables;
+  FrameBlock block{};
+  put(block.cameraPosition, glm::dvec3(0.0, 0.0, view.cameraRadius));
+  put(block.cameraForward, view.camera.forward, view.camera.fov);
+  put(block.cameraRight, view.camera.right, view.camera.yaw);
+  put(block.cameraUp, view.camera.up);
+  put(block.sunDirection, view.sunDirection);
+  block.image[0] = width;
+  block.image[1] = height;
+  block.image[2] = view.camera.projection;
+  block.image[3] = options.viewSteps;
   // The sky-view table holds the sky seen from inside the atmosphere; from above its top every
   // pixel is marched (the same integral, so there is no seam at the switch).
   const bool useSkyView = !useTables && options.method == SkyMethod::SkyViewLut &&
                           view.cameraRadius <= luts_.parameters().top_radius;
+  frame.useSkyView = useSkyView;
   result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
-  frame.options[0] = useSkyView ? 1 : 0;
-  frameBlock_.upload(&frame, sizeof(frame));
+  block.options[0] = useSkyView ? 1 : 0;
+  frameBlock_.upload(&block, sizeof(block));
   if (!skyView_ || int(skyView_.width()) != options.skyViewWidth || int(skyView_.height()) != options.skyViewHeight) {
     skyView_ = gpu::Image(context_, {uint32_t(options.skyViewWidth), uint32_t(options.skyViewHeight), 1,
                                      gpu::Format::RGBA32F, true, true, "sky-view LUT"});
@@ -183,11 +226,12 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
   }
 
   // The frame is a storage buffer of RGBA32F pixels, row-major, not a storage image: on lavapipe an
-  // image store costs ~4x a buffer store (bench/output_write.cpp, docs/gpu.md), and it is read back as is.
-  gpu::Buffer output(context_, VkDeviceSize(width) * VkDeviceSize(height) * 4 * sizeof(float),
-                     gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "sky frame");
-  gpu::TileDispatch tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
-  gpu::CommandList commands(context_);
+  // image store costs ~4x a buffer store (eval/micro/output_write.cpp, docs/gpu.md), and it is read back as is.
+  frame.output = std::make_unique<gpu::Buffer>(context_, VkDeviceSize(width) * VkDeviceSize(height) * 4 * sizeof(float),
+                                               gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "sky frame");
+  gpu::Buffer& output = *frame.output;
+  frame.tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
+  const gpu::TileDispatch& tiles = frame.tiles;
   const size_t batches = luts_.batchCount();
   // The sky-view table is a function of the tables, the camera's altitude, the sun's zenith angle and
   // the steps only (azimuths are measured from the sun): a sequence's frame keeps the previous frame's
@@ -200,7 +244,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
                   options.viewSteps, options.skyViewWidth, options.skyViewHeight);
     skyViewKey = luts_.key() + inputs;
   }
-  if (recorded || tables.source == AtmosphereLuts::Source::Computed) skyViewKey_.clear();  // inputs recomputed
+  if (frame.derivedRecorded || frame.lutsComputed) skyViewKey_.clear();  // inputs recomputed
   result.skyViewReused = options.continueSequence && useSkyView && !skyViewKey_.empty() && skyViewKey == skyViewKey_;
   if (useSkyView && !result.skyViewReused) {
     skyViewKey_ = skyViewKey;
@@ -271,56 +315,76 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     commands.dispatchTiles(tiles, useSkyView ? "sky/render_sky" : "sky/render_sky_march");
     if (b + 1 < renderPasses) commands.barrier();
   }
-  if (clouds) {
-    CloudView cloudView;
-    cloudView.cameraPosition = glm::dvec3(0.0, 0.0, view.cameraRadius);
-    cloudView.sunDirection = view.sunDirection;
-    cloudView.camera = view.camera;
-    // The aerial-perspective volume (only when the clouds read it), over the clouds' march limit by
-    // default; the barrier before the clouds covers it and the sky frame.
-    CloudAerialVolume aerialVolume;
-    std::vector<const gpu::Image*> irradiance;
-    for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
-    const CloudMarchSettings& march = clouds->march;
-    const bool volume = march.aerialPerspective == AerialPerspective::Volume;
-    AerialPerspectiveVolumeSettings aerialSettings = options.aerialPerspective;
-    if (!(aerialSettings.maxDistance_m > 0.0)) aerialSettings.maxDistance_m = march.maxDistance_m;
-    // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds.md "Light shafts").
-    const bool shafts = volume && march.beerShadowMap && march.lightShafts;
-    if (march.beerShadowMap)
-      clouds_->recordShadowMap(*clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0, commands);
-    if (volume) {
-      if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
-      AerialCloudShadow shadow;
-      if (shafts) {
-        const CloudPass::ShadowPlacement& p = clouds_->shadowPlacement();
-        shadow = {&clouds_->shadowMap(), &luts_.linearClamp(), p.centre, p.u, p.v, p.extent_m, p.start_m};
-      }
-      aerial_->record(aerialSettings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands,
-                      shafts ? &shadow : nullptr);
-      aerialVolume.volumes = aerial_->volumes();
-      aerialVolume.maxDistance_m = aerialSettings.maxDistance_m;
-    }
-    commands.barrier();
+}
+
+// Record the clouds: the Beer shadow map (when on), the aerial-perspective volume they read (with the
+// clouds' light shafts), then the cloud march composited over the sky.
+void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands) {
+  const SkyRenderOptions& options = frame.options;
+  const SceneView& view = result.view;
+  const size_t batches = luts_.batchCount();
+  gpu::Buffer& output = *frame.output;
+  const gpu::TileDispatch& tiles = frame.tiles;
+  const CloudSettings& clouds = *frame.clouds;
+  CloudView cloudView;
+  cloudView.cameraPosition = glm::dvec3(0.0, 0.0, view.cameraRadius);
+  cloudView.sunDirection = view.sunDirection;
+  cloudView.camera = view.camera;
+  // The aerial-perspective volume (only when the clouds read it), over the clouds' march limit by
+  // default; the barrier before the clouds covers it and the sky frame.
+  CloudAerialVolume aerialVolume;
+  std::vector<const gpu::Image*> irradiance;
+  for (size_t b = 0; b < batches; ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
+  const CloudMarchSettings& march = clouds.march;
+  const bool volume = march.aerialPerspective == AerialPerspective::Volume;
+  AerialPerspectiveVolumeSettings aerialSettings = options.aerialPerspective;
+  if (!(aerialSettings.maxDistance_m > 0.0)) aerialSettings.maxDistance_m = march.maxDistance_m;
+  // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds.md "Light shafts").
+  const bool shafts = volume && march.beerShadowMap && march.lightShafts;
+  if (march.beerShadowMap)
+    clouds_->recordShadowMap(clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0, commands);
+  if (volume) {
+    if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
+    AerialCloudShadow shadow;
     if (shafts) {
-      if (!lightShaftsPipeline_)
-        lightShaftsPipeline_ = std::make_unique<gpu::ComputePipeline>(
-            context_, gpu::PipelineDesc{"sky/cloud_light_shafts",
-                                        {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                         gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
-                                        sizeof(gpu::TileDispatch) + 4 * sizeof(float)});
-      struct {
-        gpu::TileDispatch tiles;
-        float maxDistance;
-        float pad[3];
-      } push{tiles, float(aerialSettings.maxDistance_m), {0.0f, 0.0f, 0.0f}};
-      commands.bind(*lightShaftsPipeline_, {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
-      commands.pushConstants(push);
-      commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
-      commands.barrier();
+      const CloudPass::ShadowPlacement& p = clouds_->shadowPlacement();
+      shadow = {&clouds_->shadowMap(), &luts_.linearClamp(), p.centre, p.u, p.v, p.extent_m, p.start_m};
     }
-    clouds_->record(*clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume, options.continueSequence);
+    aerial_->record(aerialSettings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands,
+                    shafts ? &shadow : nullptr);
+    aerialVolume.volumes = aerial_->volumes();
+    aerialVolume.maxDistance_m = aerialSettings.maxDistance_m;
   }
+  commands.barrier();
+  if (shafts) {
+    if (!lightShaftsPipeline_)
+      lightShaftsPipeline_ = std::make_unique<gpu::ComputePipeline>(
+          context_, gpu::PipelineDesc{"sky/cloud_light_shafts",
+                                      {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                                       gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                                      sizeof(gpu::TileDispatch) + 4 * sizeof(float)});
+    struct {
+      gpu::TileDispatch tiles;
+      float maxDistance;
+      float pad[3];
+    } push{tiles, float(aerialSettings.maxDistance_m), {0.0f, 0.0f, 0.0f}};
+    commands.bind(*lightShaftsPipeline_, {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
+    commands.pushConstants(push);
+    commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
+    commands.barrier();
+  }
+  clouds_->record(clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume, options.continueSequence);
+}
+
+// Resolve: submit and wait, the timings, the images downloaded (unless the caller keeps them on the
+// GPU), and the image's metadata.
+void SkyRenderer::resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result) {
+  const SkyRenderOptions& options = frame.options;
+  const SceneView& view = result.view;
+  const int width = view.camera.width;
+  const int height = view.camera.height;
+  gpu::Buffer& output = *frame.output;
+  const bool clouds = frame.clouds != nullptr;
   commands.submitAndWait();
   for (const auto& t : commands.passTimings()) {
     result.timings.push_back(t);
@@ -355,7 +419,6 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& req
     std::snprintf(ms, sizeof(ms), "%.4f", t.milliseconds);
     image.metadata["firmament.timing." + t.label + "_ms"] = ms;
   }
-  return result;
 }
 
 std::vector<float> SkyRenderer::cloudShadowMap() const {

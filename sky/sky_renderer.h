@@ -95,6 +95,17 @@ class SkyRenderer {
   std::vector<float> cloudShadowMap() const;
 
  private:
+  // render() in four steps: plan (the view, the options' automatic choices, the passes), prepare (the
+  // tables and the clouds' weather and noise, each in its own submission and reused while unchanged),
+  // record (the sky, then the clouds, into one command list) and resolve (submit, timings, downloads).
+  struct Frame;
+  Frame plan(const Scene& scene, const SkyRenderOptions& options, RenderResult& result);
+  void prepareTables(Frame& frame, RenderResult& result);
+  void prepareClouds(const Scene& scene, Frame& frame, RenderResult& result);
+  void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  void resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result);
+
   gpu::Context& context_;
   AtmosphereLuts luts_;
   std::vector<std::unique_ptr<FmsSkyIrradiance>> fmsSkyIrradiance_;  // one per spectral batch
