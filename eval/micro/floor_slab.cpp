@@ -7,15 +7,15 @@
 //   2. The light leaving the base from photons (`photons` per case, default 2000000), binned by exit
 //      cosine: floor / Monte Carlo averaged over the bins mu >= 0.1 (weighted by their photons), without
 //      and with the low-sun factor (cloudFloorLowSunFactor), for thickness 10, 20, 40 and mu0 0.087 .. 1.
-//   3. The deck's transmission (cloudSlabTransmission, session 22): the diffuse flux out of the base from
+//   3. The deck's transmission (cloudSlabTransmission): the diffuse flux out of the base from
 //      photons of orders >= 1 (`photons` / 10 per case) against the Eddington form's diffuse part and
 //      against cloudSlabTransmission's, for vertical optical depth 1-40 and mu0 0.087 .. 1.
-//   4. A finite cloud (session 23): the same medium cut to a vertical cylinder of optical radius R, R / H
+//   4. A finite cloud: the same medium cut to a vertical cylinder of optical radius R, R / H
 //      0.5, 1, 2 and infinite (thickness H 10 and 20, mu0 1 and 0.64), the source of orders >= 2 (backward
 //      paths, `paths` / 4 per point) against the slab's floor at the same depth, which is what the
 //      column-wise floor gives inside any cylinder: on the axis at depths 0.25, 0.5, 0.9 H, scattered
 //      down and up, and across the cylinder at mid-depth (x / R -0.75 .. 0.75, the sunlit side negative).
-//   5. The octaves' form in a slab (session 23): the light of orders >= 2 that the march gives a sample of a
+//   5. The octaves' form in a slab: the light of orders >= 2 that the march gives a sample of a
 //      homogeneous slab (its octaves i >= 1, the floor, and the larger of the two, which the march takes;
 //      without the reflected light, cloudReflectedSource, which the march adds on top of the larger), with
 //      each type's shipped constants (cumulus, stratocumulus), against the Monte Carlo's source (backward paths,
