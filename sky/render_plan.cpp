@@ -66,7 +66,7 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   }
 
   if (scene.hasSection("clouds")) {
-    // docs/clouds.md: noise baked once per seed, then one march per frame (per spectral batch).
+    // docs/clouds/README.md: noise baked once per seed, then one march per frame (per spectral batch).
     if (options.multipleScattering == MultipleScattering::BrunetonTables) {
       plan.unavailable.push_back({"clouds", "clouds need the f_ms path (--multiple-scattering fms) in this version"});
     } else if (scene.at("/clouds/layers").empty()) {

@@ -1,5 +1,5 @@
 #pragma once
-// A scene's clouds as the CPU sees them (docs/clouds.md, "Reference" and "Export to OpenVDB"): the
+// A scene's clouds as the CPU sees them (docs/clouds/reference.md and docs/clouds/vdb-export.md): the
 // CloudMedium of clouds/reference_clouds.h with the scene's layers over the ground sphere below the
 // camera, the noise textures baked on the GPU (lavapipe without one) and read back, and the same
 // weather map as the fast path (sky/scene_weather.h). `firmament reference` and `firmament export-vdb`

@@ -1,5 +1,5 @@
 #pragma once
-// The weather map a scene's clouds read (docs/clouds.md, "Weather map"): composition of weather/ (the
+// The weather map a scene's clouds read (docs/clouds/weather-map.md): composition of weather/ (the
 // CPU simulation) and clouds/ (which knows only CloudWeatherMap).
 //
 // - A `weather` section: the simulation runs from the local mean solar midnight before the scene's

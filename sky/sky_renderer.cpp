@@ -174,7 +174,7 @@ void SkyRenderer::prepareTables(Frame& frame, RenderResult& result) {
                                                                           : "disk cache";
 }
 
-// Prepare the clouds (docs/clouds.md): the weather map of the scene's time, and the noise, baked once
+// Prepare the clouds (docs/clouds/README.md): the weather map of the scene's time, and the noise, baked once
 // per seed apart from the frame's passes.
 void SkyRenderer::prepareClouds(const Scene& scene, Frame& frame, RenderResult& result) {
   if (!frame.clouds) return;
@@ -339,7 +339,7 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
   const bool volume = march.aerialPerspective == AerialPerspective::Volume;
   AerialPerspectiveVolumeSettings aerialSettings = options.aerialPerspective;
   if (!(aerialSettings.maxDistance_m > 0.0)) aerialSettings.maxDistance_m = march.maxDistance_m;
-  // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds.md "Light shafts").
+  // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds/aerial-perspective-and-light-shafts.md).
   const bool shafts = volume && march.beerShadowMap && march.lightShafts;
   if (march.beerShadowMap)
     clouds_->recordShadowMap(clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0, commands);

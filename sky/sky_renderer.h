@@ -53,7 +53,7 @@ struct SkyRenderOptions {
   std::shared_ptr<const CloudWeatherMap> cloudWeather;
   // This frame continues the sequence of this renderer's previous render() (the same scene with the
   // camera, its orientation, the time or the sun moved): the clouds may reproject that frame
-  // (/clouds/temporal_update, docs/clouds.md "Temporal reprojection"), and the sky-view table is kept
+  // (/clouds/temporal_update, docs/clouds/resolution-and-temporal.md), and the sky-view table is kept
   // when its inputs are unchanged. False: a still, every pixel marched, every table of the frame computed.
   bool continueSequence = false;
   // False: the frame stays on the GPU and RenderResult::image and ::clouds are empty. Benches time

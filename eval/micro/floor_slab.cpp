@@ -1,6 +1,6 @@
 // bench_floor_slab [paths photons azimuth_deg parts]   (parts: which of 1-5 to run, default "12345")
 // The diffusion floor (and the deck transmission built on it) against Monte Carlos of a homogeneous conservative slab (clouds/slab_monte_carlo.h):
-// the sweeps its two corrections were fitted to (docs/clouds.md "Lighting", item 6). CPU only.
+// the sweeps its two corrections were fitted to (docs/clouds/multiple-scattering.md, item 6). CPU only.
 //   1. The radiance leaving the base (backward paths, `paths` per angle, default 100000; exit azimuth
 //      `azimuth_deg` from the sun's, default 90): floor / Monte Carlo at exit cosines mu 1 .. 0.05, without and with the base's
 //      limb darkening (cloudBaseLimbFactor), for optical thickness 10, 20 and mu0 0.3, 0.64, 1.

@@ -223,7 +223,7 @@ const CommandRegistration registration{Command{
         {"timing-setting", "TEXT", "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), and the defaults' still and 1/16 sequence"},
         {"timing-size", "WxH", "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
         {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
-                          "scenes (clouds_calibration.csv/.md; docs/clouds.md)"},
+                          "scenes (clouds_calibration.csv/.md; docs/clouds/README.md)"},
         deviceOption(),
     },
     1,

@@ -1,6 +1,6 @@
 // `firmament export-vdb SCENE -o clouds.vdb`: the clouds' extinction field over a region as an OpenVDB
-// grid named "density" (m^-1), for Blender, Houdini or any path tracer (docs/clouds.md, "Export to
-// OpenVDB"; the grid's layout is in clouds/vdb_export.h).
+// grid named "density" (m^-1), for Blender, Houdini or any path tracer (docs/clouds/vdb-export.md; the
+// grid's layout is in clouds/vdb_export.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -78,7 +78,7 @@ int runReference(const Args& args) {
                                   [&](size_t done, size_t) { progress.set(done); });
   }
 
-  // Clouds (docs/clouds.md, "Reference"): the CPU cloud path tracer over the noise textures baked on
+  // Clouds (docs/clouds/reference.md): the CPU cloud path tracer over the noise textures baked on
   // the GPU (lavapipe without one) and read back, composited as sky * T + cloud light.
   nlohmann::ordered_json cloudStats;
   if (sceneHasCloudLayers(scene)) {

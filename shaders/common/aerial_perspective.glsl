@@ -22,7 +22,7 @@
 //    narrower than what interpolation between columns a few degrees apart reproduces: with the phase
 //    stored, the froxels' error peaked at 2 % around the sun), tile 2 the transmittance at the
 //    batch's three wavelengths. Alpha of tiles 0 and 1: the luminance (cd/m^2) of the single scattering
-//    that the clouds' shadows removed (light shafts, docs/clouds.md; tile 1's without the aerosol phase;
+//    that the clouds' shadows removed (light shafts, docs/clouds/README.md; tile 1's without the aerosol phase;
 //    0 without cloud shadows); tile 2's alpha is 1. A lookup interpolates within a tile only
 //    (corner alignment keeps the coordinate between the tile's first and last texel centres).
 // Depth is the distance along the ray (not a view-space z), as the cloud march measures it.

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Cloud shadows in the sky (light shafts; docs/clouds.md "Light shafts"): the sky image came from the
+// Cloud shadows in the sky (light shafts; docs/clouds/aerial-perspective-and-light-shafts.md): the sky image came from the
 // sky-view table, which knows no clouds. The aerial-perspective volume, marched with the clouds' Beer
 // shadow map, holds the luminance of the sunlight that their shadows remove from the air between the
 // camera and each depth (its alpha channels; sky/aerial_perspective_volume.comp). Each pixel takes it

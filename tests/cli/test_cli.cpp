@@ -295,7 +295,7 @@ TEST(Cli, RenderFramesWritesASequence) {
   }
 }
 
-// The cloud noise on disk (docs/clouds.md "Noise"): a second `render` of a cloud scene reads the noise
+// The cloud noise on disk (docs/clouds/noise-and-density.md): a second `render` of a cloud scene reads the noise
 // that the first baked (stats JSON clouds.noise) and writes the same image, bit for bit. The cache
 // folder is a scratch one (FIRMAMENT_CACHE_DIR), so the test starts empty and leaves the user's alone.
 TEST(Cli, RenderReadsTheCloudNoiseTheLastRunBaked) {
