@@ -23,6 +23,7 @@ const TerrainStyleParameters kStyles[] = {
 };
 
 constexpr int kMaxOctaves = 28;
+constexpr double kRidgeSoftness = 0.08;
 // Octave rotation: (cos, sin) = (4/5, 3/5), an angle of 36.87°, irrational in degrees, so lattices of
 // successive octaves never align.
 constexpr double kRotationCos = 0.8, kRotationSin = 0.6;
@@ -89,11 +90,14 @@ double ProceduralTerrainField::profile(double x, double y, double finest) const 
     // d/du, d/dv back to the plane: the lattice is the plane rotated by (rc, rs) and scaled by 1/λ.
     double signal, dsu, dsv;
     if (p.ridged) {
-      const double r = 1.0 - std::fabs(n.value);
-      const double sgn = n.value < 0.0 ? -1.0 : 1.0;
+      // |n| softened to √(n² + ε²) − ε: a crest rounded over ε of the noise's range instead of a
+      // one-sample crease (sqrt is correctly rounded in IEEE, so this stays deterministic).
+      const double soft = std::sqrt(n.value * n.value + kRidgeSoftness * kRidgeSoftness);
+      const double r = 1.0 - (soft - kRidgeSoftness);
+      const double dabs = n.value / soft;
       signal = r * r * weight;
-      dsu = -2.0 * r * sgn * n.dx * weight;
-      dsv = -2.0 * r * sgn * n.dy * weight;
+      dsu = -2.0 * r * dabs * n.dx * weight;
+      dsv = -2.0 * r * dabs * n.dy * weight;
       weight = std::clamp(signal * 2.0, 0.0, 1.0);
     } else {
       signal = n.value;

@@ -155,19 +155,23 @@ TerrainHit TerrainIntersector::walk(const TerrainRay& input, bool usePyramid) co
     tx = std::max(tx, t);
     ty = std::max(ty, t);
     const double nodeExit = std::min(std::min(tx, ty), q1);
-    const double nodeMax = pyramid_.level(level).max(ni, nj);
-    double s0 = 0.0, s1 = 0.0;
-    double lo = kInfinity, hi = -kInfinity;
-    if (shared::raySphereRoots(r, mu, R + nodeMax, s0, s1) && s1 >= t) {
-      lo = std::max(t, s0);
-      hi = std::min(nodeExit, s1);
-    }
-    if (lo <= hi) {
+    const double nodeMin = pyramid_.level(level).min(ni, nj), nodeMax = pyramid_.level(level).max(ni, nj);
+    double lo = 0.0, hi = 0.0;
+    bool reachesBottom = false;
+    if (shared::terrainCellSpan(cellRay, nodeMin, nodeMax, t, nodeExit, lo, hi, reachesBottom)) {
       if (level > 0) {
+        // The child under the ray at lo. The ray's leaf indices only move in its direction of travel,
+        // so a position rounded back across a line already crossed keeps the index it had: without
+        // this, a point on a child's far edge would send the walk back into that child for ever.
         t = lo;
-        leafAt(t, ix, iy);
-        ix = std::clamp(ix, i0, i1 - 1);
-        iy = std::clamp(iy, j0, j1 - 1);
+        int jx = 0, jy = 0;
+        leafAt(t, jx, jy);
+        if (stepX > 0.0) jx = std::max(jx, ix);
+        if (stepX < 0.0) jx = std::min(jx, ix);
+        if (stepY > 0.0) jy = std::max(jy, iy);
+        if (stepY < 0.0) jy = std::min(jy, iy);
+        ix = std::clamp(jx, i0, i1 - 1);
+        iy = std::clamp(jy, j0, j1 - 1);
         --level;
         continue;
       }
@@ -175,7 +179,12 @@ TerrainHit TerrainIntersector::walk(const TerrainRay& input, bool usePyramid) co
       const glm::dvec4 cell(X0 + ix * f.dx, Y0 + iy * f.dy, f.dx, f.dy);
       const glm::dvec4 heights(f.at(ix, iy), f.at(ix + 1, iy), f.at(ix, iy + 1), f.at(ix + 1, iy + 1));
       double tHit = 0.0;
-      if (shared::terrainCellHit(cellRay, cell, heights, lo, hi, kRefinementSteps, tHit)) {
+      bool hitCell = shared::terrainCellHit(cellRay, cell, heights, lo, hi, kRefinementSteps, tHit);
+      if (!hitCell && reachesBottom) {
+        hitCell = true;
+        tHit = hi;
+      }
+      if (hitCell) {
         const glm::dvec2 plane = shared::terrainPlaneAlongRay(o, d, tHit, R);
         const glm::dvec2 fraction(std::clamp((plane.x - cell.x) / f.dx, 0.0, 1.0),
                                   std::clamp((plane.y - cell.y) / f.dy, 0.0, 1.0));

@@ -24,6 +24,7 @@
 #define FIRMAMENT_TERRAIN_GEOMETRY_GLSL
 
 #include "common/compat.glsl"
+#include "common/geometry.glsl"
 
 SHARED_BEGIN
 
@@ -185,6 +186,30 @@ SHARED_INLINE bool terrainCellHit(TerrainCellRay ray, vec4 cell, vec4 heights, R
     }
   }
   tHit = hi;
+  return true;
+}
+
+// The part of [tEnter, tExit] (the ray over a cell or a node) where the ray can meet a surface whose
+// heights lie in [hMin, hMax]: from where it dips below hMax to where it reaches hMin (ray–sphere roots
+// of R + hMax and R + hMin, geometry.glsl). False if the ray stays above hMax over the span. When the
+// span ends because the ray reaches hMin, reachesBottom is set: the ray is in the solid at tTo, so a
+// cell test that finds no root before tTo (a root closer to tTo than rounding) hits at tTo. Clipping
+// to hMin also keeps a steep ray's span, and so its bisection, as short as the cell's relief.
+SHARED_INLINE bool terrainCellSpan(TerrainCellRay ray, Real hMin, Real hMax, Real tEnter, Real tExit, OUT(Real) tFrom,
+                                   OUT(Real) tTo, OUT(bool) reachesBottom) {
+  tFrom = tEnter;
+  tTo = tExit;
+  reachesBottom = false;
+  Real near = 0.0;
+  Real far = 0.0;
+  if (!raySphereRoots(ray.r, ray.mu, ray.planetRadius + hMax, near, far) || far < tEnter) return false;
+  tFrom = max(tEnter, near);
+  tTo = min(tExit, far);
+  if (tFrom > tTo) return false;
+  if (raySphereRoots(ray.r, ray.mu, ray.planetRadius + hMin, near, far) && near >= tFrom && near <= tTo) {
+    tTo = near;
+    reachesBottom = true;
+  }
   return true;
 }
 
