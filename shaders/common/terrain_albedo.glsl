@@ -36,8 +36,8 @@ struct TerrainAlbedoParameters {
 
 // 1 − smoothstep across [centre − width / 2, centre + width / 2]; a step when width is 0.
 SHARED_INLINE Real terrainFadeOut(Real value, Real centre, Real width) {
-  Real half = 0.5 * max(width, 1.0e-6);
-  return 1.0 - smoothstep(centre - half, centre + half, value);
+  Real halfWidth = 0.5 * max(width, 1.0e-6);
+  return 1.0 - smoothstep(centre - halfWidth, centre + halfWidth, value);
 }
 
 // The weights (vegetation, snow) in [0, 1]² at this height (m) and slope cosine (terrainSlopeCosine).
