@@ -38,6 +38,13 @@ set_target_properties(OpenVDB::openvdb PROPERTIES
   IMPORTED_LOCATION ${OpenVDB_LIBRARY}
   INTERFACE_INCLUDE_DIRECTORIES "${OpenVDB_INCLUDE_DIR};${OpenVDB_BOOST_INCLUDE_DIR}"
   INTERFACE_LINK_LIBRARIES "TBB::tbb;Imath::Imath")
+# GDAL (libgdal-dev; Debian 12: 3.6), for terrain/gdal_raster.cpp only: elevation rasters in any format GDAL
+# reads. Its CMake config defines GDAL::GDAL; only firmament_terrain_gdal links it.
+find_package(GDAL CONFIG)
+if(NOT TARGET GDAL::GDAL)
+  message(FATAL_ERROR "GDAL not found (its CMake config, GDALConfig.cmake); install libgdal-dev (docs/dependencies.md)")
+endif()
+message(STATUS "GDAL ${GDAL_VERSION}")
 if(FIRMAMENT_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

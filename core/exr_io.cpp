@@ -72,7 +72,9 @@ void writeExr(const fs::path& path, const Image& image, ExrCompression compressi
   });
 }
 
-Image readExr(const fs::path& path) {
+namespace {
+// The checks before OpenEXR opens a file: it exists, is readable, is a flat OpenEXR file.
+void checkReadable(const fs::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError("cannot read '" + name + "': no such file");
@@ -86,7 +88,12 @@ Image readExr(const fs::path& path) {
   if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multiPart))
     throw InputError("cannot read '" + name + "': not an OpenEXR file");
   if (deep) throw InputError("cannot read '" + name + "': deep OpenEXR images are not supported");
+}
+}  // namespace
 
+Image readExr(const fs::path& path) {
+  const std::string name = path.string();
+  checkReadable(path);
   try {
     Imf::InputFile file(path.c_str());  // a multi-part file: its first part
     const Imf::Header& header = file.header();
@@ -145,6 +152,90 @@ Image readExr(const fs::path& path) {
     // OpenEXR's Iex exceptions: truncated or corrupt files, unsupported layouts.
     throw InputError("cannot read '" + name + "': " + e.what());
   }
+}
+
+ExrChannel readExrChannel(const fs::path& path, const std::vector<std::string>& names) {
+  const std::string name = path.string();
+  checkReadable(path);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imath::Box2i window = header.dataWindow();
+    const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+    const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+    if (width <= 0 || height <= 0 || width * height > int64_t(1) << 28)
+      throw InputError("cannot read '" + name + "': data window of " + std::to_string(width) + "x" +
+                       std::to_string(height) + " pixels is empty or too large");
+    const Imf::ChannelList& list = header.channels();
+    std::string chosen, found;
+    int count = 0;
+    for (auto it = list.begin(); it != list.end(); ++it) {
+      found += std::string(found.empty() ? "" : ", ") + it.name();
+      ++count;
+    }
+    for (const auto& n : names)
+      if (list.findChannel(n)) {
+        chosen = n;
+        break;
+      }
+    if (chosen.empty() && count == 1) chosen = list.begin().name();
+    if (chosen.empty()) {
+      std::string wanted;
+      for (const auto& n : names) wanted += std::string(wanted.empty() ? "" : ", ") + n;
+      throw InputError("cannot read '" + name + "': needs one of the channels " + wanted +
+                       " (or a single channel); the file has " + (found.empty() ? std::string("none") : found));
+    }
+    const Imf::Channel* ch = list.findChannel(chosen);
+    if (ch->xSampling != 1 || ch->ySampling != 1)
+      throw InputError("cannot read '" + name + "': channel " + chosen + " is subsampled");
+    ExrChannel result;
+    result.width = int(width);
+    result.height = int(height);
+    result.name = chosen;
+    result.values.assign(size_t(width) * size_t(height), 0.0f);
+    Imf::FrameBuffer frame;
+    frame.insert(chosen, Imf::Slice::Make(Imf::FLOAT, result.values.data(), window, sizeof(float),
+                                          sizeof(float) * size_t(width)));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        result.metadata[it.name()] = s->value();
+    return result;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError("cannot read '" + name + "': " + e.what());
+  }
+}
+
+void writeExrChannel(const fs::path& path, const ExrChannel& channel) {
+  if (channel.width <= 0 || channel.height <= 0 || channel.name.empty() ||
+      channel.values.size() != size_t(channel.width) * size_t(channel.height))
+    throw RuntimeError("cannot write '" + path.string() + "': channel '" + channel.name + "' of " +
+                       std::to_string(channel.width) + "x" + std::to_string(channel.height) + " with " +
+                       std::to_string(channel.values.size()) + " values");
+  Imf::Header header(channel.width, channel.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
+  for (const auto& [key, value] : channel.metadata) {
+    if (key.empty() || header.find(key) != header.end())
+      throw RuntimeError("cannot write '" + path.string() + "': metadata key '" + key +
+                         "' is empty or reserved by OpenEXR");
+    header.insert(key, Imf::StringAttribute(value));
+  }
+  writeFileAtomically(path, [&](const fs::path& tmp) {
+    Imf::FrameBuffer frame;
+    frame.insert(channel.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(channel.values.data())),
+                                          sizeof(float), sizeof(float) * size_t(channel.width)));
+    try {
+      Imf::OutputFile file(tmp.c_str(), header);
+      file.setFrameBuffer(frame);
+      file.writePixels(channel.height);
+    } catch (const std::exception& e) {
+      throw RuntimeError("cannot write '" + path.string() + "': " + e.what());
+    }
+  });
 }
 
 }  // namespace firmament
