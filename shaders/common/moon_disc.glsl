@@ -28,8 +28,8 @@ const Real kMoonEarthshineRatio = 1.0e-4;
 // closed form is 1 (alpha = 0) and 0 (alpha = pi) in the limit.
 SHARED_INLINE Real lommelSeeligerDiscPhase(Real phaseAngle) {
   Real a = clamp(phaseAngle, 1.0e-6, kPi - 1.0e-6);
-  Real half = 0.5 * a;
-  return max(1.0 - sin(half) * tan(half) * log(1.0 / tan(0.25 * a)), 0.0);
+  Real halfAngle = 0.5 * a;
+  return max(1.0 - sin(halfAngle) * tan(halfAngle) * log(1.0 / tan(0.25 * a)), 0.0);
 }
 
 // Solid angle of the disc of angular radius rho (radians): 2 pi (1 - cos rho), written without the

@@ -171,8 +171,9 @@ SHARED_INLINE Real zodiacalTable17At(Real longitudeDifferenceDeg, Real latitudeD
 // spectral irradiance at lambda (at 1 au). Leinert's table is at 500 nm; the zodiacal light is a little
 // redder than the Sun (a few per cent per 100 nm, their section 8.4), left out here.
 SHARED_INLINE Real zodiacalSolarSpectrumFactor(vec3 sunEclipticDirection) {
-  Real z = clamp(sunEclipticDirection.z, -1.0, 1.0);
-  Real latitudeDeg = abs(asin(z)) * (180.0 / kPi);
+  // atan of z over the horizontal length: well conditioned at the poles, where asin(z) is not.
+  Real horizontal = sqrt(sunEclipticDirection.x * sunEclipticDirection.x + sunEclipticDirection.y * sunEclipticDirection.y);
+  Real latitudeDeg = abs(atan(sunEclipticDirection.z, horizontal)) * (180.0 / kPi);
   Real longitudeDeg = abs(atan(sunEclipticDirection.y, sunEclipticDirection.x)) * (180.0 / kPi);
   // 1e-8 W m^-2 sr^-1 um^-1 = 1e-11 W m^-2 sr^-1 nm^-1.
   return zodiacalTable17At(longitudeDeg, latitudeDeg) * 1.0e-11 / kSolarSpectrumAt500Nm;
