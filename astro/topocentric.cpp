@@ -1,5 +1,7 @@
 #include "astro/topocentric.h"
 
+#include "astro/astrometry.h"
+
 #include <erfa.h>
 #include <erfam.h>
 #include <glm/geometric.hpp>
@@ -25,8 +27,7 @@ EarthState earthState(const JulianDate& tt) {
   return {{toVec(barycentric[0]), toVec(barycentric[1])}, {toVec(heliocentric[0]), toVec(heliocentric[1])}};
 }
 
-TopocentricPosition observe(const BarycentricState& body, const AstroTime& time, const GeodeticLocation& location,
-                            const ObservingConditions& conditions) {
+eraASTROM observerAstrometry(const AstroTime& time, const GeodeticLocation& location) {
   const JulianDate& tt = time.tt;
   EarthState earth = earthState(tt);
   double earthBarycentric[2][3] = {{earth.barycentric.position.x, earth.barycentric.position.y,
@@ -47,10 +48,46 @@ TopocentricPosition observe(const BarycentricState& body, const AstroTime& time,
 
   // Star-independent parameters for this observer: barycentric position and velocity (with the
   // diurnal motion), the bias-precession-nutation matrix and the local Earth rotation. Refraction is
-  // switched off here and applied below, so the geometric zenith comes out too.
+  // switched off here and applied by observeCirs, so the geometric zenith comes out too.
   eraASTROM astrom;
   eraApco(tt.dayStart, tt.dayFraction, earthBarycentric, earthHeliocentric, x, y, s, earthRotationAngle,
           location.longitude, location.latitude, location.height, 0.0, 0.0, tioLocator, 0.0, 0.0, &astrom);
+  return astrom;
+}
+
+TopocentricPosition observeCirs(double rightAscension, double declination, const eraASTROM& astromIn,
+                                const ObservingConditions& conditions) {
+  eraASTROM astrom = astromIn;
+  astrom.refa = astrom.refb = 0.0;
+  // CIRS -> observed: Earth rotation, polar motion (zero here), the horizon of the place.
+  double azimuth = 0.0, zenith = 0.0, hourAngle = 0.0, observedDec = 0.0, observedRa = 0.0;
+  eraAtioq(rightAscension, declination, &astrom, &azimuth, &zenith, &hourAngle, &observedDec, &observedRa);
+
+  TopocentricPosition result;
+  result.azimuth = eraAnp(azimuth);
+  result.geometricZenith = zenith;
+  switch (conditions.refraction) {
+    case RefractionModel::None:
+      result.zenith = zenith;
+      break;
+    case RefractionModel::Spa:
+      result.zenith = zenith - spaRefraction(std::numbers::pi / 2 - zenith, conditions.pressureHpa,
+                                             conditions.temperatureCelsius);
+      break;
+    case RefractionModel::Erfa: {
+      eraRefco(conditions.pressureHpa, conditions.temperatureCelsius, conditions.relativeHumidity,
+               conditions.wavelengthMicrometres, &astrom.refa, &astrom.refb);
+      eraAtioq(rightAscension, declination, &astrom, &azimuth, &zenith, &hourAngle, &observedDec, &observedRa);
+      result.zenith = zenith;
+      break;
+    }
+  }
+  return result;
+}
+
+TopocentricPosition observe(const BarycentricState& body, const AstroTime& time, const GeodeticLocation& location,
+                            const ObservingConditions& conditions) {
+  eraASTROM astrom = observerAstrometry(time, location);
 
   // Observer -> body, with the body where it was when the light left it (two fixed-point steps converge
   // to far below a millimetre for the Sun and the Moon).
@@ -68,30 +105,8 @@ TopocentricPosition observe(const BarycentricState& body, const AstroTime& time,
   double rightAscension = 0.0, declination = 0.0;
   eraC2s(cirs, &rightAscension, &declination);
 
-  // CIRS -> observed: Earth rotation, polar motion (zero here), the horizon of the place.
-  double azimuth = 0.0, zenith = 0.0, hourAngle = 0.0, observedDec = 0.0, observedRa = 0.0;
-  eraAtioq(rightAscension, declination, &astrom, &azimuth, &zenith, &hourAngle, &observedDec, &observedRa);
-
-  TopocentricPosition result;
-  result.azimuth = eraAnp(azimuth);
-  result.geometricZenith = zenith;
+  TopocentricPosition result = observeCirs(rightAscension, declination, astrom, conditions);
   result.distance = distanceAu * ERFA_DAU;
-  switch (conditions.refraction) {
-    case RefractionModel::None:
-      result.zenith = zenith;
-      break;
-    case RefractionModel::Spa:
-      result.zenith = zenith - spaRefraction(std::numbers::pi / 2 - zenith, conditions.pressureHpa,
-                                             conditions.temperatureCelsius);
-      break;
-    case RefractionModel::Erfa: {
-      eraRefco(conditions.pressureHpa, conditions.temperatureCelsius, conditions.relativeHumidity,
-               conditions.wavelengthMicrometres, &astrom.refa, &astrom.refb);
-      eraAtioq(rightAscension, declination, &astrom, &azimuth, &zenith, &hourAngle, &observedDec, &observedRa);
-      result.zenith = zenith;
-      break;
-    }
-  }
   return result;
 }
 

@@ -4,10 +4,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/matrix.hpp>
+
 #include "core/color.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/png_io.h"
+#include "core/scene.h"
+#include "core/spectrum.h"
 
 namespace firmament {
 
@@ -50,7 +54,7 @@ const char* toneMapName(ToneMap toneMap) {
   return "?";
 }
 
-double autoEv100(const Image& image, size_t* nonFinitePixels) {
+double logAverageLuminance(const Image& image, size_t* nonFinitePixels) {
   double sumLog = 0.0;
   size_t used = 0, skipped = 0;
   for (size_t i = 0; i < image.pixelCount(); ++i) {
@@ -63,8 +67,83 @@ double autoEv100(const Image& image, size_t* nonFinitePixels) {
     ++used;
   }
   if (nonFinitePixels) *nonFinitePixels = skipped;
-  const double logAverage = used > 0 ? std::exp(sumLog / double(used)) : kAutoExposureMinLuminance;
-  return std::log2(logAverage * kIso / kMeterCalibration);
+  return used > 0 ? std::exp(sumLog / double(used)) : kAutoExposureMinLuminance;
+}
+
+double autoEv100(const Image& image, size_t* nonFinitePixels) {
+  return std::log2(logAverageLuminance(image, nonFinitePixels) * kIso / kMeterCalibration);
+}
+
+double autoEv100ForLuminance(double luminance, const ExposureSettings& settings) {
+  double ev100 = std::log2(luminance * kIso / kMeterCalibration);
+  if (luminance < kNightAdaptationLuminance) {
+    const double knee = std::log2(kNightAdaptationLuminance * kIso / kMeterCalibration);
+    ev100 = knee + settings.nightAdaptation * (ev100 - knee);
+  }
+  return std::clamp(ev100, settings.ev100Min, settings.ev100Max);
+}
+
+double rodSensitivity(double luminance) { return 0.04 / (0.04 + std::max(luminance, 0.0)); }
+
+double eyeAdaptationTimeConstant(double luminance) {
+  const double sigma = rodSensitivity(luminance);
+  return sigma * 0.4 + (1.0 - sigma) * 0.1;
+}
+
+double ExposureAdaptation::update(double frameLuminance, double dtSeconds, const ExposureSettings& settings) {
+  const double target = std::max(frameLuminance, kAutoExposureMinLuminance);
+  if (!started_ || settings.temporal == ExposureSettings::TemporalAdaptation::None) {
+    started_ = true;
+    adapted_ = target;
+    return adapted_;
+  }
+  const double tau = settings.temporal == ExposureSettings::TemporalAdaptation::Eye
+                         ? eyeAdaptationTimeConstant(adapted_)
+                         : settings.adaptationTimeSeconds;
+  const double keep = tau > 0.0 ? std::exp(-std::max(dtSeconds, 0.0) / tau) : 0.0;
+  adapted_ = std::exp(std::log(target) + keep * (std::log(adapted_) - std::log(target)));
+  return adapted_;
+}
+
+double scotopicLuminance(double x, double y, double z) {
+  if (!(x > 0.0)) return 0.0;
+  return std::max(y * (1.33 * (1.0 + (y + z) / x) - 1.68), 0.0);
+}
+
+void applyMesopicVision(float rgb[3]) {
+  const glm::dvec3 linear(std::max(0.0f, rgb[0]), std::max(0.0f, rgb[1]), std::max(0.0f, rgb[2]));
+  const glm::dvec3 xyz = glm::inverse(xyzToLinearRec709Matrix()) * linear;
+  const double sigma = rodSensitivity(xyz.y);
+  if (sigma < 1e-5) return;
+  // (x, y) = (0.25, 0.25) at unit luminance: X = x / y = 1, Z = (1 - x - y) / y = 2.
+  static const glm::dvec3 blue = xyzToLinearRec709(glm::dvec3(1.0, 1.0, 2.0));
+  const double scotopic = scotopicLuminance(xyz.x, xyz.y, xyz.z);
+  const glm::dvec3 out = (1.0 - sigma) * linear + sigma * scotopic * blue;
+  for (int c = 0; c < 3; ++c) rgb[c] = float(std::max(out[c], 0.0));
+}
+
+ExposureSettings exposureFromScene(const Scene& scene) {
+  ExposureSettings exposure;
+  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
+                                                                   : ExposureSettings::Mode::Auto;
+  exposure.ev100 = scene.number("/camera/exposure/ev100");
+  exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
+  exposure.tonemap = scene.string("/camera/exposure/tonemap");
+  exposure.nightAdaptation = scene.number("/camera/exposure/night_adaptation");
+  exposure.ev100Min = scene.number("/camera/exposure/ev100_min");
+  exposure.ev100Max = scene.number("/camera/exposure/ev100_max");
+  if (exposure.ev100Min > exposure.ev100Max)
+    throw InputError(scene.source() + ": /camera/exposure/ev100_min " + formatNumber(exposure.ev100Min) +
+                     " is above /camera/exposure/ev100_max " + formatNumber(exposure.ev100Max) +
+                     "; allowed: ev100_min <= ev100_max");
+  exposure.vision = scene.string("/camera/exposure/vision") == "mesopic" ? ExposureSettings::Vision::Mesopic
+                                                                         : ExposureSettings::Vision::Photopic;
+  const std::string temporal = scene.string("/camera/exposure/temporal_adaptation");
+  exposure.temporal = temporal == "none"          ? ExposureSettings::TemporalAdaptation::None
+                      : temporal == "exponential" ? ExposureSettings::TemporalAdaptation::Exponential
+                                                  : ExposureSettings::TemporalAdaptation::Eye;
+  exposure.adaptationTimeSeconds = scene.number("/camera/exposure/adaptation_time_s");
+  return exposure;
 }
 
 double exposureScale(double ev100) { return 1.0 / (1.2 * std::exp2(ev100)); }
@@ -113,12 +192,20 @@ uint8_t quantize8(double v) {
   return uint8_t(std::lround(v * 255.0));
 }
 
-std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& settings, double* usedEv100) {
+std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& settings, double* usedEv100,
+                                    const double* adaptedLuminance) {
   const ToneMap toneMap = parseToneMap(settings.tonemap);
   if (!std::isfinite(settings.compensationEv) ||
       (settings.mode == ExposureSettings::Mode::Fixed && !std::isfinite(settings.ev100)))
     throw InputError("exposure: EV100 and compensation must be finite numbers");
-  const double baseEv100 = settings.mode == ExposureSettings::Mode::Auto ? autoEv100(image) : settings.ev100;
+  if (!std::isfinite(settings.nightAdaptation) || settings.nightAdaptation < 0.0 || settings.nightAdaptation > 1.0 ||
+      !(settings.ev100Min <= settings.ev100Max))
+    throw InputError("exposure: night_adaptation must be in [0, 1] and ev100_min <= ev100_max");
+  const double baseEv100 =
+      settings.mode == ExposureSettings::Mode::Auto
+          ? autoEv100ForLuminance(adaptedLuminance ? *adaptedLuminance : logAverageLuminance(image), settings)
+          : settings.ev100;
+  const bool mesopic = settings.vision == ExposureSettings::Vision::Mesopic;
   const double ev100 = baseEv100 - settings.compensationEv;
   if (usedEv100) *usedEv100 = ev100;
   const float scale = float(exposureScale(ev100));
@@ -131,7 +218,9 @@ std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& 
     if (!finiteRgb(p)) {
       q[0] = 255, q[1] = 0, q[2] = 255;
     } else {
-      const float exposed[3] = {p[0] * scale, p[1] * scale, p[2] * scale};
+      float scene[3] = {p[0], p[1], p[2]};
+      if (mesopic) applyMesopicVision(scene);
+      const float exposed[3] = {scene[0] * scale, scene[1] * scale, scene[2] * scale};
       float display[3];
       applyToneMap(toneMap, exposed, display);
       for (int c = 0; c < 3; ++c) q[c] = quantize8(srgbEncode(display[c]));
@@ -141,21 +230,23 @@ std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& 
   return bytes;
 }
 
-double writePngPreview(const std::filesystem::path& path, const Image& image, const ExposureSettings& settings) {
+double writePngPreview(const std::filesystem::path& path, const Image& image, const ExposureSettings& settings,
+                       const double* adaptedLuminance) {
   double ev100 = 0.0;
-  std::vector<uint8_t> bytes = toneMapToSrgb8(image, settings, &ev100);
+  std::vector<uint8_t> bytes = toneMapToSrgb8(image, settings, &ev100, adaptedLuminance);
   size_t nonFinite = 0;
   for (size_t i = 0; i < image.pixelCount(); ++i)
     if (!finiteRgb(image.pixels.data() + i * size_t(image.channels))) ++nonFinite;
   if (nonFinite > 0)
     logWarning(path.string() + ": " + std::to_string(nonFinite) + " pixel(s) with NaN or Inf, drawn magenta");
-  const std::map<std::string, std::string> text = {
+  std::map<std::string, std::string> text = {
       {"Software", "firmament"},
       {"firmament.ev100", formatNumber(ev100)},
       {"firmament.exposure_mode", settings.mode == ExposureSettings::Mode::Auto ? "auto" : "fixed"},
       {"firmament.compensation_ev", formatNumber(settings.compensationEv)},
       {"firmament.tonemap", toneMapName(parseToneMap(settings.tonemap))},
   };
+  if (settings.vision == ExposureSettings::Vision::Mesopic) text["firmament.vision"] = "mesopic";
   const int channels = settings.keepAlpha && image.channels == 4 ? 4 : 3;
   writePng(path, image.width, image.height, channels, bytes.data(), text);
   return ev100;

@@ -136,7 +136,7 @@ int runReference(const Args& args) {
 
   const std::filesystem::path png = std::filesystem::path(out).replace_extension(".png");
   const std::filesystem::path stats = std::filesystem::path(out).replace_extension(".json");
-  const ExposureSettings exposure = sceneExposure(scene);
+  const ExposureSettings exposure = exposureFromScene(scene);
   writeExr(out, image);
   const double ev100 = writePngPreview(png, image, exposure);
 

@@ -132,12 +132,14 @@ int runRender(const Args& args) {
   progress->advance();
   RenderResult result;
   double ev100 = 0.0;
+  ExposureAdaptation adaptation;  // the auto exposure's state through a sequence
   for (int i = 0; i < frames; ++i) {
     const Scene current = frameScene(i);
     options.continueSequence = i > 0;
     result = renderer.render(current, options);
     progress->advance();
-    ev100 = writeRenderOutputs(framePath(i).string(), current, result, context.description());
+    ev100 = writeRenderOutputs(framePath(i).string(), current, result, context.description(),
+                               frames > 1 ? &adaptation : nullptr, i > 0 ? interval : 0.0);
     progress->advance();
     if (frames > 1) {
       char line[200];

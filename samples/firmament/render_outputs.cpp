@@ -17,16 +17,18 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 }  // namespace
 
 double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const RenderResult& result,
-                          const std::string& deviceDescription) {
+                          const std::string& deviceDescription, ExposureAdaptation* adaptation, double dtSeconds) {
   namespace fs = std::filesystem;
   fs::path exr(exrPath);
   fs::path png = fs::path(exr).replace_extension(".png");
   fs::path stats = fs::path(exr).replace_extension(".json");
 
-  const ExposureSettings exposure = sceneExposure(scene);
+  const ExposureSettings exposure = exposureFromScene(scene);
 
   writeExr(exr, result.image);
-  double ev100 = writePngPreview(png, result.image, exposure);
+  double adapted = 0.0;
+  if (adaptation) adapted = adaptation->update(logAverageLuminance(result.image), dtSeconds, exposure);
+  double ev100 = writePngPreview(png, result.image, exposure, adaptation ? &adapted : nullptr);
 
   // Luminance statistics of the image, for quick checks without opening the EXR.
   const Image& image = result.image;
@@ -71,6 +73,7 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
                           {"log_average", counted ? std::exp(logSum / double(counted)) : 0.0}};
   j["non_finite_pixels"] = nonFinite;
   j["preview"] = {{"ev100", ev100}, {"tonemap", exposure.tonemap}};
+  if (adaptation) j["preview"]["adapted_luminance_cd_m2"] = adapted;
   j["outputs"] = {{"exr", exr.string()}, {"png", png.string()}, {"stats", stats.string()}};
   writeTextFileAtomically(stats, j.dump(2) + "\n");
   return ev100;

@@ -5,12 +5,15 @@
 #include <string>
 
 #include "core/scene.h"
+#include "core/tonemap.h"
 #include "sky/sky_renderer.h"
 
 namespace firmament::cli {
 
-// Returns the EV100 used for the preview.
+// Returns the EV100 used for the preview. In a sequence, `adaptation` carries the auto exposure's adapted
+// luminance from frame to frame (/camera/exposure/temporal_adaptation), `dtSeconds` after the last frame.
 double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const RenderResult& result,
-                          const std::string& deviceDescription);
+                          const std::string& deviceDescription, ExposureAdaptation* adaptation = nullptr,
+                          double dtSeconds = 0.0);
 
 }  // namespace firmament::cli

@@ -112,6 +112,7 @@ TEST(Png, AutoExposureOfConstantImageWithAces) {
       p[3] = 0.5f;
     }
     ExposureSettings settings;  // auto, aces
+    settings.nightAdaptation = 1.0;  // the plain meter also below 5 cd/m² (tests/core/test_tonemap.cpp: NightExposure)
     settings.compensationEv = 1.0;
     settings.keepAlpha = true;
     const fs::path path = test::scratchDir("png_auto") / "auto.png";
@@ -130,7 +131,9 @@ TEST(Png, NonFinitePixelsAreMagentaAndDoNotPoisonExposure) {
   image.at(1, 0)[1] = std::numeric_limits<float>::quiet_NaN();
   image.at(2, 0)[0] = std::numeric_limits<float>::infinity();
   const fs::path path = test::scratchDir("png_nan") / "nan.png";
-  const double ev = writePngPreview(path, image, ExposureSettings{});
+  ExposureSettings settings;
+  settings.nightAdaptation = 1.0;  // the plain meter at 2 cd/m²
+  const double ev = writePngPreview(path, image, settings);
   EXPECT_NEAR(ev, std::log2(8.0 * 2.0), 1e-9);
   const LibpngImage png = readWithLibpng(path);
   EXPECT_EQ(png.pixels[3], 255);
