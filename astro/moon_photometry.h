@@ -50,21 +50,22 @@ double moonToSolarIrradianceRatio(double illuminanceLux, double wavelengthNm);
 
 // Everything a frame needs about the Moon at a place and instant.
 struct MoonLight {
-  glm::dvec3 directionEnu{0.0, 0.0, 1.0};  // apparent (refraction as asked), unit, x east, y north, z up
-  double zenith = 0.0;                     // apparent zenith angle, radians
-  double azimuth = 0.0;                    // clockwise from north
-  glm::dvec3 sunFromMoonEnu{0.0, 0.0, 1.0};// unit vector from the Moon towards the Sun, ENU axes
-  double distance = 0.0;                   // observer to Moon, m
-  double angularRadius = 0.0;              // apparent radius, asin(kMoonRadius / distance), radians
-  double phaseAngle = 0.0;                 // at the Moon between Sun and observer, radians (0 full)
-  double illuminatedFraction = 0.0;        // (1 + cos phaseAngle) / 2
+  glm::dvec3 directionEnu{0.0, 0.0, 1.0};    // apparent (refraction as asked), unit, x east, y north, z up
+  double zenith = 0.0;                       // apparent zenith angle, radians
+  double azimuth = 0.0;                      // clockwise from north
+  glm::dvec3 sunFromMoonEnu{0.0, 0.0, 1.0};  // unit vector from the Moon towards the Sun, ENU axes
+  double distance = 0.0;                     // observer to Moon, m
+  double angularRadius = 0.0;                // apparent radius, asin(kMoonRadius / distance), radians
+  double phaseAngle = 0.0;                   // at the Moon between Sun and observer, radians (0 full)
+  double illuminatedFraction = 0.0;          // (1 + cos phaseAngle) / 2
   bool waxing = false;
-  double illuminanceLux = 0.0;             // moonIlluminanceLux for this geometry
-  double litRadianceScale = 0.0;           // C of moon_disc.glsl for illuminanceLux: cd/m^2
-  double earthshineLuminance = 0.0;        // moon_disc.glsl's earthshine, cd/m^2
+  double illuminanceLux = 0.0;       // moonIlluminanceLux for this geometry
+  double litRadianceScale = 0.0;     // C of moon_disc.glsl for illuminanceLux: cd/m^2
+  double earthshineLuminance = 0.0;  // moon_disc.glsl's earthshine, cd/m^2
 };
 // Topocentric: the phase angle and distance are the observer's (parallax up to ~1°), not the Earth
 // centre's; moonPhase (moon.h) gives the geocentric ones.
-MoonLight moonLight(const AstroTime& time, const GeodeticLocation& location, const ObservingConditions& conditions = {});
+MoonLight moonLight(const AstroTime& time, const GeodeticLocation& location,
+                    const ObservingConditions& conditions = {});
 
 }  // namespace firmament::astro

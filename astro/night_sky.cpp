@@ -50,8 +50,8 @@ NightSkyFrame nightSkyFrame(const AstroTime& time, const GeodeticLocation& locat
   // ICRS -> ecliptic of date (IAU 2006, eraEcm06), then about the pole to the Sun's longitude.
   double ecm[3][3];
   eraEcm06(time.tt.dayStart, time.tt.dayFraction, ecm);
-  const glm::dmat3 icrsToEcliptic = glm::transpose(glm::dmat3(ecm[0][0], ecm[0][1], ecm[0][2], ecm[1][0], ecm[1][1],
-                                                               ecm[1][2], ecm[2][0], ecm[2][1], ecm[2][2]));
+  const glm::dmat3 icrsToEcliptic = glm::transpose(
+      glm::dmat3(ecm[0][0], ecm[0][1], ecm[0][2], ecm[1][0], ecm[1][1], ecm[1][2], ecm[2][0], ecm[2][1], ecm[2][2]));
   const glm::dvec3 sunGeocentric = -earthState(time.tt).heliocentric.position;
   const glm::dvec3 sunEcliptic = icrsToEcliptic * sunGeocentric;
   NightSkyFrame frame;
@@ -59,8 +59,8 @@ NightSkyFrame nightSkyFrame(const AstroTime& time, const GeodeticLocation& locat
   const double c = std::cos(frame.sunEclipticLongitude), s = std::sin(frame.sunEclipticLongitude);
   // Rz(-lambda_sun) (glm takes columns): rows (c, s, 0), (-s, c, 0), (0, 0, 1).
   const glm::dmat3 toSunLongitude(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
-  frame.enuToSunEcliptic = orthonormalColumns(toSunLongitude * (icrsToEcliptic * east),
-                                              toSunLongitude * (icrsToEcliptic * north));
+  frame.enuToSunEcliptic =
+      orthonormalColumns(toSunLongitude * (icrsToEcliptic * east), toSunLongitude * (icrsToEcliptic * north));
 
   // ICRS -> galactic (eraIcrs2g works on angles: convert the two axes).
   auto toGalactic = [](const glm::dvec3& v) {
@@ -79,8 +79,8 @@ NightSkyTerms nightSkySpectralRadiance(const NightSkyFrame& frame, const glm::dv
   const glm::dvec3 d = glm::normalize(directionEnu);
   const double solar = solarIrradianceTopOfAtmosphere()(wavelengthNm);
   NightSkyTerms terms;
-  terms.airglow = shared::airglowSpectralRadiance(wavelengthNm, binWidthNm, d.z, observerRadius, planetRadius,
-                                                  airglowScale);
+  terms.airglow =
+      shared::airglowSpectralRadiance(wavelengthNm, binWidthNm, d.z, observerRadius, planetRadius, airglowScale);
   terms.zodiacal = shared::zodiacalSolarSpectrumFactor(frame.enuToSunEcliptic * d) * solar;
   terms.stellar = shared::stellarBackgroundSolarSpectrumFactor((frame.enuToGalactic * d).z) * solar;
   return terms;

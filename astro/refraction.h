@@ -12,10 +12,10 @@ enum class RefractionModel {
 
 // The air at the observer; it only affects refraction.
 struct ObservingConditions {
-  double pressureHpa = 1013.25;        // hPa = mbar (ISO standard atmosphere at sea level)
-  double temperatureCelsius = 15.0;    // °C
-  double relativeHumidity = 0.0;       // 0..1; only the ERFA model uses it (SPA assumes dry air)
-  double wavelengthMicrometres = 0.55; // only the ERFA model uses it (0.55 µm: the middle of the visible)
+  double pressureHpa = 1013.25;         // hPa = mbar (ISO standard atmosphere at sea level)
+  double temperatureCelsius = 15.0;     // °C
+  double relativeHumidity = 0.0;        // 0..1; only the ERFA model uses it (SPA assumes dry air)
+  double wavelengthMicrometres = 0.55;  // only the ERFA model uses it (0.55 µm: the middle of the visible)
   RefractionModel refraction = RefractionModel::Spa;
 };
 

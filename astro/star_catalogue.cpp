@@ -26,8 +26,8 @@ constexpr double kHour = std::numbers::pi / 12.0;
 }
 
 // Reads one number from `in`; `field` names it and its allowed range for the message.
-double readField(std::istringstream& in, const std::filesystem::path& path, int line, const char* field,
-                 double lo, double hi, const char* allowed) {
+double readField(std::istringstream& in, const std::filesystem::path& path, int line, const char* field, double lo,
+                 double hi, const char* allowed) {
   double value = 0.0;
   if (!(in >> value) || !std::isfinite(value))
     malformed(path, line, std::string("missing or unreadable ") + field + "; allowed: " + allowed);
@@ -63,8 +63,7 @@ StarCatalogue loadStarCatalogue(const std::filesystem::path& path) {
     std::istringstream in(text);
     CatalogueStar star;
     star.declination = readField(in, path, lineNumber, "declination", -90.0, 90.0, "-90 to 90 degrees") * kDegree;
-    star.rightAscension =
-        readField(in, path, lineNumber, "right ascension", 0.0, 24.0, "0 to 24 hours") * kHour;
+    star.rightAscension = readField(in, path, lineNumber, "right ascension", 0.0, 24.0, "0 to 24 hours") * kHour;
     star.vMagnitude = readField(in, path, lineNumber, "V magnitude", -2.0, 16.0, "-2 to 16");
     star.bMinusV = std::numeric_limits<double>::quiet_NaN();
     // The rest is optional: a quoted name, then the HR number (xplanet itself reads only three columns).
@@ -90,7 +89,9 @@ StarCatalogue loadStarCatalogue(const std::filesystem::path& path) {
 
 StarCatalogue loadDefaultStarCatalogue() { return loadStarCatalogue(defaultStarCataloguePath()); }
 
-double starIlluminanceLux(double vMagnitude) { return kZeroMagnitudeIlluminanceLux * std::pow(10.0, -0.4 * vMagnitude); }
+double starIlluminanceLux(double vMagnitude) {
+  return kZeroMagnitudeIlluminanceLux * std::pow(10.0, -0.4 * vMagnitude);
+}
 
 double starTemperatureFromBMinusV(double bMinusV) {
   const double bv = std::clamp(bMinusV, -0.4, 2.0);
@@ -131,9 +132,10 @@ std::vector<ApparentStar> apparentStars(const StarCatalogue& catalogue, const As
     apparent.geometricZenith = observed.geometricZenith;
     apparent.directionEnu = observed.directionEnu();
     apparent.illuminanceLux = starIlluminanceLux(star.vMagnitude);
-    apparent.rgb = std::isfinite(star.bMinusV)
-                       ? blackbodyRec709UnitLuminance(starTemperatureFromBMinusV(star.bMinusV)) * apparent.illuminanceLux
-                       : glm::dvec3(apparent.illuminanceLux);
+    apparent.rgb =
+        std::isfinite(star.bMinusV)
+            ? blackbodyRec709UnitLuminance(starTemperatureFromBMinusV(star.bMinusV)) * apparent.illuminanceLux
+            : glm::dvec3(apparent.illuminanceLux);
     apparent.catalogueIndex = int(i);
     result.push_back(apparent);
   }

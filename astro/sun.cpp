@@ -19,7 +19,9 @@ glm::dvec3 sunDirectionEnu(const AstroTime& time, const GeodeticLocation& locati
 }
 
 std::function<double(double t_s)> sunElevationAfter(const GeodeticLocation& location, const UtcTime& start) {
-  return [location, start](double t_s) { return sunPosition(makeAstroTime(addSeconds(start, t_s)), location).elevation(); };
+  return [location, start](double t_s) {
+    return sunPosition(makeAstroTime(addSeconds(start, t_s)), location).elevation();
+  };
 }
 
 }  // namespace firmament::astro

@@ -96,7 +96,8 @@ UtcTime parseUtc(std::string_view text) {
   int offsetMinutes = 0;
   if (!s.accept('Z')) {
     int sign = s.accept('+') ? 1 : (s.accept('-') ? -1 : 0);
-    if (sign == 0) fail(text, "expected 'Z' or a '+hh:mm'/'-hh:mm' offset at position " + std::to_string(s.position() + 1));
+    if (sign == 0)
+      fail(text, "expected 'Z' or a '+hh:mm'/'-hh:mm' offset at position " + std::to_string(s.position() + 1));
     int hours = s.digits(2, "offset hours");
     s.accept(':');  // ISO 8601 allows both +hh:mm and +hhmm
     int minutes = s.digits(2, "offset minutes");
@@ -129,7 +130,8 @@ UtcTime parseUtc(std::string_view text) {
   double jd1 = 0.0, jd2 = 0.0;
   int status = eraDtf2d("UTC", t.year, t.month, t.day, t.hour, t.minute, t.second, &jd1, &jd2);
   if (status < 0) fail(text, "date or time out of range");
-  if (status >= 2) fail(text, "second " + std::to_string(t.second) + " is past the end of that day (no leap second then)");
+  if (status >= 2)
+    fail(text, "second " + std::to_string(t.second) + " is past the end of that day (no leap second then)");
   return t;
 }
 
@@ -195,8 +197,8 @@ void civilFromDays(int64_t z, int& y, int& m, int& d) {
 }  // namespace
 
 UtcTime addSeconds(const UtcTime& utc, double seconds) {
-  double total = double(daysFromCivil(utc.year, utc.month, utc.day)) * 86400.0 + utc.hour * 3600.0 +
-                 utc.minute * 60.0 + utc.second + seconds;
+  double total = double(daysFromCivil(utc.year, utc.month, utc.day)) * 86400.0 + utc.hour * 3600.0 + utc.minute * 60.0 +
+                 utc.second + seconds;
   double days = std::floor(total / 86400.0);
   double rest = total - days * 86400.0;
   UtcTime out;

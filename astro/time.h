@@ -40,10 +40,10 @@ struct JulianDate {
 // The time scales one instant needs. UT1 drives Earth rotation; TT drives the ephemerides.
 struct AstroTime {
   UtcTime utc;
-  JulianDate utcJulian;    // ERFA "quasi" JD for UTC (a leap-second day is 86401 s long)
-  JulianDate ut1;          // UT1, taken equal to UTC (|UT1 - UTC| < 0.9 s by the definition of UTC)
-  JulianDate tt;           // Terrestrial Time
-  double deltaT = 0.0;     // TT - UT1, seconds
+  JulianDate utcJulian;  // ERFA "quasi" JD for UTC (a leap-second day is 86401 s long)
+  JulianDate ut1;        // UT1, taken equal to UTC (|UT1 - UTC| < 0.9 s by the definition of UTC)
+  JulianDate tt;         // Terrestrial Time
+  double deltaT = 0.0;   // TT - UT1, seconds
 };
 
 // Builds the time scales for `utc`. With `deltaTSeconds` (TT - UT1) given, TT = UT1 + deltaT, as NREL

@@ -30,10 +30,9 @@ EarthState earthState(const JulianDate& tt) {
 eraASTROM observerAstrometry(const AstroTime& time, const GeodeticLocation& location) {
   const JulianDate& tt = time.tt;
   EarthState earth = earthState(tt);
-  double earthBarycentric[2][3] = {{earth.barycentric.position.x, earth.barycentric.position.y,
-                                    earth.barycentric.position.z},
-                                   {earth.barycentric.velocity.x, earth.barycentric.velocity.y,
-                                    earth.barycentric.velocity.z}};
+  double earthBarycentric[2][3] = {
+      {earth.barycentric.position.x, earth.barycentric.position.y, earth.barycentric.position.z},
+      {earth.barycentric.velocity.x, earth.barycentric.velocity.y, earth.barycentric.velocity.z}};
   double earthHeliocentric[3] = {earth.heliocentric.position.x, earth.heliocentric.position.y,
                                  earth.heliocentric.position.z};
 
@@ -71,8 +70,8 @@ TopocentricPosition observeCirs(double rightAscension, double declination, const
       result.zenith = zenith;
       break;
     case RefractionModel::Spa:
-      result.zenith = zenith - spaRefraction(std::numbers::pi / 2 - zenith, conditions.pressureHpa,
-                                             conditions.temperatureCelsius);
+      result.zenith =
+          zenith - spaRefraction(std::numbers::pi / 2 - zenith, conditions.pressureHpa, conditions.temperatureCelsius);
       break;
     case RefractionModel::Erfa: {
       eraRefco(conditions.pressureHpa, conditions.temperatureCelsius, conditions.relativeHumidity,
@@ -93,8 +92,7 @@ TopocentricPosition observe(const BarycentricState& body, const AstroTime& time,
   // to far below a millimetre for the Sun and the Moon).
   glm::dvec3 observer = toVec(astrom.eb);
   glm::dvec3 toBody = body.position - observer;
-  for (int i = 0; i < 2; ++i)
-    toBody = body.position - body.velocity * lightTimeDays(glm::length(toBody)) - observer;
+  for (int i = 0; i < 2; ++i) toBody = body.position - body.velocity * lightTimeDays(glm::length(toBody)) - observer;
   double distanceAu = glm::length(toBody);
   glm::dvec3 natural = toBody / distanceAu;
 

@@ -35,7 +35,8 @@ glm::dvec2 miePhaseMoments(double g) {
 
 }  // namespace
 
-AtmosphereBlock packAtmosphereBlock(const shared::AtmosphereParameters& a, const glm::dmat3& sky, const glm::dmat3& sun) {
+AtmosphereBlock packAtmosphereBlock(const shared::AtmosphereParameters& a, const glm::dmat3& sky,
+                                    const glm::dmat3& sun) {
   AtmosphereBlock b{};
   b.radii[0] = float(a.bottom_radius);
   b.radii[1] = float(a.top_radius);

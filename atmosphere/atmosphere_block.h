@@ -10,17 +10,17 @@
 namespace firmament {
 
 struct AtmosphereBlock {
-  float radii[4];                   // bottom_radius, top_radius, sun_angular_radius, mie_phase_g
-  float solarIrradiance[4];         // xyz; w = mu_s_min
+  float radii[4];            // bottom_radius, top_radius, sun_angular_radius, mie_phase_g
+  float solarIrradiance[4];  // xyz; w = mu_s_min
   float rayleighScattering[4];
   float mieScattering[4];
   float mieExtinction[4];
   float absorptionExtinction[4];
   float groundAlbedo[4];
-  float profiles[8][4];             // 3 profiles x 2 layers x 5 values, flat; then the aerosol phase's
-                                    // Legendre moments a_1, a_2 (profiles[7].zw)
-  float skyRadianceToRgb[3][4];     // columns
-  float sunRadianceToRgb[3][4];     // columns
+  float profiles[8][4];          // 3 profiles x 2 layers x 5 values, flat; then the aerosol phase's
+                                 // Legendre moments a_1, a_2 (profiles[7].zw)
+  float skyRadianceToRgb[3][4];  // columns
+  float sunRadianceToRgb[3][4];  // columns
 };
 static_assert(sizeof(AtmosphereBlock) == 21 * 16, "std140 layout: 21 vec4");
 

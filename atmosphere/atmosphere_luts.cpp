@@ -41,17 +41,17 @@ std::string AtmosphereLutSettings::hash() const {
   std::snprintf(text, sizeof(text), "T%dx%ds%d-M%dd%dx%ds%do%d%s-S%d-L%.3f,%.3f,%.3f", transmittanceWidth,
                 transmittanceHeight, transmittanceSteps, multipleScatteringSize, multipleScatteringThetaSamples,
                 multipleScatteringPhiSamples, multipleScatteringSteps, multipleScatteringOrders,
-                multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x,
-                wavelengthsNm.y, wavelengthsNm.z);
+                multipleScatteringLut ? "" : "-off", spectralSamples, wavelengthsNm.x, wavelengthsNm.y,
+                wavelengthsNm.z);
   return text;
 }
 
 AtmosphereLuts::AtmosphereLuts(gpu::Context& context)
     : context_(context),
-      transmittancePipeline_(context, {"atmosphere/transmittance_lut",
-                                       {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageImage,
-                                        gpu::BindingType::StorageImage},
-                                       2 * sizeof(int32_t)}),
+      transmittancePipeline_(
+          context, {"atmosphere/transmittance_lut",
+                    {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageImage, gpu::BindingType::StorageImage},
+                    2 * sizeof(int32_t)}),
       multipleScatteringPipeline_(context, multipleScatteringPipeline("atmosphere/multiple_scattering_lut")),
       multipleScatteringOrderPipeline_(context, multipleScatteringPipeline("atmosphere/multiple_scattering_order")),
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {}
@@ -60,7 +60,8 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
                                               const AtmosphereLutSettings& settings) {
   static const std::string code = gpu::shaderCodeHash(
       {"atmosphere/transmittance_lut", "atmosphere/multiple_scattering_lut", "atmosphere/multiple_scattering_order"});
-  std::string key = "atmosphere-luts-v3/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
+  std::string key =
+      "atmosphere-luts-v3/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
   Update result;
   if (key == key_) return result;
 
@@ -77,7 +78,8 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
     batch.block.upload(&block, sizeof(block));
     if (!batch.transmittance || int(batch.transmittance.width()) != settings.transmittanceWidth ||
         int(batch.transmittance.height()) != settings.transmittanceHeight)
-      batch.transmittance = makeTable(context_, settings.transmittanceWidth, settings.transmittanceHeight, "transmittance LUT");
+      batch.transmittance =
+          makeTable(context_, settings.transmittanceWidth, settings.transmittanceHeight, "transmittance LUT");
     if (!batch.multipleScattering || int(batch.multipleScattering.width()) != settings.multipleScatteringSize)
       batch.multipleScattering = makeTable(context_, settings.multipleScatteringSize, settings.multipleScatteringSize,
                                            "multiple-scattering LUT");
@@ -149,13 +151,22 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
         int32_t order;
         int32_t last;
         int32_t realPhase;
-      } multiplePush{settings.multipleScatteringThetaSamples, settings.multipleScatteringPhiSamples,
-                     settings.multipleScatteringSteps, k, k == orders ? 1 : 0, orders > 1 ? 1 : 0};
+      } multiplePush{settings.multipleScatteringThetaSamples,
+                     settings.multipleScatteringPhiSamples,
+                     settings.multipleScatteringSteps,
+                     k,
+                     k == orders ? 1 : 0,
+                     orders > 1 ? 1 : 0};
       const int read = k % 2, write = 1 - k % 2;
       commands.bind(k == 1 ? multipleScatteringPipeline_ : multipleScatteringOrderPipeline_,
-                    {batch.block, {batch.transmittance, linearClamp_}, batch.multipleScattering,
-                     {orders_[read], linearClamp_}, {groundOrders_[read], linearClamp_}, orders_[write],
-                     groundOrders_[write], batch.multipleScatteringAnisotropy});
+                    {batch.block,
+                     {batch.transmittance, linearClamp_},
+                     batch.multipleScattering,
+                     {orders_[read], linearClamp_},
+                     {groundOrders_[read], linearClamp_},
+                     orders_[write],
+                     groundOrders_[write],
+                     batch.multipleScatteringAnisotropy});
       commands.pushConstants(multiplePush);
       commands.dispatch(groups(size), groups(size), 1,
                         k == 1 ? "atmosphere/multiple_scattering_lut" : "atmosphere/multiple_scattering_order");

@@ -19,21 +19,20 @@
 
 namespace firmament {
 
-
 // Quality knobs of the tables (each is swept by `firmament bench atmosphere`).
 struct AtmosphereLutSettings {
-  int transmittanceWidth = 256;   // mu samples (Hillaire 2020: 256 x 64)
-  int transmittanceHeight = 64;   // r samples
-  int transmittanceSteps = 100;   // trapezoid intervals along each ray
-  int multipleScatteringSize = 32;            // 32 x 32 (Hillaire 2020)
-  int multipleScatteringThetaSamples = 32;    // zenith bands of the sphere of directions
-  int multipleScatteringPhiSamples = 2;       // azimuth samples per band (32 x 2 = 64 directions)
-  int multipleScatteringSteps = 20;           // march steps per direction
+  int transmittanceWidth = 256;             // mu samples (Hillaire 2020: 256 x 64)
+  int transmittanceHeight = 64;             // r samples
+  int transmittanceSteps = 100;             // trapezoid intervals along each ray
+  int multipleScatteringSize = 32;          // 32 x 32 (Hillaire 2020)
+  int multipleScatteringThetaSamples = 32;  // zenith bands of the sphere of directions
+  int multipleScatteringPhiSamples = 2;     // azimuth samples per band (32 x 2 = 64 directions)
+  int multipleScatteringSteps = 20;         // march steps per direction
   // Scattering orders iterated explicitly before the geometric tail (shaders/atmosphere/
   // multiple_scattering_lut.glsl); 1 = Hillaire 2020 exactly (isotropic phase, f_ms series). From 2
   // on the first order also uses the real phase functions.
   int multipleScatteringOrders = 3;
-  bool multipleScatteringLut = true;          // false: Psi_ms is not computed (the 4D tables replace it)
+  bool multipleScatteringLut = true;  // false: Psi_ms is not computed (the 4D tables replace it)
   // 3: three wavelengths (below) with Bruneton's conversion to Rec.709; 6..48 (multiples of 3):
   // that many wavelengths over 360-830 nm, integrated to luminance exactly (atmosphere_spectra.h).
   int spectralSamples = 3;

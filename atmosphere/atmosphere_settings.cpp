@@ -28,10 +28,21 @@ AtmosphereSettings AtmosphereSettings::fromScene(const Scene& scene) {
 }
 
 std::string AtmosphereSettings::hash() const {
-  const double fields[] = {bottomRadius,     topRadius,         groundHeight,         rayleighScaleHeight,
-                           rayleighScatteringUm4, mieAngstromAlpha, mieAngstromBeta, mieScaleHeight,
-                           mieSingleScatteringAlbedo, miePhaseG, ozoneColumnDobson, groundAlbedo,
-                           sunAngularRadius, muSMin, solarIrradianceScale};
+  const double fields[] = {bottomRadius,
+                           topRadius,
+                           groundHeight,
+                           rayleighScaleHeight,
+                           rayleighScatteringUm4,
+                           mieAngstromAlpha,
+                           mieAngstromBeta,
+                           mieScaleHeight,
+                           mieSingleScatteringAlbedo,
+                           miePhaseG,
+                           ozoneColumnDobson,
+                           groundAlbedo,
+                           sunAngularRadius,
+                           muSMin,
+                           solarIrradianceScale};
   // FNV-1a over the bytes of every field: any change of any parameter changes the key.
   return hex16(fnv1a(std::string_view(reinterpret_cast<const char*>(fields), sizeof(fields))));
 }

@@ -11,17 +11,17 @@
 namespace firmament {
 
 struct AtmosphereSettings {
-  double bottomRadius = 6360e3;         // m, sea level
-  double topRadius = 6420e3;            // m
-  double groundHeight = 0.0;            // m above sea level of the ground sphere (the scene's location)
-  double rayleighScaleHeight = 8000.0;  // m
+  double bottomRadius = 6360e3;               // m, sea level
+  double topRadius = 6420e3;                  // m
+  double groundHeight = 0.0;                  // m above sea level of the ground sphere (the scene's location)
+  double rayleighScaleHeight = 8000.0;        // m
   double rayleighScatteringUm4 = 1.24062e-6;  // m^-1 µm^4: beta_R(lambda) = k lambda^-4
   double mieAngstromAlpha = 0.0;
-  double mieAngstromBeta = 5.328e-3;    // aerosol optical depth at 1 µm
-  double mieScaleHeight = 1200.0;       // m
+  double mieAngstromBeta = 5.328e-3;  // aerosol optical depth at 1 µm
+  double mieScaleHeight = 1200.0;     // m
   double mieSingleScatteringAlbedo = 0.9;
   double miePhaseG = 0.8;
-  double ozoneColumnDobson = 300.0;     // DU
+  double ozoneColumnDobson = 300.0;  // DU
   double groundAlbedo = 0.1;
   double sunAngularRadius = 0.00935 / 2.0;  // rad
   // The solar spectrum is tabulated at 1 au; the irradiance falls as 1/d^2 with the Earth-Sun distance
@@ -45,7 +45,7 @@ struct AtmosphereSettings {
 shared::AtmosphereParameters atmosphereParametersAt(const AtmosphereSettings& settings, glm::dvec3 wavelengthsNm);
 
 // Physical constants used above (Bruneton 2017, demo/model; Dobson unit definition).
-inline constexpr double kDobsonUnit = 2.687e20;        // molecules m^-2
+inline constexpr double kDobsonUnit = 2.687e20;         // molecules m^-2
 inline constexpr double kOzoneTentHalfWidth = 15000.0;  // m: tent from 10 to 40 km, peak at 25 km
 inline constexpr double kOzoneTentBottom = 10000.0;     // m above sea level
 inline constexpr double kOzoneTentPeak = 25000.0;       // m above sea level

@@ -15,10 +15,10 @@
 namespace firmament {
 
 struct FmsSkyIrradianceSettings {
-  int width = 64;          // mu_s samples
-  int height = 16;         // r samples
-  int thetaSamples = 8;    // directions over the hemisphere: theta x 2 theta
-  int marchSteps = 16;     // steps along each direction (quadratic spacing, as the render)
+  int width = 64;        // mu_s samples
+  int height = 16;       // r samples
+  int thetaSamples = 8;  // directions over the hemisphere: theta x 2 theta
+  int marchSteps = 16;   // steps along each direction (quadratic spacing, as the render)
   std::string hash() const;
 };
 

@@ -17,7 +17,7 @@ struct ViewSegment {
   bool hitsGround = false;    // the segment ends on the ground sphere (else at the top)
   glm::dvec3 origin{0.0};     // planet-centred, m: the camera, or where the ray enters the top
   glm::dvec3 direction{0.0, 0.0, 1.0};
-  RaySegment segment;         // (r, mu, length) of origin along direction
+  RaySegment segment;  // (r, mu, length) of origin along direction
 };
 
 // camera: planet-centred position (m); direction: unit. A camera above the top radius first

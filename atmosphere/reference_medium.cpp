@@ -41,7 +41,8 @@ std::vector<double> evenlySpacedWavelengths(int count) {
   return wavelengths;
 }
 
-SpectralMedium SpectralMedium::fromSettings(const AtmosphereSettings& settings, const std::vector<double>& wavelengthsNm) {
+SpectralMedium SpectralMedium::fromSettings(const AtmosphereSettings& settings,
+                                            const std::vector<double>& wavelengthsNm) {
   std::vector<shared::AtmosphereParameters> triples;
   for (size_t first = 0; first < wavelengthsNm.size(); first += 3) {
     glm::dvec3 triple;

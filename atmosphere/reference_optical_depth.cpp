@@ -27,7 +27,8 @@ ColumnIntegrator::ColumnIntegrator(const SpectralMedium& medium, double relative
     absoluteFloor_[c] = scale[c] > 0.0 ? kOpticalDepthFloor / scale[c] : std::numeric_limits<double>::infinity();
 }
 
-bool ColumnIntegrator::evaluatePanel(const RaySegment& segment, double a, double b, ConstituentDensities* kronrod) const {
+bool ColumnIntegrator::evaluatePanel(const RaySegment& segment, double a, double b,
+                                     ConstituentDensities* kronrod) const {
   const GaussKronrod15& rule = gaussKronrod15();
   // ∫_a^b f = h Σ w_k f(c + h x_k), c = (a + b)/2, h = (b - a)/2.
   const double centre = 0.5 * (a + b);
@@ -115,9 +116,11 @@ FreePathSample sampleFreePath(const ColumnIntegrator& integrator, const RaySegme
     for (int iteration = 0; iteration < 60; ++iteration) {
       partial = integrator.columnOnSubinterval(segment, panel.start, t);
       const double g = glm::dot(weights, partial) - needed;
-      if (g > 0.0) hi = t; else lo = t;
-      if (std::abs(g) <= 1e-13 * std::max(targetOpticalDepth, 1e-300) || hi - lo <= 1e-9 * std::max(1.0, hi))
-        break;
+      if (g > 0.0)
+        hi = t;
+      else
+        lo = t;
+      if (std::abs(g) <= 1e-13 * std::max(targetOpticalDepth, 1e-300) || hi - lo <= 1e-9 * std::max(1.0, hi)) break;
       const double slope = glm::dot(weights, integrator.medium().densitiesAt(segment.radiusAt(t)));
       double next = slope > 0.0 ? t - g / slope : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);

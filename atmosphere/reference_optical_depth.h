@@ -85,9 +85,9 @@ class ColumnIntegrator {
 // dot(weights, D(0, t)) = targetOpticalDepth, or reports that the segment's total is smaller.
 struct FreePathSample {
   bool collided = false;
-  double distance = 0.0;                    // t (collided) or the segment length
-  ConstituentDensities columnBefore{0.0};   // D(0, t), or D(0, length) when it did not collide
-  ConstituentDensities densitiesAtEnd{0.0}; // (d_R, d_M, d_O) at t when collided
+  double distance = 0.0;                     // t (collided) or the segment length
+  ConstituentDensities columnBefore{0.0};    // D(0, t), or D(0, length) when it did not collide
+  ConstituentDensities densitiesAtEnd{0.0};  // (d_R, d_M, d_O) at t when collided
 };
 
 FreePathSample sampleFreePath(const ColumnIntegrator& integrator, const RaySegment& segment, glm::dvec3 weights,

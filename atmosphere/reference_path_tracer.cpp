@@ -110,8 +110,7 @@ void PathTracer::sample(const PreparedViewRay& ray, Random& random, std::vector<
         sampleFreePath(columns_, sub, weights, std::max(target - glm::dot(weights, panel->columnBefore), 0.0));
     const double t = panel->start + (s.collided ? s.distance : sub.length);
     const ConstituentDensities column = panel->columnBefore + s.columnBefore;
-    const ConstituentDensities d =
-        s.collided ? s.densitiesAtEnd : medium_.densitiesAt(ray.view.segment.radiusAt(t));
+    const ConstituentDensities d = s.collided ? s.densitiesAtEnd : medium_.densitiesAt(ray.view.segment.radiusAt(t));
     for (int j = 0; j < n; ++j) {
       const glm::dvec3 beta = medium_.extinctionPerDensity(j);
       const double transmittance = std::exp(-glm::dot(beta, column));
@@ -129,15 +128,15 @@ void PathTracer::sample(const PreparedViewRay& ray, Random& random, std::vector<
       f[size_t(j)] = std::exp(-glm::dot(medium_.extinctionPerDensity(j), ray.column));
       p[size_t(j)] = 1.0;
     }
-    const glm::dvec3 ground = glm::normalize(ray.view.origin + ray.view.direction * ray.view.segment.length) *
-                              medium_.groundRadius();
+    const glm::dvec3 ground =
+        glm::normalize(ray.view.origin + ray.view.direction * ray.view.segment.length) * medium_.groundRadius();
     continuePath(ground, ray.view.direction, VertexKind::Ground, ConstituentDensities(0.0), hero, f, p, random,
                  contribution);
   }
 }
 
 FreePathSample PathTracer::sampleSegment(const RaySegment& segment, int hero, bool forced, double u,
-                                        ConstituentDensities* segmentColumn) const {
+                                         ConstituentDensities* segmentColumn) const {
   const glm::dvec3 weights = medium_.extinctionPerDensity(hero);
   if (!forced) {
     // tau_h(0, t) = -ln(1 - u): exponential free path; no collision when the segment is thinner.

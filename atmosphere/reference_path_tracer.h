@@ -48,8 +48,8 @@ struct PathTracerSettings {
 // The view ray, prepared once per pixel and shared by all its samples.
 struct PreparedViewRay {
   ViewSegment view;
-  std::vector<ColumnPanel> panels;    // of the view segment, in order
-  ConstituentDensities column{0.0};   // D(0, length)
+  std::vector<ColumnPanel> panels;   // of the view segment, in order
+  ConstituentDensities column{0.0};  // D(0, length)
 };
 
 class PathTracer {
@@ -64,10 +64,10 @@ class PathTracer {
 
   struct PathStatistics {
     long long paths = 0;
-    long long events = 0;     // scattering + ground events
+    long long events = 0;  // scattering + ground events
     int longestPath = 0;
     long long rouletteKills = 0;
-    long long capped = 0;     // paths stopped by maxBounces
+    long long capped = 0;  // paths stopped by maxBounces
   };
   // Counts of the calling thread's paths since the last reset (thread_local).
   static PathStatistics& threadStatistics();
@@ -91,7 +91,7 @@ class PathTracer {
 };
 
 // Phase-function sampling (cosine nu of the angle to the incoming propagation direction).
-double sampleRayleighCosine(double u);                 // pdf 3/8 (1 + nu^2) over nu in [-1, 1]
+double sampleRayleighCosine(double u);                    // pdf 3/8 (1 + nu^2) over nu in [-1, 1]
 double sampleHenyeyGreensteinCosine(double g, double u);  // pdf 2 pi p_HG(g, nu)
 
 }  // namespace firmament::reference

@@ -27,8 +27,9 @@ struct ReferenceRenderer::Engine {
   Engine(SpectralMedium m, glm::dvec3 sun, const ReferenceQuality& q)
       : medium(std::move(m)),
         singleScattering(medium, sun, q.quadratureTolerance),
-        pathTracer(medium, sun,
-                   reference::PathTracerSettings{q.pathTolerance, q.maxBounces, q.rouletteStartBounce, q.forcedSegments}) {
+        pathTracer(
+            medium, sun,
+            reference::PathTracerSettings{q.pathTolerance, q.maxBounces, q.rouletteStartBounce, q.forcedSegments}) {
     const std::vector<double>& w = medium.wavelengths();
     std::vector<double> unit(w.size(), 0.0);
     for (size_t i = 0; i < w.size(); ++i) {
@@ -103,8 +104,8 @@ std::vector<double> ReferenceRadiance::total() const {
 
 ReferenceRenderer::ReferenceRenderer(const AtmosphereSettings& settings, glm::dvec3 sunDirection,
                                      const ReferenceQuality& quality)
-    : ReferenceRenderer(SpectralMedium::fromSettings(settings, reference::evenlySpacedWavelengths(
-                                                                   std::max(quality.wavelengthCount, 1))),
+    : ReferenceRenderer(SpectralMedium::fromSettings(
+                            settings, reference::evenlySpacedWavelengths(std::max(quality.wavelengthCount, 1))),
                         sunDirection, quality) {}
 
 ReferenceRenderer::ReferenceRenderer(SpectralMedium medium, glm::dvec3 sunDirection, const ReferenceQuality& quality)

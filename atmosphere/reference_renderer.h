@@ -20,8 +20,8 @@
 namespace firmament {
 
 struct ReferenceQuality {
-  int samplesPerPixel = 256;       // Monte Carlo paths per view ray for orders >= 2 (0: orders 0-1 only)
-  int wavelengthCount = 48;        // evenly spaced over 360-830 nm (48: every 10 nm)
+  int samplesPerPixel = 256;  // Monte Carlo paths per view ray for orders >= 2 (0: orders 0-1 only)
+  int wavelengthCount = 48;   // evenly spaced over 360-830 nm (48: every 10 nm)
   uint64_t seed = 1;
   double quadratureTolerance = 1e-7;  // relative, orders 0 and 1 (per panel, so also of the whole integral)
   double pathTolerance = 1e-6;        // relative, every optical depth inside the path tracer
@@ -37,9 +37,9 @@ struct ReferenceQuality {
 
 // Spectral radiance along one view ray, W m^-2 sr^-1 nm^-1 at each of the renderer's wavelengths.
 struct ReferenceRadiance {
-  std::vector<double> sunDisc;             // order 0: the transmitted, limb-darkened disc
-  std::vector<double> singleScattering;    // order 1: sunlight scattered once by the air or the ground
-  std::vector<double> multipleScattering;  // orders >= 2: Monte Carlo mean
+  std::vector<double> sunDisc;                          // order 0: the transmitted, limb-darkened disc
+  std::vector<double> singleScattering;                 // order 1: sunlight scattered once by the air or the ground
+  std::vector<double> multipleScattering;               // orders >= 2: Monte Carlo mean
   std::vector<double> multipleScatteringStandardError;  // standard error of that mean
   int samples = 0;
   // Photometric results of the total (683 lm/W, CIE 1931 2°): XYZ (Y = luminance, cd/m²) and linear

@@ -71,8 +71,8 @@ DeterministicRadiance SingleScatteringIntegrator::integrate(const ViewSegment& v
       // Split the segment where it crosses the shadow's edge (the integrand jumps there), then
       // integrate each smooth piece adaptively, carrying the view column from piece to piece.
       // Also at the density breaks, where the integrand has kinks.
-      std::vector<double> cuts = shadowCrossings(view.origin, view.direction, sun_, medium_.groundRadius(),
-                                                 view.segment.length);
+      std::vector<double> cuts =
+          shadowCrossings(view.origin, view.direction, sun_, medium_.groundRadius(), view.segment.length);
       double densityCuts[ColumnIntegrator::kMaxCuts];
       const int densityCutCount = columns_.initialCuts(view.segment, densityCuts);
       cuts.insert(cuts.end(), densityCuts, densityCuts + densityCutCount);
@@ -129,7 +129,8 @@ void SingleScatteringIntegrator::integratePanel(const ViewSegment& view, double 
   // Densities at the 15 nodes, the column from the segment start to each node (the panel's
   // cumulative matrix, reference_quadrature.h), and the column toward the sun from each node.
   ConstituentDensities densities[kKronrodPoints];
-  for (int k = 0; k < kKronrodPoints; ++k) densities[k] = medium_.densitiesAt(view.segment.radiusAt(centre + half * rule.nodes[k]));
+  for (int k = 0; k < kKronrodPoints; ++k)
+    densities[k] = medium_.densitiesAt(view.segment.radiusAt(centre + half * rule.nodes[k]));
   ConstituentDensities panelK(0.0), panelG(0.0);
   for (int k = 0; k < kKronrodPoints; ++k) {
     panelK += rule.kronrodWeights[k] * densities[k];
@@ -165,8 +166,8 @@ void SingleScatteringIntegrator::integratePanel(const ViewSegment& view, double 
     accepted = true;
     const glm::dvec3 scale = medium_.maxExtinctionPerDensity();
     for (int c = 0; c < 3 && accepted; ++c)
-      if (scale[c] > 0.0 &&
-          std::abs(panelK[c] - panelG[c]) > relativeTolerance_ * panelK[c] + ColumnIntegrator::kOpticalDepthFloor / scale[c])
+      if (scale[c] > 0.0 && std::abs(panelK[c] - panelG[c]) >
+                                relativeTolerance_ * panelK[c] + ColumnIntegrator::kOpticalDepthFloor / scale[c])
         accepted = false;
     for (int w = 0; w < n && accepted; ++w) {
       const double k = half * kronrod[size_t(w)], g = half * gauss[size_t(w)];

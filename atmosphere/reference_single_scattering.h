@@ -60,8 +60,8 @@ class SingleScatteringIntegrator {
 
  private:
   // One recursive panel of the in-scattering integral; adds its K15 estimate to `radiance`.
-  void integratePanel(const ViewSegment& view, double a, double b, int depth, double rayleighPhase,
-                      double miePhase, ConstituentDensities* columnBefore, std::vector<double>* radiance) const;
+  void integratePanel(const ViewSegment& view, double a, double b, int depth, double rayleighPhase, double miePhase,
+                      ConstituentDensities* columnBefore, std::vector<double>* radiance) const;
 
   const SpectralMedium& medium_;
   glm::dvec3 sun_;

@@ -27,7 +27,8 @@ uint32_t groups(int n, int local) { return uint32_t((n + local - 1) / local); }
 std::string ScatteringTableSettings::hash() const {
   char text[160];
   std::snprintf(text, sizeof(text), "N%d-S%dx%dx%dx%d-E%dx%d-s%d-d%d-i%d", scatteringOrders, nuSize, muSSize, muSize,
-                rSize, irradianceWidth, irradianceHeight, integrationSteps, densityThetaSamples, irradianceThetaSamples);
+                rSize, irradianceWidth, irradianceHeight, integrationSteps, densityThetaSamples,
+                irradianceThetaSamples);
   return text;
 }
 
@@ -37,23 +38,27 @@ ScatteringTables::ScatteringTables(gpu::Context& context)
                                           {BindingType::UniformBuffer, BindingType::SampledImage,
                                            BindingType::StorageImage, BindingType::StorageImage},
                                           0}),
-      singleScatteringPipeline_(context, {"atmosphere/single_scattering",
-                                          {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::StorageImage,
-                                           BindingType::StorageImage, BindingType::StorageImage},
-                                          sizeof(TablePush)}),
-      scatteringDensityPipeline_(context, {"atmosphere/scattering_density",
-                                           {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage,
-                                            BindingType::SampledImage, BindingType::SampledImage, BindingType::SampledImage,
-                                            BindingType::StorageImage},
-                                           sizeof(TablePush)}),
-      indirectIrradiancePipeline_(context, {"atmosphere/indirect_irradiance",
-                                            {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage,
-                                             BindingType::SampledImage, BindingType::StorageImage, BindingType::StorageImage},
-                                            sizeof(TablePush)}),
-      multipleScatteringPipeline_(context, {"atmosphere/multiple_scattering",
-                                            {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage,
-                                             BindingType::StorageImage, BindingType::StorageImage},
-                                            sizeof(TablePush)}) {}
+      singleScatteringPipeline_(context,
+                                {"atmosphere/single_scattering",
+                                 {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::StorageImage,
+                                  BindingType::StorageImage, BindingType::StorageImage},
+                                 sizeof(TablePush)}),
+      scatteringDensityPipeline_(
+          context,
+          {"atmosphere/scattering_density",
+           {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage, BindingType::SampledImage,
+            BindingType::SampledImage, BindingType::SampledImage, BindingType::StorageImage},
+           sizeof(TablePush)}),
+      indirectIrradiancePipeline_(context,
+                                  {"atmosphere/indirect_irradiance",
+                                   {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage,
+                                    BindingType::SampledImage, BindingType::StorageImage, BindingType::StorageImage},
+                                   sizeof(TablePush)}),
+      multipleScatteringPipeline_(context,
+                                  {"atmosphere/multiple_scattering",
+                                   {BindingType::UniformBuffer, BindingType::SampledImage, BindingType::SampledImage,
+                                    BindingType::StorageImage, BindingType::StorageImage},
+                                   sizeof(TablePush)}) {}
 
 void ScatteringTables::allocate(const ScatteringTableSettings& s) {
   auto table = [&](const char* name) {
@@ -73,15 +78,16 @@ void ScatteringTables::allocate(const ScatteringTableSettings& s) {
     scatteringDensity_ = table("scattering density");
     scattering_ = table("scattering");
   }
-  bool samePlanes = irradiance_ && settings_.irradianceWidth == s.irradianceWidth &&
-                    settings_.irradianceHeight == s.irradianceHeight;
+  bool samePlanes =
+      irradiance_ && settings_.irradianceWidth == s.irradianceWidth && settings_.irradianceHeight == s.irradianceHeight;
   if (!samePlanes) {
     deltaIrradiance_ = plane("delta irradiance");
     irradiance_ = plane("ground irradiance");
   }
 }
 
-bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableSettings& s, gpu::CommandList& commands) {
+bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableSettings& s,
+                              gpu::CommandList& commands) {
   std::string key = luts.key() + "/" + s.hash();
   if (key == key_) return false;
   if (s.scatteringOrders < 1 || s.nuSize < 2 || s.muSSize < 2 || s.muSize < 4 || s.muSize % 2 != 0 || s.rSize < 2 ||
@@ -110,20 +116,29 @@ bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableS
 
   // 3. Orders 2..N: density of order n, ground irradiance of order n - 1, radiance of order n.
   for (int order = 2; order <= s.scatteringOrders; ++order) {
-    commands.bind(scatteringDensityPipeline_, {block, {transmittance, linear}, {deltaRayleigh_, linear}, {deltaMie_, linear},
-                                               {deltaMultiple_, linear}, {deltaIrradiance_, linear}, scatteringDensity_});
+    commands.bind(scatteringDensityPipeline_, {block,
+                                               {transmittance, linear},
+                                               {deltaRayleigh_, linear},
+                                               {deltaMie_, linear},
+                                               {deltaMultiple_, linear},
+                                               {deltaIrradiance_, linear},
+                                               scatteringDensity_});
     commands.pushConstants(tablePush(s, order, s.densityThetaSamples));
     commands.dispatch(uint32_t(s.muSSize), uint32_t(s.rSize), 1, "atmosphere/scattering_density");
     commands.barrier();
 
-    commands.bind(indirectIrradiancePipeline_, {block, {deltaRayleigh_, linear}, {deltaMie_, linear},
-                                                {deltaMultiple_, linear}, deltaIrradiance_, irradiance_});
+    commands.bind(indirectIrradiancePipeline_, {block,
+                                                {deltaRayleigh_, linear},
+                                                {deltaMie_, linear},
+                                                {deltaMultiple_, linear},
+                                                deltaIrradiance_,
+                                                irradiance_});
     commands.pushConstants(tablePush(s, order - 1, s.irradianceThetaSamples));
     commands.dispatch(groups(s.irradianceWidth, 8), groups(s.irradianceHeight, 8), 1, "atmosphere/indirect_irradiance");
     commands.barrier();
 
-    commands.bind(multipleScatteringPipeline_, {block, {transmittance, linear}, {scatteringDensity_, linear},
-                                                deltaMultiple_, scattering_});
+    commands.bind(multipleScatteringPipeline_,
+                  {block, {transmittance, linear}, {scatteringDensity_, linear}, deltaMultiple_, scattering_});
     commands.pushConstants(tablePush(s, s.integrationSteps));
     commands.dispatch(groups(tableWidth, 4), groups(s.muSize, 4), groups(s.rSize, 4), "atmosphere/multiple_scattering");
     commands.barrier();

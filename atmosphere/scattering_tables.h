@@ -21,15 +21,15 @@ namespace firmament {
 
 // Quality knobs of the tables; defaults are Bruneton's.
 struct ScatteringTableSettings {
-  int scatteringOrders = 4;     // N: single scattering plus N - 1 orders of multiple scattering
-  int nuSize = 8;               // 4D table: nu samples (folded into the texture's x axis)
-  int muSSize = 32;             //           mu_s samples
-  int muSize = 128;             //           mu samples (even: half ground, half sky)
-  int rSize = 32;               //           r samples
-  int irradianceWidth = 64;     // ground irradiance: mu_s samples
-  int irradianceHeight = 16;    //                    r samples
-  int integrationSteps = 50;    // trapezoid intervals along each ray (single and multiple scattering)
-  int densityThetaSamples = 16; // scattering density: theta x 2 theta directions over the sphere (<= 16)
+  int scatteringOrders = 4;         // N: single scattering plus N - 1 orders of multiple scattering
+  int nuSize = 8;                   // 4D table: nu samples (folded into the texture's x axis)
+  int muSSize = 32;                 //           mu_s samples
+  int muSize = 128;                 //           mu samples (even: half ground, half sky)
+  int rSize = 32;                   //           r samples
+  int irradianceWidth = 64;         // ground irradiance: mu_s samples
+  int irradianceHeight = 16;        //                    r samples
+  int integrationSteps = 50;        // trapezoid intervals along each ray (single and multiple scattering)
+  int densityThetaSamples = 16;     // scattering density: theta x 2 theta directions over the sphere (<= 16)
   int irradianceThetaSamples = 16;  // ground irradiance: theta x 4 theta directions over the hemisphere
   std::string hash() const;
   shared::ScatteringTableSize tableSize() const { return {nuSize, muSSize, muSize, rSize}; }

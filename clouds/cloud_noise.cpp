@@ -50,7 +50,8 @@ CloudNoise::CloudNoise(gpu::Context& context)
     : context_(context),
       bake3d_(context, {"clouds/bake_noise_3d", {gpu::BindingType::StorageImage}, sizeof(BakePush)}),
       bakeCurl_(context, {"clouds/bake_curl", {gpu::BindingType::StorageImage}, sizeof(BakePush)}),
-      downsample3d_(context, {"clouds/downsample_noise_3d", {gpu::BindingType::StorageImage, gpu::BindingType::StorageImage},
+      downsample3d_(context, {"clouds/downsample_noise_3d",
+                              {gpu::BindingType::StorageImage, gpu::BindingType::StorageImage},
                               sizeof(DownsamplePush)}),
       linearRepeat_(context, gpu::SamplerDesc{gpu::Filter::Linear, gpu::AddressMode::Repeat, gpu::AddressMode::Repeat,
                                               gpu::AddressMode::Repeat, true}),
@@ -63,7 +64,8 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
     return false;
   }
   auto make = [&](int size, int depth, const char* name, uint32_t levels) {
-    return gpu::Image(context_, {uint32_t(size), uint32_t(size), uint32_t(depth), gpu::Format::RGBA8, true, true, name, levels});
+    return gpu::Image(context_,
+                      {uint32_t(size), uint32_t(size), uint32_t(depth), gpu::Format::RGBA8, true, true, name, levels});
   };
   shape_ = make(settings.shapeSize, settings.shapeSize, "cloud shape noise", noiseMipLevels(settings.shapeSize));
   detail_ = make(settings.detailSize, settings.detailSize, "cloud detail noise", noiseMipLevels(settings.detailSize));
@@ -76,7 +78,8 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
   static const std::string code = gpu::shaderCodeHash({"clouds/bake_noise_3d", "clouds/bake_curl"});
   const std::string diskKey = "cloud-noise-v1/" + key + "/" + context_.description() + "/" + code;
   const std::filesystem::path file =
-      context_.cacheDir().empty() ? std::filesystem::path() : context_.cacheDir() / "noise" / ("cloud-noise-" + hex16(fnv1a(diskKey)) + ".bin");
+      context_.cacheDir().empty() ? std::filesystem::path()
+                                  : context_.cacheDir() / "noise" / ("cloud-noise-" + hex16(fnv1a(diskKey)) + ".bin");
   pendingCacheFile_.clear();
   std::optional<std::vector<TableData>> cached;
   if (!file.empty()) cached = readTableFile(file, diskKey);
@@ -84,7 +87,8 @@ bool CloudNoise::update(uint32_t seed, const CloudNoiseSettings& settings, gpu::
     return t.width == image.width() && t.height == image.height() && t.depth == image.depth() && t.channels == 4 &&
            t.bytes.size() == image.byteSize();
   };
-  if (cached && cached->size() == 3 && fits((*cached)[0], shape_) && fits((*cached)[1], detail_) && fits((*cached)[2], curl_)) {
+  if (cached && cached->size() == 3 && fits((*cached)[0], shape_) && fits((*cached)[1], detail_) &&
+      fits((*cached)[2], curl_)) {
     shape_.upload((*cached)[0].bytes.data(), (*cached)[0].bytes.size());
     detail_.upload((*cached)[1].bytes.data(), (*cached)[1].bytes.size());
     curl_.upload((*cached)[2].bytes.data(), (*cached)[2].bytes.size());

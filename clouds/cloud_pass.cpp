@@ -19,39 +19,48 @@ struct CloudBlock {
   float sunDirection[4];   // w = largest march distance
   int32_t image[4];        // width, height, projection, layer count
   int32_t steps[4];        // view steps, light steps, octaves, flags
-  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), light-step falloff k, light march length
+  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), light-step falloff k, light
+                           // march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
   float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
   float weatherRegion[4];  // width, height (m), skew east, north (m/m)
-  float weatherPlanet[4];  // ground radius (m), low-transmittance step start T1 and largest factor K, other layers' light-step scale
+  float weatherPlanet[4];  // ground radius (m), low-transmittance step start T1 and largest factor K, other layers'
+                           // light-step scale
   float shadowCentre[4];   // centre (cloud frame, m), extent (m)
   float shadowAxisU[4];    // axis u, start distance L (m)
   float shadowAxisV[4];    // axis v, march length (m)
   int32_t shadowSize[4];   // texels, steps, enabled, unused
-  float aerial[4];         // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
+  float aerial[4];  // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
   float layers[kMaxLayers * 5][4];
-  float layerLighting[kMaxLayers][4];  // the diffusion floor's weight d, the reflected light's r and a_r, the base's limb darkening
-  float weatherReach[4];               // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m), unused x2
-  float otherLayerMap[4];              // the other layers' map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
-  float otherLayerOrigin[4];           // its plane's origin (cloud frame, m); w = the first row this bake writes
-  float otherLayerAxisU[4];            // its axis u; w = the bake writes every w-th row from there
-  float otherLayerAxisV[4];            // its axis v
-  float otherLayerSun[4];              // the sun direction its lines follow
-  float columnMap[4];                  // the column map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, levels K (0: none)
-  float columnOrigin[4];               // its unit normal c; w = the first row this bake writes
-  float columnAxisU[4];                // its axis u; w = the bake writes every w-th row from there
-  float columnAxisV[4];                // its axis v; w = the planet radius R (m)
-  float deepShadowMap[4];              // the deep shadow map (the other layers' map's placement): texels per side, levels K, near steps, baked (0: none)
-  float buildUp[4];                    // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height (0); the slab through the other layers, baked this frame (1); the flow's scale
-  float layerLowSun[kMaxLayers / 4][4];  // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
-  float topEntry[4];                   // the shadowed top (CloudMarchSettings::topEntryShadow): 1 on, the top's threshold, unused x2
+  float layerLighting[kMaxLayers]
+                     [4];  // the diffusion floor's weight d, the reflected light's r and a_r, the base's limb darkening
+  float weatherReach[4];   // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m),
+                           // unused x2
+  float otherLayerMap[4];  // the other layers' map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles
+                           // (0: none)
+  float otherLayerOrigin[4];  // its plane's origin (cloud frame, m); w = the first row this bake writes
+  float otherLayerAxisU[4];   // its axis u; w = the bake writes every w-th row from there
+  float otherLayerAxisV[4];   // its axis v
+  float otherLayerSun[4];     // the sun direction its lines follow
+  float columnMap[4];  // the column map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, levels K (0: none)
+  float columnOrigin[4];   // its unit normal c; w = the first row this bake writes
+  float columnAxisU[4];    // its axis u; w = the bake writes every w-th row from there
+  float columnAxisV[4];    // its axis v; w = the planet radius R (m)
+  float deepShadowMap[4];  // the deep shadow map (the other layers' map's placement): texels per side, levels K, near
+                           // steps, baked (0: none)
+  float buildUp[4];  // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height
+                     // (0); the slab through the other layers, baked this frame (1); the flow's scale
+  float layerLowSun[kMaxLayers / 4]
+                   [4];  // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
+  float topEntry[4];     // the shadowed top (CloudMarchSettings::topEntryShadow): 1 on, the top's threshold, unused x2
 };
 static_assert(sizeof(CloudBlock) == (31 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
 
 // The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
-// clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from the map's origin within which
-// texels shrink no further (clouds/log_warp.glsl: a texel's side is (|a| + rho0) ln(1 + E / rho0) 2 / N).
+// clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from
+// the map's origin within which texels shrink no further (clouds/log_warp.glsl: a texel's side is (|a| + rho0) ln(1 + E
+// / rho0) 2 / N).
 constexpr double kMapRho0_m = 1000.0;
 // In a sequence the maps are re-baked one in w of their rows per frame (interleaved), so a texel is at
 // most w frames old, while the clouds' drift over those frames stays under kMapDrift_m, the sun within
@@ -67,7 +76,9 @@ constexpr double kMapCameraMove_m = 1000.0;
 
 // The log warp's scale ln(1 + E / rho0) for a map reaching E = the march's reach + kMapCameraMove_m
 // (clouds/log_warp.glsl; once per frame here rather than per lookup).
-double mapLogWarpScale(const CloudMarchSettings& m) { return std::log(1.0 + (m.maxDistance_m + kMapCameraMove_m) / kMapRho0_m); }
+double mapLogWarpScale(const CloudMarchSettings& m) {
+  return std::log(1.0 + (m.maxDistance_m + kMapCameraMove_m) / kMapRho0_m);
+}
 
 // Whether this frame bakes the column map (clouds/column_map.glsl): the octaves' way from the top and
 // the diffusion floor need the vertical optical depths only with more than one octave.
@@ -76,7 +87,8 @@ bool usesColumnMap(const CloudSettings& settings) { return settings.march.column
 // as a slab that looks through them.
 bool usesColumnAmbient(const CloudSettings& settings) {
   const CloudMarchSettings& m = settings.march;
-  return usesColumnMap(settings) && settings.layers.size() > 1 && m.ambient && m.ambientSlab && m.ambientThroughOtherLayers;
+  return usesColumnMap(settings) && settings.layers.size() > 1 && m.ambient && m.ambientSlab &&
+         m.ambientThroughOtherLayers;
 }
 
 // Whether this frame bakes the other layers' map: light through the other layers, from the map, with
@@ -168,7 +180,8 @@ void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) { put(out, v.x, v
 
 // A unit axis perpendicular to the unit vector d (the second is cross(d, axis)): the maps' placements.
 glm::dvec3 perpendicularAxis(const glm::dvec3& d) {
-  return glm::normalize(std::abs(d.z) < 0.9 ? glm::cross(d, glm::dvec3(0.0, 0.0, 1.0)) : glm::cross(d, glm::dvec3(1.0, 0.0, 0.0)));
+  return glm::normalize(std::abs(d.z) < 0.9 ? glm::cross(d, glm::dvec3(0.0, 0.0, 1.0))
+                                            : glm::cross(d, glm::dvec3(1.0, 0.0, 0.0)));
 }
 
 // The bakes that share the march's first 13 bindings and write the 14th (an image): the Beer shadow
@@ -193,7 +206,8 @@ bool sunClearsEveryCloudSample(const CloudMarchSettings& march, const CloudView&
   if (!(r > 0.0)) return false;
   const double reach = 1.1 * march.maxDistance_m + 1000.0;
   const double tilt = reach >= r ? shared::kPi : std::asin(reach / r);
-  const double sunFromZenith = std::acos(std::clamp(glm::dot(view.cameraPosition / r, glm::normalize(view.sunDirection)), -1.0, 1.0));
+  const double sunFromZenith =
+      std::acos(std::clamp(glm::dot(view.cameraPosition / r, glm::normalize(view.sunDirection)), -1.0, 1.0));
   return sunFromZenith + tilt < 0.5 * shared::kPi - 1e-3;
 }
 
@@ -216,7 +230,8 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach, bo
   // Else the march's code is left out: lavapipe ran its loop once per lit sample under an empty mask
   // (the term's cost on a cumulonimbus 1/16 sequence frame +8.5 % -> +3.0 %; docs/clouds.md
   // "Calibration", session 19).
-  if ((features & 2048u) && (!usesDeepShadowMap(settings) || m.beerShadowMap || !sunClearsEverySample)) features |= 4096u;
+  if ((features & 2048u) && (!usesDeepShadowMap(settings) || m.beerShadowMap || !sunClearsEverySample))
+    features |= 4096u;
   return features;
 }
 
@@ -228,29 +243,34 @@ CloudPass::CloudPass(gpu::Context& context)
       bakeColumns_(context, cloudBakeDesc("clouds/bake_columns")),
       bakeColumnAmbient_(context, cloudBakeDesc("clouds/bake_column_ambient")),
       bakeDeepShadow_(context, cloudBakeDesc("clouds/bake_deep_shadow")),
-      upsample_(context, {"clouds/upsample_clouds",
-                          {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
-                          sizeof(UpsamplePush)}),
-      neighbourhood_(context, {"clouds/temporal_neighbourhood",
-                               {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
-                                gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
-                               sizeof(NeighbourhoodPush)}),
-      resolve_(context, {"clouds/temporal_resolve",
-                         {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
-                          gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer,
-                          gpu::BindingType::StorageBuffer},
-                         sizeof(ResolvePush)}),
+      upsample_(context,
+                {"clouds/upsample_clouds",
+                 {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
+                 sizeof(UpsamplePush)}),
+      neighbourhood_(
+          context, {"clouds/temporal_neighbourhood",
+                    {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                     gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                    sizeof(NeighbourhoodPush)}),
+      resolve_(context,
+               {"clouds/temporal_resolve",
+                {gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                 gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer,
+                 gpu::BindingType::StorageBuffer},
+                sizeof(ResolvePush)}),
       block_(context, sizeof(CloudBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud block"),
       counters_(context, 3 * sizeof(uint32_t), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "cloud counters"),
-      temporalBlock_(context, sizeof(TemporalBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "cloud temporal block") {}
+      temporalBlock_(context, sizeof(TemporalBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host,
+                     "cloud temporal block") {}
 
 void CloudPass::setWeatherMap(const CloudWeatherMap& map) {
   if (map.map.channels != 4 || map.map.pixelCount() == 0) throw std::logic_error("CloudPass: weather map must be RGBA");
   const uint32_t w = uint32_t(map.map.width), h = uint32_t(map.map.height);
   const glm::dvec4 region(map.width_m, map.height_m, map.skew.x, map.skew.y);
   const uint8_t sharp = map.sharpCoverage ? 1 : 0;
-  const uint64_t hash = fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
-                              fnv1a(&sharp, 1, fnv1a(&region, sizeof(region), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h))))));
+  const uint64_t hash =
+      fnv1a(map.map.pixels.data(), map.map.pixels.size() * sizeof(float),
+            fnv1a(&sharp, 1, fnv1a(&region, sizeof(region), fnv1a(&w, sizeof(w), fnv1a(&h, sizeof(h))))));
   if (weatherImage_ && hash == weatherHash_) return;  // the same map as the last frame's: nothing to upload
   if (!weatherImage_ || weatherImage_.width() != w || weatherImage_.height() != h)
     weatherImage_ = gpu::Image(context_, {w, h, 1, gpu::Format::RGBA32F, false, true, "cloud weather map"});
@@ -293,12 +313,13 @@ CloudSampleCounts CloudPass::sampleCounts() const {
   return {c[0] / pixels, c[1] / pixels, c[2] / pixels};
 }
 
-bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise, gpu::CommandList& commands) {
+bool CloudPass::prepareNoise(const CloudSettings& settings, const CloudNoiseSettings& noise,
+                             gpu::CommandList& commands) {
   return noise_.update(settings.seed, noise, commands);
 }
 
-std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-                                            double aerialDistance_m) {
+std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const CloudView& view,
+                                            const AtmosphereLuts& luts, double aerialDistance_m) {
   const auto layers = sharedCloudLayers(settings, luts.parameters().bottom_radius);
   const CloudMarchSettings& m = settings.march;
   const CloudLightingSettings& l = settings.lighting;
@@ -315,9 +336,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   b.steps[0] = std::max(m.viewSteps, 1);
   b.steps[1] = std::max(m.lightSteps, 1);
   b.steps[2] = std::clamp(l.octaves, 1, 8);
-  b.steps[3] = (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) |
-               (m.lightMarchToExit ? 16 : 0) | (m.msZenithDepth ? 32 : 0) |
-               (m.msScatteredOnly ? 64 : 0) | (m.lightStepsPerThickness ? 128 : 0) |
+  b.steps[3] = (m.jitter ? 2 : 0) | (m.ambient ? 4 : 0) | (m.uniformSteps ? 8 : 0) | (m.lightMarchToExit ? 16 : 0) |
+               (m.msZenithDepth ? 32 : 0) | (m.msScatteredOnly ? 64 : 0) | (m.lightStepsPerThickness ? 128 : 0) |
                (m.lightThroughOtherLayers ? 256 : 0) | (m.earlyExitRemainder ? 512 : 0) |
                (m.reflectedLowSunDepth ? 1024 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
@@ -325,7 +345,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   // a, b, c are per layer (below).
-  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, std::max(m.lightStepsFalloff, 0.0), m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
+  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, std::max(m.lightStepsFalloff, 0.0),
+      m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
   put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
   for (size_t i = 0; i < layers.size(); ++i) {
@@ -345,8 +366,10 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   // The longest coarse span on a reach map: a span's points lie within span (1 + |skew|) of each other
   // on the map (the skew shifts the columns with height); 0.9 leaves room for the map's tangent-plane
   // placement.
-  put(b.weatherReach, reachRadius_, 0.9 * reachRadius_ / (1.0 + glm::length(glm::dvec2(weatherRegion_.z, weatherRegion_.w))), 0.0, 0.0);
-  put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0), std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
+  put(b.weatherReach, reachRadius_,
+      0.9 * reachRadius_ / (1.0 + glm::length(glm::dvec2(weatherRegion_.z, weatherRegion_.w))), 0.0, 0.0);
+  put(b.weatherPlanet, luts.parameters().bottom_radius, std::max(m.lowTransmittanceStepStart, 0.0),
+      std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
   // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
   // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
   // L = (top - mid) / max(mu_s, 0.05) + 1 km (past every layer's top for any sun above the horizon),
@@ -387,9 +410,11 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.buildUp, std::max(m.msBuildUpScale, 0.0), m.ambientSlab ? 1.0 : 0.0, usesColumnAmbient(settings) ? 1.0 : 0.0,
       std::max(m.ambientFlow, 0.0));
   for (size_t i = 0; i < layers.size(); ++i)
-    b.layerLowSun[i / 4][i % 4] = float(std::clamp(m.octaveLowSunMu >= 0.0 ? m.octaveLowSunMu : settings.layers[i].msLowSunMu, 0.0, 1.0));
+    b.layerLowSun[i / 4][i % 4] =
+        float(std::clamp(m.octaveLowSunMu >= 0.0 ? m.octaveLowSunMu : settings.layers[i].msLowSunMu, 0.0, 1.0));
   put(b.topEntry, m.topEntryShadow ? 1.0 : 0.0, std::max(m.topEntryThreshold, 0.0), 0.0, 0.0);
-  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
+  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0),
+      std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;
@@ -419,11 +444,13 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
 void CloudPass::allocateShadowImage(const CloudMarchSettings& m) {
   const uint32_t shadowSize = m.beerShadowMap ? uint32_t(std::max(m.shadowMapSize, 1)) : 1u;
   if (!shadowImage_ || shadowImage_.width() != shadowSize)
-    shadowImage_ = gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
+    shadowImage_ =
+        gpu::Image(context_, {shadowSize, shadowSize, 1, gpu::Format::RGBA32F, true, true, "cloud shadow map"});
 }
 
 void CloudPass::bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
-                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands) {
+                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                         gpu::CommandList& commands) {
   const AtmosphereLuts::Batch& lut = luts.batch(0);
   commands.bind(pipeline, {lut.block,
                            {lut.transmittance, luts.linearClamp()},
@@ -441,8 +468,8 @@ void CloudPass::bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& targe
                            target});
 }
 
-void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                           gpu::CommandList& commands) {
+void CloudPass::recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance,
+                           gpu::Buffer& skyFrame, gpu::CommandList& commands) {
   const uint32_t shadowSize = shadowImage_.width();
   // The shadow bake and the march share their first 13 bindings; the bake's 14th is the shadow map it
   // writes, which the march reads, and the march has two more: the anisotropy table (its per-pixel
@@ -463,7 +490,8 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
   const uint32_t width = bake ? uint32_t(size) : 1u;
   const uint32_t height = bake ? uint32_t(size) * uint32_t((settings.layers.size() + 3) / 4) : 1u;
   if (!otherLayerImage_ || otherLayerImage_.width() != width || otherLayerImage_.height() != height)
-    otherLayerImage_ = gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
+    otherLayerImage_ =
+        gpu::Image(context_, {width, height, 1, gpu::Format::RGBA32F, true, true, "cloud other layers' map"});
   if (!bake) return;
   bindBake(bakeOtherLayers_, otherLayerImage_, luts, skyIrradiance, skyFrame, commands);
   const uint32_t rows = bakedRows(height);
@@ -472,9 +500,9 @@ void CloudPass::recordOtherLayerMap(const CloudSettings& settings, const Atmosph
 }
 
 void CloudPass::recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels,
-                               size_t layers, int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
-                               const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                               gpu::CommandList& commands) {
+                               size_t layers, int extraSlices, const char* name, const char* pass,
+                               const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance,
+                               gpu::Buffer& skyFrame, gpu::CommandList& commands) {
   const uint32_t width = bake ? uint32_t(size) : 1u;
   const uint32_t depth = bake ? uint32_t(layers) * uint32_t(levels + 1) + uint32_t(extraSlices) : 2u;
   if (!image || image.width() != width || image.depth() != depth)
@@ -498,8 +526,8 @@ void CloudPass::recordColumnMap(const CloudSettings& settings, const AtmosphereL
   // Two more slices per layer: the ambient's view of the other layers (bake_column_ambient.comp), baked
   // from the levels' whole columns where there are other layers and the ambient's slab looks through them.
   const size_t layers = settings.layers.size();
-  recordLevelMap(bakeColumns_, columnImage_, bake, size, levels, layers, 2 * int(layers), "cloud column map", "clouds/bake_columns",
-                 luts, skyIrradiance, skyFrame, commands);
+  recordLevelMap(bakeColumns_, columnImage_, bake, size, levels, layers, 2 * int(layers), "cloud column map",
+                 "clouds/bake_columns", luts, skyIrradiance, skyFrame, commands);
   if (bake && usesColumnAmbient(settings)) {
     bindBake(bakeColumnAmbient_, columnImage_, luts, skyIrradiance, skyFrame, commands);
     const uint32_t width = uint32_t(size);
@@ -519,9 +547,10 @@ void CloudPass::recordDeepShadowMap(const CloudSettings& settings, const Atmosph
   if (m.deepShadowMap && (levels < 1 || levels > 128))
     throw InputError("clouds: deep_shadow_map_levels " + std::to_string(levels) + "; allowed: 1 to 128");
   if (m.deepShadowMap && m.deepShadowNearSteps < 0)
-    throw InputError("clouds: deep_shadow_near_steps " + std::to_string(m.deepShadowNearSteps) + "; allowed: 0 or more");
-  recordLevelMap(bakeDeepShadow_, deepShadowImage_, usesDeepShadowMap(settings), size, levels, settings.layers.size(), 0,
-                 "cloud deep shadow map", "clouds/bake_deep_shadow", luts, skyIrradiance, skyFrame, commands);
+    throw InputError("clouds: deep_shadow_near_steps " + std::to_string(m.deepShadowNearSteps) +
+                     "; allowed: 0 or more");
+  recordLevelMap(bakeDeepShadow_, deepShadowImage_, usesDeepShadowMap(settings), size, levels, settings.layers.size(),
+                 0, "cloud deep shadow map", "clouds/bake_deep_shadow", luts, skyIrradiance, skyFrame, commands);
 }
 
 void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
@@ -533,7 +562,8 @@ void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& 
   uploadBlock(settings, view, luts, aerialDistance_m);
   for (gpu::Buffer& frame : cloudFrames_)  // bound (unused) by the bake
     if (!frame || frame.size() != skyFrame.size())
-      frame = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+      frame =
+          gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
   allocateShadowImage(settings.march);
   recordBake(luts, skyIrradiance, skyFrame, commands);
   shadowBaked_ = true;
@@ -562,7 +592,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   current_ = 1 - current_;
   for (gpu::Buffer& frame : cloudFrames_)
     if (!frame || frame.size() != skyFrame.size())
-      frame = gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
+      frame =
+          gpu::Buffer(context_, skyFrame.size(), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud frame");
   gpu::Buffer& cloudFrame = cloudFrames_[current_];
   const gpu::Buffer& historyFrame = cloudFrames_[1 - current_];
   if (!depth_ || depth_.size() != VkDeviceSize(width) * height * sizeof(float))
@@ -588,9 +619,11 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const int k = m.resolutionDivisor > 1 ? 1 : update == 16 ? 4 : update == 4 ? 2 : 1;
   // The same map, or one that evolved a little (a weather scene's sequence simulates it to each
   // frame's time): what changed the clamp takes out, as it does for the sun's move.
-  const bool sameWeather = history_.weather == weatherHash_ ||
-                           weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
-  reprojected_ = k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
+  const bool sameWeather =
+      history_.weather == weatherHash_ ||
+      weatherEvolvedLittle(history_.weatherTexels, history_.weatherRegion, weatherTexels_, weatherRegion_);
+  reprojected_ =
+      k > 1 && continueSequence && history_.usable && !cameraInLayer && history_.settings == settingsKey && sameWeather;
   // The per-frame maps: one in w of their rows when the frame continues one that baked them with the
   // same settings and the clouds, the sun and the camera moved little (kMapRowStrides); else all of
   // them, placed at the camera and the sun of this frame.
@@ -637,11 +670,13 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const uint32_t coarseHeight = (height + uint32_t(divisor) - 1) / uint32_t(divisor);
   const VkDeviceSize coarseBytes = VkDeviceSize(coarseWidth) * coarseHeight * 4 * sizeof(float);
   if (divisor > 1 && (!coarseFrame_ || coarseFrame_.size() != coarseBytes))
-    coarseFrame_ = gpu::Buffer(context_, coarseBytes, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "coarse cloud frame");
+    coarseFrame_ = gpu::Buffer(context_, coarseBytes, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+                               "coarse cloud frame");
   const gpu::TileDispatch marchTiles =
-      divisor > 1 ? gpu::tileDispatch(context_, coarseWidth, coarseHeight,
-                                      tiles.stride == 1 ? gpu::DispatchOrder::RowMajor : gpu::DispatchOrder::Interleaved)
-                  : tiles;
+      divisor > 1
+          ? gpu::tileDispatch(context_, coarseWidth, coarseHeight,
+                              tiles.stride == 1 ? gpu::DispatchOrder::RowMajor : gpu::DispatchOrder::Interleaved)
+          : tiles;
   gpu::Buffer& marchFrame = divisor > 1 ? coarseFrame_ : cloudFrame;
   // Samples are reported per image pixel: what a frame costs, whatever grid the march ran on.
   cloudPixels_ = size_t(width) * height;
@@ -652,51 +687,57 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   recordColumnMap(settings, luts, skyIrradiance, skyFrame, commands);
   recordDeepShadowMap(settings, luts, skyIrradiance, skyFrame, commands);
   const size_t variant = size_t(m.aerialPerspective);
-  static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march", "clouds/render_clouds"};
+  static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march",
+                                           "clouds/render_clouds"};
   const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0, sunClearsEveryCloudSample(m, view));
   std::unique_ptr<gpu::ComputePipeline>& pipeline = pipelines_[{int(variant), features}];
   if (!pipeline)
     pipeline = std::make_unique<gpu::ComputePipeline>(
-        context_, gpu::PipelineDesc{kVariants[variant],
-                                    {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                     gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                     gpu::BindingType::SampledImage},
-                                    sizeof(Push),
-                                    {features}});
+        context_,
+        gpu::PipelineDesc{
+            kVariants[variant],
+            {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,
+             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,
+             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::StorageBuffer,
+             gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
+             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,
+             gpu::BindingType::SampledImage,  gpu::BindingType::StorageBuffer, gpu::BindingType::SampledImage,
+             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage},
+            sizeof(Push),
+            {features}});
   if (!volume && !aerialPlaceholder_)
-    aerialPlaceholder_ = gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
+    aerialPlaceholder_ =
+        gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
     const AtmosphereLuts::Batch& lut = luts.batch(batch);
     const gpu::Image& aerialImage = volume ? *aerial->volumes[batch] : aerialPlaceholder_;
     commands.bind(*pipeline, {lut.block,
-                                         {lut.transmittance, luts.linearClamp()},
-                                         {lut.multipleScattering, luts.linearClamp()},
-                                         {*skyIrradiance[batch], luts.linearClamp()},
-                                         {noise_.shape(), noise_.linearRepeat()},
-                                         {noise_.detail(), noise_.linearRepeat()},
-                                         {noise_.curl(), noise_.linearRepeat()},
-                                         {noise_.blueNoise(), noise_.nearestRepeat()},
-                                         skyFrame,
-                                         marchFrame,
-                                         block_,
-                                         counters_,
-                                         {weatherImage_, noise_.linearRepeat()},
-                                         {shadowImage_, luts.linearClamp()},
-                                         {lut.multipleScatteringAnisotropy, luts.linearClamp()},
-                                         {aerialImage, luts.linearClamp()},
-                                         depth_,
-                                         {weatherReach_, noise_.linearRepeat()},
-                                         {otherLayerImage_, luts.linearClamp()},
-                                         {columnImage_, luts.linearClamp()},
-                                         {deepShadowImage_, luts.linearClamp()}});
+                              {lut.transmittance, luts.linearClamp()},
+                              {lut.multipleScattering, luts.linearClamp()},
+                              {*skyIrradiance[batch], luts.linearClamp()},
+                              {noise_.shape(), noise_.linearRepeat()},
+                              {noise_.detail(), noise_.linearRepeat()},
+                              {noise_.curl(), noise_.linearRepeat()},
+                              {noise_.blueNoise(), noise_.nearestRepeat()},
+                              skyFrame,
+                              marchFrame,
+                              block_,
+                              counters_,
+                              {weatherImage_, noise_.linearRepeat()},
+                              {shadowImage_, luts.linearClamp()},
+                              {lut.multipleScatteringAnisotropy, luts.linearClamp()},
+                              {aerialImage, luts.linearClamp()},
+                              depth_,
+                              {weatherReach_, noise_.linearRepeat()},
+                              {otherLayerImage_, luts.linearClamp()},
+                              {columnImage_, luts.linearClamp()},
+                              {deepShadowImage_, luts.linearClamp()}});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
-    Push push{marchTiles, batch == 0 ? 1 : 0, divisor, divisor == 1 ? 1 : 0,
+    Push push{marchTiles,
+              batch == 0 ? 1 : 0,
+              divisor,
+              divisor == 1 ? 1 : 0,
               reprojected_ ? int32_t((temporalFrame_ * 37u) % 4096u) : 0,
               {reprojected_ ? float(offset[0]) + 0.5f : 0.5f * float(divisor),
                reprojected_ ? float(offset[1]) + 0.5f : 0.5f * float(divisor)},
@@ -721,21 +762,26 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
     // The noise is read at p + wind offset: a feature at P now was at P + (offset now - offset then).
     // The clamp everywhere in proportion to the sun's move, fully from 0.25 degrees per frame (a
     // time-lapse; the day's course moves it ~1e-4 degrees per frame at 30 frames per second).
-    const double sunMove = std::acos(std::clamp(glm::dot(glm::normalize(view.sunDirection), glm::normalize(p.sunDirection)), -1.0, 1.0));
+    const double sunMove =
+        std::acos(std::clamp(glm::dot(glm::normalize(view.sunDirection), glm::normalize(p.sunDirection)), -1.0, 1.0));
     put(t.motion, windOffset - history_.windOffset, std::clamp(sunMove / (0.25 * shared::kPi / 180.0), 0.0, 1.0));
     temporalBlock_.upload(&t, sizeof(t));
     // The fresh neighbourhoods once per grid pixel, then the image (both timed as the resolve).
     const VkDeviceSize records = VkDeviceSize(coarseWidth) * coarseHeight * 3 * 4 * sizeof(float);
     if (!neighbourhoodRecords_ || neighbourhoodRecords_.size() < records)
-      neighbourhoodRecords_ = gpu::Buffer(context_, records, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "cloud neighbourhoods");
+      neighbourhoodRecords_ = gpu::Buffer(context_, records, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+                                          "cloud neighbourhoods");
     // Bindings 3 and 4 are unused by the neighbourhood pass (its layout mirrors the resolve's numbering).
-    commands.bind(neighbourhood_, {coarseFrame_, depth_, neighbourhoodRecords_, historyFrame, skyFrame, temporalBlock_});
+    commands.bind(neighbourhood_,
+                  {coarseFrame_, depth_, neighbourhoodRecords_, historyFrame, skyFrame, temporalBlock_});
     NeighbourhoodPush neighbourhoodPush{marchTiles, {offset[0], offset[1]}, k, 0};
     commands.pushConstants(neighbourhoodPush);
     commands.dispatchTiles(marchTiles, "clouds/temporal_resolve");
     commands.barrier();
-    commands.bind(resolve_, {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_, neighbourhoodRecords_});
-    ResolvePush push{tiles, int32_t(coarseWidth), int32_t(coarseHeight), k, m.temporalClamp ? 1 : 0, {offset[0], offset[1]}};
+    commands.bind(resolve_,
+                  {coarseFrame_, depth_, historyFrame, cloudFrame, skyFrame, temporalBlock_, neighbourhoodRecords_});
+    ResolvePush push{tiles, int32_t(coarseWidth),    int32_t(coarseHeight),
+                     k,     m.temporalClamp ? 1 : 0, {offset[0], offset[1]}};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "clouds/temporal_resolve");
     ++temporalFrame_;

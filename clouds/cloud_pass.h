@@ -75,8 +75,8 @@ class CloudPass {
   // shafts); record() then does not bake again. Same arguments as record(); aerialDistance_m: the
   // aerial-perspective volume's depth D (0 without one). A barrier follows the bake.
   void recordShadowMap(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, double aerialDistance_m,
-                       gpu::CommandList& commands);
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                       double aerialDistance_m, gpu::CommandList& commands);
 
   // Where the Beer shadow map lies (common/cloud_shadow.glsl), as of the last recordShadowMap() or record().
   struct ShadowPlacement {
@@ -97,8 +97,9 @@ class CloudPass {
   // with the same cloud settings, image size and weather map, and the camera is not inside a layer;
   // otherwise every pixel is marched (and the next frame can reproject from this one).
   void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
-              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, const gpu::TileDispatch& tiles,
-              gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr, bool continueSequence = false);
+              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+              const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr,
+              bool continueSequence = false);
 
   // RGBA32F pixels of the view, row-major: rgb = the clouds' light in front of the sky (cd/m^2, aerial
   // perspective included), a = the clouds' transmittance. Valid after the recorded commands ran.
@@ -124,17 +125,20 @@ class CloudPass {
   // Bakes the column map when the frame uses it (clouds/column_map.glsl; a placeholder otherwise), a
   // barrier after.
   void recordColumnMap(const CloudSettings& settings, const AtmosphereLuts& luts,
-                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                       gpu::CommandList& commands);
   // Bakes the deep shadow map when the frame uses it (clouds/deep_shadow_map.glsl; a placeholder
   // otherwise), a barrier after.
   void recordDeepShadowMap(const CloudSettings& settings, const AtmosphereLuts& luts,
-                           const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+                           const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                           gpu::CommandList& commands);
   // Bakes a map of K + 1 levels per layer (the column map, the deep shadow map: 3D R32F, size x size x
   // layers (K + 1); a 1x1x2 placeholder into `image` while off) on this frame's rows, a barrier after.
   // extraSlices: slices after the layers' levels that the bake does not write (the column map's ambient).
   void recordLevelMap(gpu::ComputePipeline& pipeline, gpu::Image& image, bool bake, int size, int levels, size_t layers,
                       int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
-                      const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+                      const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
+                      gpu::CommandList& commands);
   // The rows of a map `height` rows high that this frame bakes: every rowStride-th from firstRow.
   uint32_t bakedRows(uint32_t height) const {
     return (height - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
@@ -143,8 +147,8 @@ class CloudPass {
   // unread) and `target`, the image it writes.
   void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
                 const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
-  void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
-                  gpu::CommandList& commands);
+  void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance,
+                  gpu::Buffer& skyFrame, gpu::CommandList& commands);
 
   gpu::Context& context_;
   CloudNoise noise_;
@@ -154,21 +158,21 @@ class CloudPass {
   std::map<std::pair<int, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> pipelines_;
   gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
   gpu::ComputePipeline bakeShadow_;
-  gpu::ComputePipeline bakeOtherLayers_;  // clouds/bake_other_layers
-  gpu::ComputePipeline bakeColumns_;      // clouds/bake_columns
+  gpu::ComputePipeline bakeOtherLayers_;    // clouds/bake_other_layers
+  gpu::ComputePipeline bakeColumns_;        // clouds/bake_columns
   gpu::ComputePipeline bakeColumnAmbient_;  // clouds/bake_column_ambient
-  gpu::ComputePipeline bakeDeepShadow_;   // clouds/bake_deep_shadow
-  gpu::ComputePipeline upsample_;  // clouds/upsample_clouds (reduced-resolution march)
-  gpu::ComputePipeline neighbourhood_;  // clouds/temporal_neighbourhood (temporal reprojection, step 1)
-  gpu::ComputePipeline resolve_;        // clouds/temporal_resolve (step 2)
-  gpu::Image shadowImage_;  // Beer shadow map (1x1 placeholder while off)
-  gpu::Image otherLayerImage_;  // the other layers' map (1x1 placeholder while off)
-  gpu::Image columnImage_;      // the column map (1x1x2 placeholder while off)
-  gpu::Image deepShadowImage_;  // the deep shadow map (1x1x2 placeholder while off)
+  gpu::ComputePipeline bakeDeepShadow_;     // clouds/bake_deep_shadow
+  gpu::ComputePipeline upsample_;           // clouds/upsample_clouds (reduced-resolution march)
+  gpu::ComputePipeline neighbourhood_;      // clouds/temporal_neighbourhood (temporal reprojection, step 1)
+  gpu::ComputePipeline resolve_;            // clouds/temporal_resolve (step 2)
+  gpu::Image shadowImage_;                  // Beer shadow map (1x1 placeholder while off)
+  gpu::Image otherLayerImage_;              // the other layers' map (1x1 placeholder while off)
+  gpu::Image columnImage_;                  // the column map (1x1x2 placeholder while off)
+  gpu::Image deepShadowImage_;              // the deep shadow map (1x1x2 placeholder while off)
   gpu::Buffer block_;
   gpu::Buffer counters_;
   gpu::Image weatherImage_;
-  gpu::Image weatherReach_;  // coverageReach of a sharp map (1x1 otherwise), R32F, linear, repeat
+  gpu::Image weatherReach_;   // coverageReach of a sharp map (1x1 otherwise), R32F, linear, repeat
   double reachRadius_ = 0.0;  // m; 0: the map is smooth, the margin test applies
   static constexpr double kReachRadius_m = 2000.0;
   glm::dvec4 weatherRegion_{0.0};  // width, height (m), skew east, north (m/m)

@@ -15,12 +15,18 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 double cloudTypeExtinction(int kind) {
   switch (kind) {
-    case shared::kCloudStratus: return 0.05;
-    case shared::kCloudStratocumulus: return 0.07;
-    case shared::kCloudCumulus: return 0.1;
-    case shared::kCloudCumulonimbus: return 0.12;
-    case shared::kCloudCirrus: return 0.002;  // ice, IWC ~0.02 g/m^3, r_e ~25 um (Heymsfield 2003): ~1e-3
-    default: return 0.1;
+    case shared::kCloudStratus:
+      return 0.05;
+    case shared::kCloudStratocumulus:
+      return 0.07;
+    case shared::kCloudCumulus:
+      return 0.1;
+    case shared::kCloudCumulonimbus:
+      return 0.12;
+    case shared::kCloudCirrus:
+      return 0.002;  // ice, IWC ~0.02 g/m^3, r_e ~25 um (Heymsfield 2003): ~1e-3
+    default:
+      return 0.1;
   }
 }
 
@@ -52,9 +58,11 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // Cirrus refitted on its two scenes with today's model (`--group cirrus --out /tmp/s21/cal_ci_fit`, 90
   // evaluations; its session 9 constants predate the floor's escape function and factors): rms 0.1903 ->
   // 0.1858, d 0.903 -> 0.835; held out, cirrus 0.130 / +4.7 % -> 0.123 / -1.8 %.
-  static constexpr CloudMultipleScatteringFits dualHenyeyGreenstein{
-      {0.347, 1.000, 0.538, 0.749}, {0.595, 0.963, 0.763, 1.023}, {0.622, 0.947, 0.792, 0.847},
-      {0.370, 0.999, 0.005, 0.919}, {0.597, 0.988, 0.787, 0.835}};
+  static constexpr CloudMultipleScatteringFits dualHenyeyGreenstein{{0.347, 1.000, 0.538, 0.749},
+                                                                    {0.595, 0.963, 0.763, 1.023},
+                                                                    {0.622, 0.947, 0.792, 0.847},
+                                                                    {0.370, 0.999, 0.005, 0.919},
+                                                                    {0.597, 0.988, 0.787, 0.835}};
   // `... --calibrate --phase approximate_mie` (same scenes and settings, the δ-scaled march of session 6);
   // session 8 (`--out /tmp/cal8_mie`) with the diffusion floor's d fitted too: rms rel RMSE cumulus
   // 0.2795 -> 0.2794 (d ~ 0.09), stratocumulus 0.436 -> 0.342, all 0.429 -> 0.365.
@@ -63,9 +71,11 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // --group stratus|cirrus --reference-spp 512`, 90 evaluations each): rms stratus 0.3356 -> 0.2340, cirrus
   // 0.1613 -> 0.1014. Held out (the bench's `approximate mie 20 um` rows): overcast 0.165 / +12.8 % ->
   // 0.132 / -10.1 %, cirrus 0.284 / +20.4 % -> 0.206 / +14.1 % (1024-path references).
-  static constexpr CloudMultipleScatteringFits approximateMie{
-      {0.330, 0.603, 0.586, 0.094}, {0.320, 0.320, 0.621, 0.379}, {0.379, 0.558, 0.448, 0.268},
-      {0.691, 0.744, 0.010, 0.302}, {0.630, 1.000, 0.471, 0.000}};
+  static constexpr CloudMultipleScatteringFits approximateMie{{0.330, 0.603, 0.586, 0.094},
+                                                              {0.320, 0.320, 0.621, 0.379},
+                                                              {0.379, 0.558, 0.448, 0.268},
+                                                              {0.691, 0.744, 0.010, 0.302},
+                                                              {0.630, 1.000, 0.471, 0.000}};
   // Session 18: the reflected light (cloudReflectedSource) fitted with the octaves, r and a_r too, on
   // calibration groups that now include views from above (cu_above, cu_above_side, sc_above): `bench
   // clouds --calibrate --group G --reflection --out /tmp/s18/cal_G_r` (150 evaluations; docs/clouds.md
@@ -96,8 +106,11 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // 0.245 / +6.7 %, cu_backlit 0.107 -> 0.105); the ten scenes with suns at most 65 deg from the zenith
   // unchanged.
   static constexpr CloudMultipleScatteringFits dualHenyeyGreensteinReflected{
-      {0.445, 0.995, 0.671, 0.623, 0.860, 0.043, 0.358}, {0.619, 0.979, 0.788, 0.963, 0.335, 0.180}, dualHenyeyGreenstein.all,
-      dualHenyeyGreenstein.stratus, dualHenyeyGreenstein.cirrus};
+      {0.445, 0.995, 0.671, 0.623, 0.860, 0.043, 0.358},
+      {0.619, 0.979, 0.788, 0.963, 0.335, 0.180},
+      dualHenyeyGreenstein.all,
+      dualHenyeyGreenstein.stratus,
+      dualHenyeyGreenstein.cirrus};
   // Session 23: the approximate Mie phase's cumulus refitted with the reflected light, against
   // 512-path references of the cumulus calibration scenes (`bench clouds --calibrate --phase
   // approximate_mie --group cumulus --reflection --reference-spp 512`; the session 8 fit predates the views
@@ -113,26 +126,35 @@ const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel p
   // constants) -> 0.078 / -2.7 %, horizon 0.158 / -5.3 % -> 0.169 / -8.9 % -> 0.144 / +3.6 %; with the
   // build-up, session 23's constants -> these: cumulonimbus 0.291 / -19.0 % -> 0.228 / -8.9 %, above_clouds
   // 0.140 / +7.4 % -> 0.185 / +12.9 % (worse).
-  static constexpr CloudMultipleScatteringFits approximateMieReflected{
-      {0.303, 0.677, 0.629, 0.015, 0.513, 0.000}, approximateMie.stratocumulus, approximateMie.all, approximateMie.stratus,
-      approximateMie.cirrus};
+  static constexpr CloudMultipleScatteringFits approximateMieReflected{{0.303, 0.677, 0.629, 0.015, 0.513, 0.000},
+                                                                       approximateMie.stratocumulus,
+                                                                       approximateMie.all,
+                                                                       approximateMie.stratus,
+                                                                       approximateMie.cirrus};
   if (phase == CloudPhaseModel::ApproximateMie) return reflectedLight ? approximateMieReflected : approximateMie;
   return reflectedLight ? dualHenyeyGreensteinReflected : dualHenyeyGreenstein;
 }
 
 }  // namespace
 
-CloudMultipleScattering cloudJointMultipleScattering(CloudPhaseModel phase) { return cloudMultipleScatteringFits(phase, false).all; }
+CloudMultipleScattering cloudJointMultipleScattering(CloudPhaseModel phase) {
+  return cloudMultipleScatteringFits(phase, false).all;
+}
 
 CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase, bool reflectedLight) {
   const CloudMultipleScatteringFits& fits = cloudMultipleScatteringFits(phase, reflectedLight);
   switch (kind) {
     case shared::kCloudCumulus:
-    case shared::kCloudCumulonimbus: return fits.cumulus;
-    case shared::kCloudStratocumulus: return fits.stratocumulus;
-    case shared::kCloudStratus: return fits.stratus;
-    case shared::kCloudCirrus: return fits.cirrus;
-    default: return fits.all;
+    case shared::kCloudCumulonimbus:
+      return fits.cumulus;
+    case shared::kCloudStratocumulus:
+      return fits.stratocumulus;
+    case shared::kCloudStratus:
+      return fits.stratus;
+    case shared::kCloudCirrus:
+      return fits.cirrus;
+    default:
+      return fits.all;
   }
 }
 
@@ -156,12 +178,18 @@ int cloudKindFromName(const std::string& name) {
 
 const char* cloudKindName(int kind) {
   switch (kind) {
-    case shared::kCloudStratus: return "stratus";
-    case shared::kCloudStratocumulus: return "stratocumulus";
-    case shared::kCloudCumulus: return "cumulus";
-    case shared::kCloudCumulonimbus: return "cumulonimbus";
-    case shared::kCloudCirrus: return "cirrus";
-    default: return "unknown";
+    case shared::kCloudStratus:
+      return "stratus";
+    case shared::kCloudStratocumulus:
+      return "stratocumulus";
+    case shared::kCloudCumulus:
+      return "cumulus";
+    case shared::kCloudCumulonimbus:
+      return "cumulonimbus";
+    case shared::kCloudCirrus:
+      return "cirrus";
+    default:
+      return "unknown";
   }
 }
 
@@ -180,9 +208,12 @@ CloudPhaseModel cloudPhaseModelFromName(const std::string& name, const std::stri
 
 const char* aerialPerspectiveName(AerialPerspective mode) {
   switch (mode) {
-    case AerialPerspective::Volume: return "volume";
-    case AerialPerspective::March: return "march";
-    case AerialPerspective::Off: return "off";
+    case AerialPerspective::Volume:
+      return "volume";
+    case AerialPerspective::March:
+      return "march";
+    case AerialPerspective::Off:
+      return "off";
   }
   return "unknown";
 }
@@ -288,7 +319,8 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   const nlohmann::json& lighting = scene.at("/clouds/lighting");
   for (size_t i = 0; i < s.layers.size(); ++i) {
     CloudLayerSettings& l = s.layers[i];
-    const CloudMultipleScattering type = cloudTypeMultipleScattering(l.kind, light.phase, scene.boolean("/clouds/lighting/reflected_light"));
+    const CloudMultipleScattering type =
+        cloudTypeMultipleScattering(l.kind, light.phase, scene.boolean("/clouds/lighting/reflected_light"));
     l.msA = lighting.contains("ms_a") ? scene.number("/clouds/lighting/ms_a") : type.a;
     l.msB = lighting.contains("ms_b") ? scene.number("/clouds/lighting/ms_b") : type.b;
     l.msC = lighting.contains("ms_c") ? scene.number("/clouds/lighting/ms_c") : type.c;
@@ -297,9 +329,10 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
     l.msRA = lighting.contains("ms_ra") ? scene.number("/clouds/lighting/ms_ra") : type.ra;
     l.msLowSunMu = lighting.contains("ms_low_sun_mu") ? scene.number("/clouds/lighting/ms_low_sun_mu") : type.lowSunMu;
     if (l.msA > l.msB)
-      throw InputError(source + ": /clouds/lighting/ms_a: " + std::to_string(l.msA) + " exceeds ms_b (" +
-                       std::to_string(l.msB) + (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +
-                       ") of layer " + std::to_string(i) + "; allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
+      throw InputError(
+          source + ": /clouds/lighting/ms_a: " + std::to_string(l.msA) + " exceeds ms_b (" + std::to_string(l.msB) +
+          (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +
+          ") of layer " + std::to_string(i) + "; allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
   }
   s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
   s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));

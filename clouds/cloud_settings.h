@@ -99,8 +99,8 @@ struct CloudMarchSettings {
   // levels up to the top. Off: each lit sample marches up (lightSteps / 2 samples) and down (2).
   // docs/clouds.md "The column map".
   bool columnMap = true;
-  int columnMapSize = 256;    // texels per side
-  int columnMapLevels = 8;    // K: levels per layer (K samples per column)
+  int columnMapSize = 256;  // texels per side
+  int columnMapLevels = 8;  // K: levels per layer (K samples per column)
   // The far part of each lit sample's light march through its own layer from a map baked once per frame
   // (clouds/deep_shadow_map.glsl, a deep shadow map of optical depth): per sun line (the other layers'
   // map's plane) and layer, the optical depth from K + 1 levels up to the top. The march takes the first
@@ -108,9 +108,9 @@ struct CloudMarchSettings {
   // and the rest of the way from the map in one lookup. Off: every step marched (sessions 1-15).
   // docs/clouds.md "The deep shadow map".
   bool deepShadowMap = true;
-  int deepShadowMapSize = 256;    // texels per side
-  int deepShadowMapLevels = 16;   // K: levels per layer (K samples per line)
-  int deepShadowNearSteps = 3;    // light-march steps marched before the map takes over
+  int deepShadowMapSize = 256;   // texels per side
+  int deepShadowMapLevels = 16;  // K: levels per layer (K samples per line)
+  int deepShadowNearSteps = 3;   // light-march steps marched before the map takes over
   double lightMaxLength_m = 40000.0;
   // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
   // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
@@ -162,9 +162,9 @@ struct CloudMarchSettings {
   // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0)
   // (cloudOctaveLowSunScale). Under a low sun the octaves gave up to three times the path tracer's
   // higher orders in cumulus fields (bench scenario cumulus_low_sun, the calibration's low-sun scenes).
-  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.358 since session 28, 0.412 in session 27,
-  // or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere;
-  // session 26's option); negative: each layer's own.
+  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.358 since session 28, 0.412 in session
+  // 27, or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere; session 26's
+  // option); negative: each layer's own.
   double octaveLowSunMu = -1.0;
   // Under that low-sun scale s < 1 the reflected light's depth scale a_r becomes a_r / s too
   // (cloudReflectedLowSunDepthScale): the sun line then crosses kilometres of broken field, and the light
@@ -191,15 +191,15 @@ struct CloudMarchSettings {
   // With the Beer shadow map and the aerial-perspective volume: the clouds' shadows in the air (light
   // shafts; sky/cloud_light_shafts.comp). The scene's /clouds/light_shafts.
   bool lightShafts = true;
-  int shadowMapSize = 256;            // texels per side
-  int shadowMapSteps = 128;           // march steps per texel
-  double shadowMapExtent_m = 40000.0; // side of the square (m), centred above the camera
+  int shadowMapSize = 256;             // texels per side
+  int shadowMapSteps = 128;            // march steps per texel
+  double shadowMapExtent_m = 40000.0;  // side of the square (m), centred above the camera
   // Compile out of the march the options this frame does not use (clouds/cloud_pass.cpp
   // cloudMarchFeatures; a specialization constant of render_clouds.glsl): lavapipe runs every branch
   // under a mask, so unused options cost time. Off: one general pipeline, the same image bit for bit
   // (test CloudRender.SpecializedMarchMatchesTheGeneralOne).
   bool specializeMarch = true;
-  bool jitter = true;              // blue-noise jitter of the sample positions
+  bool jitter = true;  // blue-noise jitter of the sample positions
   // Noise LOD by distance (the "LOD mips"): a view sample and its light marches read the shape
   // and detail textures' mip level log2(s h / texel) (the nearest level, at least 0), h the view step
   // there (it grows with the distance, common/cloud_march.glsl) and s this scale. 0: level 0 everywhere
@@ -339,8 +339,10 @@ struct CloudMultipleScattering {
   double lowSunMu = 0.0;     // the octaves' low-sun scale min(1, mu_s / mu_0): mu_0 (0: off)
 };
 // reflectedLight (/clouds/lighting/reflected_light, default true): the fit with the reflected light
-// (cloudReflectedSource; session 18: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves alone (session 9's fits).
-CloudMultipleScattering cloudTypeMultipleScattering(int kind, CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein,
+// (cloudReflectedSource; session 18: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves
+// alone (session 9's fits).
+CloudMultipleScattering cloudTypeMultipleScattering(int kind,
+                                                    CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein,
                                                     bool reflectedLight = true);
 // The joint fit over the cumulus and stratocumulus calibration scenes (the calibration's group "all").
 CloudMultipleScattering cloudJointMultipleScattering(CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein);

@@ -32,13 +32,12 @@ uint64_t CloudVoxelBox::count() const {
 }
 
 void validateCloudVolumeRegion(const CloudVolumeRegion& r) {
-  const std::pair<const char*, double> bounds[] = {{"west", r.west_m},     {"south", r.south_m},
-                                                   {"east", r.east_m},     {"north", r.north_m},
-                                                   {"bottom", r.bottom_m}, {"top", r.top_m}};
+  const std::pair<const char*, double> bounds[] = {{"west", r.west_m},   {"south", r.south_m},   {"east", r.east_m},
+                                                   {"north", r.north_m}, {"bottom", r.bottom_m}, {"top", r.top_m}};
   for (const auto& [name, value] : bounds)
     if (!std::isfinite(value) || std::abs(value) > kCloudVolumeMaxExtent_m)
-      throw InputError(std::string("cloud volume: ") + name + " = " + metres(value) +
-                       "; allowed: finite, within " + metres(kCloudVolumeMaxExtent_m) + " of the origin");
+      throw InputError(std::string("cloud volume: ") + name + " = " + metres(value) + "; allowed: finite, within " +
+                       metres(kCloudVolumeMaxExtent_m) + " of the origin");
   if (!(r.west_m < r.east_m))
     throw InputError("cloud volume: west (" + metres(r.west_m) + ") must be less than east (" + metres(r.east_m) +
                      "); allowed: west < east");
@@ -49,8 +48,8 @@ void validateCloudVolumeRegion(const CloudVolumeRegion& r) {
     throw InputError("cloud volume: bottom (" + metres(r.bottom_m) + ") must be less than top (" + metres(r.top_m) +
                      "); allowed: bottom < top");
   if (!(r.voxelSize_m >= kCloudVolumeMinVoxel_m && r.voxelSize_m <= kCloudVolumeMaxVoxel_m))
-    throw InputError("cloud volume: voxel size " + metres(r.voxelSize_m) + "; allowed: " +
-                     metres(kCloudVolumeMinVoxel_m) + " to " + metres(kCloudVolumeMaxVoxel_m));
+    throw InputError("cloud volume: voxel size " + metres(r.voxelSize_m) +
+                     "; allowed: " + metres(kCloudVolumeMinVoxel_m) + " to " + metres(kCloudVolumeMaxVoxel_m));
   const uint64_t n = cloudVoxelBox(r).count();
   if (n > kCloudVolumeMaxVoxels)
     throw InputError("cloud volume: " + std::to_string(n) + " voxels; allowed: at most " +
@@ -65,9 +64,7 @@ CloudVoxelBox cloudVoxelBox(const CloudVolumeRegion& r) {
   return box;
 }
 
-glm::dvec3 cloudVoxelCentre(glm::ivec3 ijk, double h) {
-  return (glm::dvec3(ijk) + 0.5) * h;
-}
+glm::dvec3 cloudVoxelCentre(glm::ivec3 ijk, double h) { return (glm::dvec3(ijk) + 0.5) * h; }
 
 void fitCloudVolumeHeights(CloudVolumeRegion& r, const std::vector<shared::CloudLayer>& layers, double groundRadius_m) {
   if (layers.empty()) {
@@ -82,7 +79,9 @@ void fitCloudVolumeHeights(CloudVolumeRegion& r, const std::vector<shared::Cloud
   }
   // Squared horizontal distances from the z axis of the box's farthest and nearest points.
   const auto farthest = [](double a, double b) { return std::max(std::abs(a), std::abs(b)); };
-  const auto nearest = [](double a, double b) { return a <= 0.0 && b >= 0.0 ? 0.0 : std::min(std::abs(a), std::abs(b)); };
+  const auto nearest = [](double a, double b) {
+    return a <= 0.0 && b >= 0.0 ? 0.0 : std::min(std::abs(a), std::abs(b));
+  };
   const double far2 = std::pow(farthest(r.west_m, r.east_m), 2) + std::pow(farthest(r.south_m, r.north_m), 2);
   const double near2 = std::pow(nearest(r.west_m, r.east_m), 2) + std::pow(nearest(r.south_m, r.north_m), 2);
   // The sphere of radius rho at horizontal distance d lies at z = sqrt(rho^2 - d^2) - R.

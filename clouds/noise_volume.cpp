@@ -10,7 +10,8 @@ int wrap(int i, int n) { return ((i % n) + n) % n; }
 }  // namespace
 
 glm::dvec4 NoiseVolume::texel(int x, int y, int z) const {
-  const size_t i = (size_t(wrap(z, depth)) * size_t(size) + size_t(wrap(y, size))) * size_t(size) + size_t(wrap(x, size));
+  const size_t i =
+      (size_t(wrap(z, depth)) * size_t(size) + size_t(wrap(y, size))) * size_t(size) + size_t(wrap(x, size));
   const float* t = texels.data() + 4 * i;
   return {t[0], t[1], t[2], t[3]};
 }

@@ -10,8 +10,8 @@
 namespace firmament {
 
 struct NoiseVolume {
-  int size = 0;   // texels per side
-  int depth = 1;  // 1 for a 2D texture
+  int size = 0;               // texels per side
+  int depth = 1;              // 1 for a 2D texture
   std::vector<float> texels;  // RGBA, x fastest, then y, then z
 
   glm::dvec4 texel(int x, int y, int z) const;

@@ -11,9 +11,9 @@
 #include "atmosphere/atmosphere_spectra.h"
 #include "atmosphere/reference_path_tracer.h"
 #include "atmosphere/reference_renderer.h"
-#include "common/cloud_weather.glsl"
 #include "common/atmosphere_lut.glsl"
 #include "common/cloud_lighting.glsl"
+#include "common/cloud_weather.glsl"
 
 namespace firmament {
 namespace {
@@ -29,15 +29,16 @@ glm::dvec3 directionAround(glm::dvec3 axis, double cosine, double azimuth) {
 }  // namespace
 
 double sampleCloudPhaseCosine(const CloudLightingSettings& lighting, reference::Random& random) {
-  if (random.uniform() >= lighting.backWeight) return reference::sampleHenyeyGreensteinCosine(lighting.gForward, random.uniform());
+  if (random.uniform() >= lighting.backWeight)
+    return reference::sampleHenyeyGreensteinCosine(lighting.gForward, random.uniform());
   for (;;) {  // accepted on average (1 + alpha (1 + 2 g^2) / 3) / (1 + alpha): ~0.6 for the fit's lobes
     const double nu = reference::sampleHenyeyGreensteinCosine(lighting.gBack, random.uniform());
     if (lighting.alpha <= 0.0 || random.uniform() * (1.0 + lighting.alpha) <= 1.0 + lighting.alpha * nu * nu) return nu;
   }
 }
 
-CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail, NoiseVolume curl,
-                         CloudWeatherMap weather, double groundRadius_m)
+CloudMedium::CloudMedium(std::vector<shared::CloudLayer> layers, NoiseVolume shape, NoiseVolume detail,
+                         NoiseVolume curl, CloudWeatherMap weather, double groundRadius_m)
     : layers_(std::move(layers)),
       shape_(std::move(shape)),
       detail_(std::move(detail)),
@@ -58,7 +59,8 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   const double ph = shared::cloudHeightFraction(column, r);
   if (ph <= 0.0 || ph >= 1.0) return 0.0;
   const glm::dvec3 local = shared::cloudLocalPosition(column, p);
-  const double base = shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)), weather.x);
+  const double base =
+      shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)), weather.x);
   if (base <= 0.0) return 0.0;
   const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(column, local));
   const glm::dvec4 detail =
@@ -114,7 +116,8 @@ glm::dvec3 CloudPathTracer::sunIrradianceAt(glm::dvec3 p) const {
   return visible * glm::exp(-depth) * atmosphere_.solar_irradiance;
 }
 
-std::vector<CloudPathTracer::Segment> CloudPathTracer::segments(glm::dvec3 origin, glm::dvec3 direction, double tMax) const {
+std::vector<CloudPathTracer::Segment> CloudPathTracer::segments(glm::dvec3 origin, glm::dvec3 direction,
+                                                                double tMax) const {
   double r, mu;
   shared::rayRadiusAndCosine(origin, direction, r, mu);
   if (shared::rayIntersectsGround(r, mu, atmosphere_.bottom_radius))
@@ -141,7 +144,8 @@ double CloudPathTracer::cloudTransmittance(glm::dvec3 origin, glm::dvec3 directi
     if (!(majorant > 0.0)) continue;
     for (double t = s.start - std::log1p(-random.uniform()) / majorant; t < s.end;
          t -= std::log1p(-random.uniform()) / majorant) {
-      transmittance *= 1.0 - std::min(extinctionScale * medium_.extinction(s.layer, origin + direction * t) / majorant, 1.0);
+      transmittance *=
+          1.0 - std::min(extinctionScale * medium_.extinction(s.layer, origin + direction * t) / majorant, 1.0);
       if (transmittance < 1e-6) return 0.0;  // negligible; (Russian roulette would keep it unbiased)
     }
   }
@@ -213,7 +217,8 @@ CloudPathTracer::PixelResult CloudPathTracer::pixel(glm::dvec3 origin, glm::dvec
         const double phase =
             order == 1 && deltaFraction_ > 0.0 && settings_.exactSingleScattering
                 ? shared::cloudPhase(exactLighting_.gForward, exactLighting_.gBack, exactLighting_.backWeight,
-                                     exactLighting_.alpha, nuSun) / (1.0 - deltaFraction_)
+                                     exactLighting_.alpha, nuSun) /
+                      (1.0 - deltaFraction_)
                 : shared::cloudPhase(lighting_.gForward, lighting_.gBack, lighting_.backWeight, lighting_.alpha, nuSun);
         sunlike += weight * phase * cloudTransmittance(x, sun_, random, extinctionScale_) * sunLight;
       }

@@ -67,9 +67,9 @@ struct CloudEnvironment {
 struct CloudReferenceSettings {
   int samplesPerPixel = 64;
   uint64_t seed = 1;
-  int maxEvents = 100000;       // scattering events per path (hard cap; counted)
+  int maxEvents = 100000;          // scattering events per path (hard cap; counted)
   int sunOpticalDepthSteps = 200;  // trapezoid intervals of the atmosphere's optical depth to the sun
-  int threads = 0;              // 0: all cores
+  int threads = 0;                 // 0: all cores
   double maxDistance_m = 80000.0;  // as the fast path: clouds farther along the view ray are not seen
   // Largest number of scattering events per path (0: all orders). 1 gives single scattering only
   // (sunlight by next-event estimation at the first event; light leaving the clouds after it): the part
@@ -106,8 +106,9 @@ class CloudPathTracer {
  public:
   // atmosphere: the scene's atmosphere (evaluated at 680, 550, 440 nm); sun: unit vector in the frame
   // of the camera's ground point (camera on +z).
-  CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting, const AtmosphereSettings& atmosphere,
-                  glm::dvec3 sun, const CloudEnvironment& environment, const CloudReferenceSettings& settings);
+  CloudPathTracer(const CloudMedium& medium, const CloudLightingSettings& lighting,
+                  const AtmosphereSettings& atmosphere, glm::dvec3 sun, const CloudEnvironment& environment,
+                  const CloudReferenceSettings& settings);
 
   // One pixel: the clouds' light (sun-like, sky-like) and transmittance along a view ray, averaged
   // over samplesPerPixel paths with stream `stream`.
@@ -144,16 +145,18 @@ class CloudPathTracer {
   std::vector<Segment> segments(glm::dvec3 origin, glm::dvec3 direction, double tMax) const;
   // Delta tracking (Woodcock) through the shells in order to the first real collision of a medium
   // whose extinction is extinctionScale times the clouds'; moves x there. False if the ray leaves.
-  bool trackToCollision(glm::dvec3& x, glm::dvec3 w, double tMax, double extinctionScale, reference::Random& random) const;
+  bool trackToCollision(glm::dvec3& x, glm::dvec3 w, double tMax, double extinctionScale,
+                        reference::Random& random) const;
   // Ratio tracking; extinctionScale multiplies the medium's extinction (the δ-scaled transport's, or 1
   // for the view ray's true transmittance, the image's alpha).
-  double cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random, double extinctionScale) const;
+  double cloudTransmittance(glm::dvec3 origin, glm::dvec3 direction, reference::Random& random,
+                            double extinctionScale) const;
 
   const CloudMedium& medium_;
-  CloudLightingSettings lighting_;  // the transported phase: with δ-scaling, the second lobe alone
+  CloudLightingSettings lighting_;       // the transported phase: with δ-scaling, the second lobe alone
   CloudLightingSettings exactLighting_;  // the scene's phase, for the exact first order
-  double extinctionScale_ = 1.0;    // 1 - f omega with δ-scaling, else 1
-  double albedo_ = 1.0;             // omega' with δ-scaling, else the lighting's albedo
+  double extinctionScale_ = 1.0;         // 1 - f omega with δ-scaling, else 1
+  double albedo_ = 1.0;                  // omega' with δ-scaling, else the lighting's albedo
   double deltaFraction_ = 0.0;
   double aureoleCosine_ = 2.0;
   shared::AtmosphereParameters atmosphere_{};

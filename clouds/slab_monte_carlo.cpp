@@ -40,7 +40,8 @@ SlabDirection sampleAroundByPhase(SlabDirection w, std::mt19937_64& rng) {
   a = {a.x / la, a.y / la, a.z / la};
   const SlabDirection b{w.y * a.z - w.z * a.y, w.z * a.x - w.x * a.z, w.x * a.y - w.y * a.x};
   const double ca = sinTheta * std::cos(phi), cb = sinTheta * std::sin(phi);
-  return {cosTheta * w.x + ca * a.x + cb * b.x, cosTheta * w.y + ca * a.y + cb * b.y, cosTheta * w.z + ca * a.z + cb * b.z};
+  return {cosTheta * w.x + ca * a.x + cb * b.x, cosTheta * w.y + ca * a.y + cb * b.y,
+          cosTheta * w.z + ca * a.z + cb * b.z};
 }
 
 template <class F>
@@ -60,7 +61,9 @@ SlabEstimate estimate(int paths, F sample) {
 SlabMonteCarlo::SlabMonteCarlo(double thickness, double mu0, uint64_t seed, double radius)
     : thickness_(thickness), mu0_(mu0), radius_(radius), sun_{std::sqrt(1.0 - mu0 * mu0), 0.0, mu0}, rng_(seed) {}
 
-SlabEstimate SlabMonteCarlo::source(double tau, SlabDirection out, int paths) { return source(SlabPoint{0.0, 0.0, tau}, out, paths); }
+SlabEstimate SlabMonteCarlo::source(double tau, SlabDirection out, int paths) {
+  return source(SlabPoint{0.0, 0.0, tau}, out, paths);
+}
 
 SlabEstimate SlabMonteCarlo::source(SlabPoint at, SlabDirection out, int paths) {
   // The light's propagation direction before it turns into `out`, drawn by the phase: weight 1.
@@ -152,10 +155,11 @@ double slabFloorBaseRadiance(double mu0, double thickness, double muDown, bool l
   const int n = 4000;
   double sum = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double above = thickness * (i + 0.5) / n;  // vertical optical depth above the base
+    const double above = thickness * (i + 0.5) / n;          // vertical optical depth above the base
     const double transmittance = std::exp(-above / muDown);  // along the way out
     const double factor = limb ? shared::cloudBaseLimbFactor(muDown, above, transmittance, 1.0) : 1.0;
-    sum += slabFloorSource(mu0, thickness - above, thickness, muDown) * factor * transmittance * (thickness / n) / muDown;
+    sum +=
+        slabFloorSource(mu0, thickness - above, thickness, muDown) * factor * transmittance * (thickness / n) / muDown;
   }
   return sum;
 }

@@ -4,8 +4,8 @@
 // light of scattering orders >= 2 (the octaves' first term carries order 1); the deck's transmission
 // (cloudSlabTransmission) the photons of orders >= 1. Beside it, the floor as
 // the march evaluates it in that slab (common/cloud_lighting.glsl), so that the two can be compared:
-// tests/clouds/test_cloud_floor_monte_carlo.cpp and test_cloud_deck_transmission.cpp check a few cases, `bench_floor_slab` prints the sweeps
-// the floor's corrections were fitted to (docs/clouds.md "Lighting", item 6).
+// tests/clouds/test_cloud_floor_monte_carlo.cpp and test_cloud_deck_transmission.cpp check a few cases,
+// `bench_floor_slab` prints the sweeps the floor's corrections were fitted to (docs/clouds.md "Lighting", item 6).
 //
 // Cut to a vertical cylinder (an optical radius; infinite by default, the slab), it is a finite cloud: the
 // light that leaves through the sides, which the column-wise floor does not see, measured

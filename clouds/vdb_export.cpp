@@ -23,9 +23,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // floor(a / b) for b > 0.
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
@@ -39,8 +37,7 @@ struct WorkerResult {
 }  // namespace
 
 CloudVdbSummary writeCloudVdb(const std::filesystem::path& path, const CloudMedium& medium,
-                              const CloudVdbOptions& options,
-                              const std::function<void(uint64_t, uint64_t)>& progress) {
+                              const CloudVdbOptions& options, const std::function<void(uint64_t, uint64_t)>& progress) {
   const CloudVolumeRegion& region = options.region;
   validateCloudVolumeRegion(region);
   openvdb::initialize();  // idempotent and thread-safe
@@ -133,7 +130,8 @@ CloudVdbSummary writeCloudVdb(const std::filesystem::path& path, const CloudMedi
   grid->insertMeta("frame", openvdb::StringMetadata(kCloudVdbFrame));
   grid->insertMeta("voxel_size_m", openvdb::DoubleMetadata(h));
   grid->insertMeta("ground_radius_m", openvdb::DoubleMetadata(medium.groundRadius()));
-  grid->insertMeta("region_min_m", openvdb::Vec3DMetadata(openvdb::Vec3d(region.west_m, region.south_m, region.bottom_m)));
+  grid->insertMeta("region_min_m",
+                   openvdb::Vec3DMetadata(openvdb::Vec3d(region.west_m, region.south_m, region.bottom_m)));
   grid->insertMeta("region_max_m", openvdb::Vec3DMetadata(openvdb::Vec3d(region.east_m, region.north_m, region.top_m)));
   for (const auto& [key, value] : options.metadata) grid->insertMeta(key, openvdb::StringMetadata(value));
 

@@ -28,7 +28,7 @@ namespace firmament {
 
 struct CloudVdbOptions {
   CloudVolumeRegion region;
-  int threads = 0;  // 0: all cores; the values do not depend on it
+  int threads = 0;                                            // 0: all cores; the values do not depend on it
   std::vector<std::pair<std::string, std::string>> metadata;  // extra string metadata, e.g. {"scene", path}
 };
 

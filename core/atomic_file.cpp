@@ -34,8 +34,7 @@ void syncFile(const fs::path& path) {
   int rc = ::fsync(fd);
   int savedErrno = errno;
   ::close(fd);
-  if (rc != 0)
-    throw RuntimeError("cannot flush '" + path.string() + "' to disk: " + std::strerror(savedErrno));
+  if (rc != 0) throw RuntimeError("cannot flush '" + path.string() + "' to disk: " + std::strerror(savedErrno));
 }
 
 // Makes the rename itself durable. Best effort: some file systems refuse fsync on a folder.
@@ -54,14 +53,12 @@ void writeFileAtomically(const fs::path& target, const std::function<void(const 
   std::error_code ec;
   if (!folder.empty() && !fs::is_directory(folder, ec))
     throw InputError("cannot write '" + target.string() + "': folder '" + folder.string() + "' does not exist");
-  if (fs::is_directory(target, ec))
-    throw InputError("cannot write '" + target.string() + "': it is a folder");
+  if (fs::is_directory(target, ec)) throw InputError("cannot write '" + target.string() + "': it is a folder");
 
   const fs::path tmp = temporaryPathFor(target);
   try {
     writer(tmp);
-    if (!fs::is_regular_file(tmp, ec))
-      throw RuntimeError("writing '" + target.string() + "' produced no file");
+    if (!fs::is_regular_file(tmp, ec)) throw RuntimeError("writing '" + target.string() + "' produced no file");
     syncFile(tmp);
     fs::rename(tmp, target, ec);
     if (ec) throw RuntimeError("cannot rename '" + tmp.string() + "' to '" + target.string() + "': " + ec.message());

@@ -60,8 +60,8 @@ void writeExr(const fs::path& path, const Image& image, ExrCompression compressi
     Imf::FrameBuffer frame;
     for (int c = 0; c < image.channels; ++c)
       frame.insert(kChannelNames[c],
-                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.pixels.data() + c)),
-                              xStride, yStride));
+                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.pixels.data() + c)), xStride,
+                              yStride));
     try {
       Imf::OutputFile file(tmp.c_str(), header);
       file.setFrameBuffer(frame);
@@ -226,8 +226,9 @@ void writeExrChannel(const fs::path& path, const ExrChannel& channel) {
   }
   writeFileAtomically(path, [&](const fs::path& tmp) {
     Imf::FrameBuffer frame;
-    frame.insert(channel.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(channel.values.data())),
-                                          sizeof(float), sizeof(float) * size_t(channel.width)));
+    frame.insert(channel.name,
+                 Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(channel.values.data())),
+                            sizeof(float), sizeof(float) * size_t(channel.width)));
     try {
       Imf::OutputFile file(tmp.c_str(), header);
       file.setFrameBuffer(frame);

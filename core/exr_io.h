@@ -17,8 +17,7 @@ enum class ExrCompression { Zip, Piz };
 // Writes atomically (core/atomic_file.h). A metadata key that OpenEXR reserves ("channels",
 // "compression", ...) or an image whose size does not match its pixels is a RuntimeError (a bug in
 // the caller); a missing folder is an InputError.
-void writeExr(const std::filesystem::path& path, const Image& image,
-              ExrCompression compression = ExrCompression::Zip);
+void writeExr(const std::filesystem::path& path, const Image& image, ExrCompression compression = ExrCompression::Zip);
 
 // A missing, unreadable, truncated or non-EXR file, or one without R,G,B channels, is an InputError
 // that names the file and the reason. The image is the file's data window; A is read when present
@@ -30,7 +29,7 @@ struct ExrChannel {
   int width = 0;
   int height = 0;
   std::string name;
-  std::vector<float> values;  // row-major
+  std::vector<float> values;                    // row-major
   std::map<std::string, std::string> metadata;  // the file's string attributes
 };
 

@@ -11,7 +11,7 @@ namespace firmament {
 struct Image {
   int width = 0;
   int height = 0;
-  int channels = 4;  // 3 = RGB, 4 = RGBA (A = coverage/transmittance where a pass writes one)
+  int channels = 4;           // 3 = RGB, 4 = RGBA (A = coverage/transmittance where a pass writes one)
   std::vector<float> pixels;  // row-major, channels interleaved
   // String metadata: scene hash, device, per-pass timings, camera, sun direction (docs/formats.md).
   std::map<std::string, std::string> metadata;

@@ -190,8 +190,8 @@ std::vector<uint8_t> errorHeatmapRgb8(const Image& test, const Image& reference,
   return rgb;
 }
 
-void writeErrorHeatmapPng(const std::filesystem::path& path, const Image& test, const Image& reference,
-                          double scale, const std::vector<float>& weights) {
+void writeErrorHeatmapPng(const std::filesystem::path& path, const Image& test, const Image& reference, double scale,
+                          const std::vector<float>& weights) {
   const std::vector<uint8_t> rgb = errorHeatmapRgb8(test, reference, scale, weights);
   char scaleText[64];
   std::snprintf(scaleText, sizeof(scaleText), "%.6g", scale);
@@ -215,8 +215,8 @@ std::string metricsToJson(const ImageMetrics& m) {
   j["b"] = toJson(m.rgb[2]);
   j["peak_luminance"] = number(m.peakLuminance);
   j["psnr_db"] = number(m.psnrDb);
-  j["identical"] = m.comparedPixels > 0 && m.luminance.rmse == 0.0 && m.rgb[0].rmse == 0.0 &&
-                   m.rgb[1].rmse == 0.0 && m.rgb[2].rmse == 0.0;
+  j["identical"] = m.comparedPixels > 0 && m.luminance.rmse == 0.0 && m.rgb[0].rmse == 0.0 && m.rgb[1].rmse == 0.0 &&
+                   m.rgb[2].rmse == 0.0;
   j["relative_error_floor"] = number(m.relativeErrorFloor);
   j["mean_relative_luminance_error"] = number(m.meanRelativeLuminanceError);
   return j.dump(2) + "\n";

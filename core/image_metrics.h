@@ -33,10 +33,10 @@ struct ImageMetrics {
   size_t nonFiniteTest = 0;       // pixels with weight > 0 and a NaN/Inf in R, G or B of the test
   size_t nonFiniteReference = 0;  // the same in the reference
   ErrorStats luminance;
-  std::array<ErrorStats, 3> rgb;  // R, G, B
-  double peakLuminance = 0.0;     // max reference luminance over the compared pixels (the PSNR peak)
-  double psnrDb = 0.0;            // 10·log10(peak² / mean((Ya − Yb)²)); +inf when the images agree
-  double relativeErrorFloor = 0.0;      // ε of the per-pixel relative error (relativeErrorFloor())
+  std::array<ErrorStats, 3> rgb;            // R, G, B
+  double peakLuminance = 0.0;               // max reference luminance over the compared pixels (the PSNR peak)
+  double psnrDb = 0.0;                      // 10·log10(peak² / mean((Ya − Yb)²)); +inf when the images agree
+  double relativeErrorFloor = 0.0;          // ε of the per-pixel relative error (relativeErrorFloor())
   double meanRelativeLuminanceError = 0.0;  // mean(|Ya − Yb| / max(Yb, ε)) — what the heat map shows
 };
 
@@ -69,8 +69,8 @@ std::array<uint8_t, 3> heatmapColor(double t);
 std::vector<uint8_t> errorHeatmapRgb8(const Image& test, const Image& reference, double scale,
                                       const std::vector<float>& weights = {});
 // The same written as a PNG (atomically), with the scale in its tEXt entries.
-void writeErrorHeatmapPng(const std::filesystem::path& path, const Image& test, const Image& reference,
-                          double scale, const std::vector<float>& weights = {});
+void writeErrorHeatmapPng(const std::filesystem::path& path, const Image& test, const Image& reference, double scale,
+                          const std::vector<float>& weights = {});
 
 // The metrics as a JSON document (keys in docs/formats.md); infinities and NaN are written as null.
 std::string metricsToJson(const ImageMetrics& metrics);

@@ -27,8 +27,7 @@ void logWarning(std::string_view message) {
 Progress::Progress(std::string label, uint64_t total)
     : label_(std::move(label)), total_(total ? total : 1), start_(std::chrono::steady_clock::now()) {
   const char* forced = std::getenv("FIRMAMENT_PROGRESS");
-  enabled_ = gLevel >= LogLevel::Info &&
-             (forced ? std::strcmp(forced, "0") != 0 : isatty(fileno(stderr)) != 0);
+  enabled_ = gLevel >= LogLevel::Info && (forced ? std::strcmp(forced, "0") != 0 : isatty(fileno(stderr)) != 0);
   lastDraw_ = start_;
 }
 
@@ -57,8 +56,8 @@ void Progress::draw(bool final) {
   std::string bar(size_t(filled), '=');
   if (filled < kWidth) bar += '>';
   bar.resize(kWidth, ' ');
-  std::fprintf(stderr, "\r%s [%s] %3d%% %.1f s%s", label_.c_str(), bar.c_str(), int(fraction * 100.0),
-               seconds, final ? "\n" : "");
+  std::fprintf(stderr, "\r%s [%s] %3d%% %.1f s%s", label_.c_str(), bar.c_str(), int(fraction * 100.0), seconds,
+               final ? "\n" : "");
   std::fflush(stderr);
   drawn_ = true;
 }

@@ -12,8 +12,8 @@ namespace firmament {
 struct Image8 {
   int width = 0;
   int height = 0;
-  int channels = 3;             // 1 = grey, 2 = grey + alpha, 3 = RGB, 4 = RGBA
-  std::vector<uint8_t> pixels;  // row-major, channels interleaved
+  int channels = 3;                         // 1 = grey, 2 = grey + alpha, 3 = RGB, 4 = RGBA
+  std::vector<uint8_t> pixels;              // row-major, channels interleaved
   std::map<std::string, std::string> text;  // uncompressed tEXt entries
 };
 

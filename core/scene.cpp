@@ -19,15 +19,22 @@ using nlohmann::json;
 
 std::string describe(const json& value) {
   switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return std::string("boolean ") + (value.get<bool>() ? "true" : "false");
-    case json::value_t::string: return "string " + value.dump();
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return std::string("boolean ") + (value.get<bool>() ? "true" : "false");
+    case json::value_t::string:
+      return "string " + value.dump();
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "number " + value.dump();
-    case json::value_t::array: return "an array";
-    case json::value_t::object: return "an object";
-    default: return "a value";
+    case json::value_t::number_float:
+      return "number " + value.dump();
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "a value";
   }
 }
 
@@ -63,14 +70,16 @@ std::string allowed(const json& schema) {
   if (type == "string" && schema.value("format", "") == "date-time")
     return "a UTC date-time string like \"2026-06-21T15:30:00Z\"";
   if (type == "object") return "an object";
-  if (type == "array") return schema.contains("maxItems") ? "at most " + std::to_string(schema["maxItems"].get<size_t>()) + " items" : "an array";
+  if (type == "array")
+    return schema.contains("maxItems") ? "at most " + std::to_string(schema["maxItems"].get<size_t>()) + " items"
+                                       : "an array";
   return type;
 }
 
 [[noreturn]] void fail(const std::string& source, const std::string& pointer, const std::string& found,
                        const std::string& allowedText) {
-  throw InputError(source + ": " + (pointer.empty() ? "/" : pointer) + ": found " + found + ", allowed: " +
-                   allowedText);
+  throw InputError(source + ": " + (pointer.empty() ? "/" : pointer) + ": found " + found +
+                   ", allowed: " + allowedText);
 }
 
 // ISO 8601 UTC: YYYY-MM-DDThh:mm:ss(.fff)?Z, with calendar-valid fields.
@@ -81,8 +90,8 @@ bool isUtcDateTime(const std::string& s) {
   int consumed = 0;
   if (std::sscanf(s.c_str(), "%4d-%2d-%2dT%2d:%2d:%lf%c%n", &y, &mo, &d, &h, &mi, &sec, &z, &consumed) != 7)
     return false;
-  if (z != 'Z' || size_t(consumed) != s.size() || s.size() < 20 || s[4] != '-' || s[7] != '-' ||
-      s[13] != ':' || s[16] != ':')
+  if (z != 'Z' || size_t(consumed) != s.size() || s.size() < 20 || s[4] != '-' || s[7] != '-' || s[13] != ':' ||
+      s[16] != ':')
     return false;
   static const int kDays[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
   bool leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
@@ -146,7 +155,10 @@ void validateNode(json& value, const json& schema, const std::string& pointer, c
     if (schema.contains("exclusiveMaximum") && v >= schema["exclusiveMaximum"].get<double>()) ok = false;
     if (!ok) fail(source, pointer, describe(value), allowed(schema));
     // Canonical storage, so the scene hash does not depend on how a number was spelled.
-    if (type == "integer") value = static_cast<int64_t>(v); else value = v;
+    if (type == "integer")
+      value = static_cast<int64_t>(v);
+    else
+      value = v;
     return;
   }
   if (type == "string") {
@@ -234,8 +246,7 @@ Scene Scene::parse(std::string_view text, const std::string& source, const std::
 
 Scene Scene::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    throw InputError(file.string() + ": no such scene file");
+  if (!std::filesystem::exists(file, ec)) throw InputError(file.string() + ": no such scene file");
   if (std::filesystem::is_directory(file, ec))
     throw InputError(file.string() + ": is a folder, expected a scene file (.json)");
   std::ifstream in(file, std::ios::binary);
@@ -260,15 +271,16 @@ std::string Scene::hash() const {
 namespace {
 // One Markdown section per object: a table of its plain fields, then its nested objects.
 void objectSection(const json& schema, const std::string& pointer, std::string& out) {
-  out += "\n### `" + pointer + "`" + (schema.value("x-optional-section", false) ? " (optional section)" : "") +
-         "\n\n" + schema.value("description", "") + "\n\n";
+  out += "\n### `" + pointer + "`" + (schema.value("x-optional-section", false) ? " (optional section)" : "") + "\n\n" +
+         schema.value("description", "") + "\n\n";
   out += "| field | type and allowed values | default | meaning |\n| --- | --- | --- | --- |\n";
   std::vector<std::pair<std::string, const json*>> nested;
   for (auto q = schema["properties"].begin(); q != schema["properties"].end(); ++q) {
     const json& leaf = q.value();
     std::string type = leaf.value("type", "");
     if (type == "object") {
-      out += "| `" + q.key() + "` | object, see `" + pointer + "/" + q.key() + "` | | " + leaf.value("description", "") + " |\n";
+      out += "| `" + q.key() + "` | object, see `" + pointer + "/" + q.key() + "` | | " +
+             leaf.value("description", "") + " |\n";
       nested.emplace_back(pointer + "/" + q.key(), &leaf);
     } else if (type == "array" && leaf.contains("items") && leaf["items"].value("type", "") == "object") {
       out += "| `" + q.key() + "` | array (" + allowed(leaf) + ") of objects, see `" + pointer + "/" + q.key() +
@@ -276,9 +288,10 @@ void objectSection(const json& schema, const std::string& pointer, std::string& 
       nested.emplace_back(pointer + "/" + q.key() + "/N", &leaf["items"]);
     } else {
       out += "| `" + q.key() + "` | " + allowed(leaf) + " | " +
-             (leaf.contains("default") ? "`" + leaf["default"].dump() + "`"
-                                       : leaf.value("x-optional-section", false) ? "optional" : "required") + " | " +
-             leaf.value("description", "") + " |\n";
+             (leaf.contains("default")                  ? "`" + leaf["default"].dump() + "`"
+              : leaf.value("x-optional-section", false) ? "optional"
+                                                        : "required") +
+             " | " + leaf.value("description", "") + " |\n";
     }
   }
   for (const auto& [p, child] : nested) objectSection(*child, p, out);
@@ -290,7 +303,8 @@ std::string sceneSchemaMarkdown() {
   std::string out =
       "# Scene files\n\n"
       "<!-- Generated by `firmament scene-doc` from core/scene_schema.json; a test checks it is current. -->\n\n"
-      "A scene is a JSON object. " + schema.value("description", "") +
+      "A scene is a JSON object. " +
+      schema.value("description", "") +
       "\n\nEvery field has a default; a section marked *optional* is left out to leave that part of the sky "
       "out (no `clouds` → a clear sky, and no cloud pass runs). An unknown key, a wrong type or an out-of-range "
       "value is an error that names the file, the JSON pointer, what was found and what is allowed (exit code 2). "

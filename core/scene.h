@@ -20,8 +20,7 @@ class Scene {
   // invalid).
   static Scene load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
   // Validates scene text; `source` names it in errors (a file name or "<string>").
-  static Scene parse(std::string_view text, const std::string& source,
-                     const std::vector<std::string>& overrides = {});
+  static Scene parse(std::string_view text, const std::string& source, const std::vector<std::string>& overrides = {});
 
   const nlohmann::json& root() const { return root_; }
   const std::string& source() const { return source_; }

@@ -83,8 +83,7 @@ glm::dvec3 spectrumToXyz(const TabulatedSpectrum& spectrum) {
 }
 
 glm::dvec3 spectrumToXyz(std::span<const double> wavelengths, std::span<const double> values) {
-  return integrateAgainstCmfs(
-      [&](double wavelength) { return interpolateSpectrum(wavelengths, values, wavelength); });
+  return integrateAgainstCmfs([&](double wavelength) { return interpolateSpectrum(wavelengths, values, wavelength); });
 }
 
 glm::dvec3 spectrumToLinearRec709(const TabulatedSpectrum& spectrum) {

@@ -11,10 +11,10 @@ namespace firmament {
 
 struct XyPlotSeries {
   std::string name;
-  std::string colour;              // any SVG colour, e.g. "#1f77b4"
-  std::vector<double> x, y;        // one point per index; points not drawable on the axes are skipped
-  std::vector<std::string> labels; // optional, one per point, drawn beside it
-  bool connect = true;             // join the points in order with a line
+  std::string colour;               // any SVG colour, e.g. "#1f77b4"
+  std::vector<double> x, y;         // one point per index; points not drawable on the axes are skipped
+  std::vector<std::string> labels;  // optional, one per point, drawn beside it
+  bool connect = true;              // join the points in order with a line
 };
 
 // A horizontal reference line (e.g. an error budget), drawn dashed across the plot.

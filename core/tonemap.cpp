@@ -47,9 +47,12 @@ ToneMap parseToneMap(std::string_view name) {
 
 const char* toneMapName(ToneMap toneMap) {
   switch (toneMap) {
-    case ToneMap::Aces: return "aces";
-    case ToneMap::Reinhard: return "reinhard";
-    case ToneMap::Clamp: return "clamp";
+    case ToneMap::Aces:
+      return "aces";
+    case ToneMap::Reinhard:
+      return "reinhard";
+    case ToneMap::Clamp:
+      return "clamp";
   }
   return "?";
 }
@@ -124,8 +127,8 @@ void applyMesopicVision(float rgb[3]) {
 
 ExposureSettings exposureFromScene(const Scene& scene) {
   ExposureSettings exposure;
-  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
-                                                                   : ExposureSettings::Mode::Auto;
+  exposure.mode =
+      scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed : ExposureSettings::Mode::Auto;
   exposure.ev100 = scene.number("/camera/exposure/ev100");
   exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
   exposure.tonemap = scene.string("/camera/exposure/tonemap");

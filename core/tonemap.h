@@ -36,8 +36,8 @@ struct ExposureSettings {
   // (eyeAdaptationTimeConstant), or one fixed time constant (adaptationTimeSeconds).
   enum class TemporalAdaptation { None, Eye, Exponential };
   Mode mode = Mode::Auto;
-  double ev100 = 15.0;          // used when mode == Fixed (15 ≈ a sunny day, "sunny 16" at ISO 100)
-  double compensationEv = 0.0;  // added brightness in stops, in both modes
+  double ev100 = 15.0;           // used when mode == Fixed (15 ≈ a sunny day, "sunny 16" at ISO 100)
+  double compensationEv = 0.0;   // added brightness in stops, in both modes
   std::string tonemap = "aces";  // "aces", "reinhard" or "clamp"
   bool keepAlpha = false;        // write the image's A channel (as is, linear) into the preview
   // Auto mode at night (autoEv100ForLuminance): the fraction of a fall of the log-average luminance below
@@ -135,8 +135,8 @@ uint8_t quantize8(double v);
 // EV100 (after compensation): a Fixed run with that value and no compensation gives the same bytes.
 // `adaptedLuminance`, when given, replaces the image's own log average in auto mode (a sequence's
 // ExposureAdaptation); the vision and night adaptation settings apply as above.
-std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& settings,
-                                    double* usedEv100 = nullptr, const double* adaptedLuminance = nullptr);
+std::vector<uint8_t> toneMapToSrgb8(const Image& image, const ExposureSettings& settings, double* usedEv100 = nullptr,
+                                    const double* adaptedLuminance = nullptr);
 
 // Tone maps and writes an 8-bit PNG (atomically) with tEXt entries for the exposure and tone map
 // used; warns with the count of non-finite pixels. Returns the effective EV100.

@@ -45,8 +45,8 @@ std::vector<BenchKnobValue> quickValues(const BenchKnob& knob) {
 
 struct TableTiming {
   double precomputeMs = 0.0;
-  std::vector<gpu::PassTiming> passes;   // of the median run
-  std::unique_ptr<SkyRenderer> renderer; // the last one, its tables current
+  std::vector<gpu::PassTiming> passes;    // of the median run
+  std::unique_ptr<SkyRenderer> renderer;  // the last one, its tables current
 };
 
 // Tables: fresh renderers (nothing cached in memory; the context has no disk cache), the median of
@@ -131,8 +131,8 @@ BenchReference describeReference(const BenchScenario& scenario, const CachedRefe
   r.meanSquaredNoise = sumNoise / n;
   r.meanSquaredLuminance = sumY2 / n;
   r.noiseRelRmse = r.meanSquaredLuminance > 0 ? std::sqrt(r.meanSquaredNoise / r.meanSquaredLuminance) : 0.0;
-  r.noisePsnrDb = r.meanSquaredNoise > 0 ? 10.0 * std::log10(r.peakLuminance * r.peakLuminance / r.meanSquaredNoise)
-                                         : INFINITY;
+  r.noisePsnrDb =
+      r.meanSquaredNoise > 0 ? 10.0 * std::log10(r.peakLuminance * r.peakLuminance / r.meanSquaredNoise) : INFINITY;
   return r;
 }
 
@@ -179,16 +179,14 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
   };
   auto sizes = [](std::vector<std::pair<int, int>> values, std::function<void(SkyRenderOptions&, int, int)> set) {
     std::vector<BenchKnobValue> out;
-    for (auto [w, h] : values)
-      out.push_back({sizeLabel(w, h), [w, h, set](SkyRenderOptions& o) { set(o, w, h); }});
+    for (auto [w, h] : values) out.push_back({sizeLabel(w, h), [w, h, set](SkyRenderOptions& o) { set(o, w, h); }});
     return out;
   };
   const SkyRenderOptions d;
   add("transmittance_size", "transmittance table T(r, mu), width (mu) x height (r)",
       sizeLabel(d.luts.transmittanceWidth, d.luts.transmittanceHeight),
-      sizes({{32, 8}, {64, 16}, {128, 32}, {256, 64}, {512, 128}}, [](SkyRenderOptions& o, int w, int h) {
-        o.luts.transmittanceWidth = w, o.luts.transmittanceHeight = h;
-      }),
+      sizes({{32, 8}, {64, 16}, {128, 32}, {256, 64}, {512, 128}},
+            [](SkyRenderOptions& o, int w, int h) { o.luts.transmittanceWidth = w, o.luts.transmittanceHeight = h; }),
       true);
   add("transmittance_steps", "trapezoid intervals of each transmittance texel's optical depth",
       std::to_string(d.luts.transmittanceSteps),
@@ -198,7 +196,8 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
   add("ms_theta_samples", "directions of the multiple-scattering integral: zenith bands over the sphere",
       std::to_string(d.luts.multipleScatteringThetaSamples),
       ints({4, 8, 16, 32, 64}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringThetaSamples = v; }), true);
-  add("ms_orders", "multiple-scattering orders iterated before the geometric tail; 1 = Hillaire 2020 (isotropic, f_ms series)",
+  add("ms_orders",
+      "multiple-scattering orders iterated before the geometric tail; 1 = Hillaire 2020 (isotropic, f_ms series)",
       std::to_string(d.luts.multipleScatteringOrders),
       ints({1, 2, 3, 4, 6}, [](SkyRenderOptions& o, int v) { o.luts.multipleScatteringOrders = v; }), true);
   add("ms_phi_samples", "directions of the multiple-scattering integral: azimuth samples per zenith band",
@@ -216,7 +215,8 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
       d.method == SkyMethod::SkyViewLut ? "lut" : "per-pixel",
       {{"lut", [](SkyRenderOptions& o) { o.method = SkyMethod::SkyViewLut; }},
        {"per-pixel", [](SkyRenderOptions& o) { o.method = SkyMethod::PerPixel; }}});
-  add("spectral_samples", "wavelengths: 3 (Bruneton's conversion to Rec.709) or N over 360-830 nm integrated to luminance",
+  add("spectral_samples",
+      "wavelengths: 3 (Bruneton's conversion to Rec.709) or N over 360-830 nm integrated to luminance",
       d.luts.spectralSamples == kSpectralSamplesAuto ? std::string("auto") : std::to_string(d.luts.spectralSamples),
       ints({3, 6, 12, 24, 48}, [](SkyRenderOptions& o, int v) { o.luts.spectralSamples = v; }), true);
   knobs.back().quickValues = {"3", "12"};  // the two that the default (auto) chooses between
@@ -259,8 +259,10 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
   // (docs/atmosphere-tables.md measures them); add entries here like the ones above.
   if (quick) {
     for (auto& k : knobs) {
-      if (k.name == "tables_integration_steps") k.values.clear();  // ~20 s per table computation
-      else if (k.name != "method" && k.name != "multiple_scattering") k.values = quickValues(k);
+      if (k.name == "tables_integration_steps")
+        k.values.clear();  // ~20 s per table computation
+      else if (k.name != "method" && k.name != "multiple_scattering")
+        k.values = quickValues(k);
     }
   }
   knobs.erase(std::remove_if(knobs.begin(), knobs.end(), [](const BenchKnob& k) { return k.values.empty(); }),

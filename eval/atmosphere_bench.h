@@ -19,8 +19,8 @@ namespace firmament {
 // the image size and the reference's sampling (more paths where its Monte Carlo noise is larger, e.g.
 // twilight).
 struct BenchScenario {
-  std::string name;         // e.g. "noon": eval/scenarios/atmosphere/noon.json
-  std::string description;  // one line for the report
+  std::string name;                    // e.g. "noon": eval/scenarios/atmosphere/noon.json
+  std::string description;             // one line for the report
   std::vector<std::string> overrides;  // on the scene file, e.g. "/sun/zenith_deg=30" (size overrides are added)
   int width = 48, height = 27;
   int referenceSamples = 2048;  // Monte Carlo paths per pixel of the reference
@@ -33,11 +33,11 @@ struct BenchKnobValue {
 };
 
 struct BenchKnob {
-  std::string name;         // results.csv "knob", e.g. "view_steps"
-  std::string description;  // what it is, for the report
-  std::string defaultValue; // the shipped default's label
+  std::string name;          // results.csv "knob", e.g. "view_steps"
+  std::string description;   // what it is, for the report
+  std::string defaultValue;  // the shipped default's label
   std::vector<BenchKnobValue> values;
-  bool tables = false;      // it changes the precomputed tables (its cost is precompute_ms, else frame_ms)
+  bool tables = false;                   // it changes the precomputed tables (its cost is precompute_ms, else frame_ms)
   std::vector<std::string> quickValues;  // the values --quick keeps (empty: the first and the default)
 };
 
@@ -50,13 +50,13 @@ struct AtmosphereBenchConfig {
   std::filesystem::path outDir;  // results.csv, report.md, plots, references/ (the cache)
   std::vector<BenchScenario> scenarios;
   std::vector<BenchKnob> knobs;
-  SkyRenderOptions defaults;     // the options every knob varies one field of
-  int repeats = 3;               // timings: median of this many after a warm-up
+  SkyRenderOptions defaults;  // the options every knob varies one field of
+  int repeats = 3;            // timings: median of this many after a warm-up
   bool quick = false;
-  bool fullFrameTiming = true;   // also time the defaults at 1280x720 (both methods)
+  bool fullFrameTiming = true;  // also time the defaults at 1280x720 (both methods)
   int fullFrameWidth = 1280, fullFrameHeight = 720;
   ReferenceQuality referenceQuality;  // samplesPerPixel is taken from each scenario
-  std::string environmentNote;   // for the report, e.g. the machine's load average
+  std::string environmentNote;        // for the report, e.g. the machine's load average
 };
 
 // A precompute that takes longer than this is timed once instead of `repeats` times (the 4D
@@ -78,7 +78,7 @@ struct BenchRow {
 struct BenchReference {
   std::string scenario;
   int width = 0, height = 0, samplesPerPixel = 0, wavelengths = 0;
-  double seconds = 0.0;          // when it was rendered (0 if unknown)
+  double seconds = 0.0;  // when it was rendered (0 if unknown)
   bool fromCache = false;
   std::filesystem::path file;
   double medianRelativeNoise = 0.0, p95RelativeNoise = 0.0;  // SE(Y)/Y over the pixels
@@ -93,7 +93,7 @@ struct BenchReference {
 struct FullFrameTiming {
   std::string method;  // "lut" or "per-pixel"
   int width = 0, height = 0;
-  double frameMs = 0.0;  // median
+  double frameMs = 0.0;                 // median
   std::vector<gpu::PassTiming> passes;  // of the median run
 };
 
@@ -103,8 +103,8 @@ struct AtmosphereBenchResult {
   std::vector<BenchReference> references;
   std::vector<FullFrameTiming> fullFrame;
   std::vector<gpu::PassTiming> defaultTablePasses;  // per pass of a default precompute (median run)
-  std::string timingNote;  // non-empty when the device has no timestamps (wall clock)
-  double seconds = 0.0;    // wall clock of the whole bench
+  std::string timingNote;                           // non-empty when the device has no timestamps (wall clock)
+  double seconds = 0.0;                             // wall clock of the whole bench
 };
 
 // Renders (or reads from outDir/references) each scenario's reference, then for every knob value

@@ -37,7 +37,6 @@ std::string csvField(const std::string& s) {
   return out + "\"";
 }
 
-
 // The error that remains once the reference's own noise is taken out: E[(a − b̂)²] = (a − b)² + SE²
 // for an unbiased reference b̂, so mean((a − b)²) ≈ measured − mean(SE²) (floored at 0).
 double noiseCorrectedMse(const BenchRow& row, const BenchReference& ref) {
@@ -107,7 +106,8 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
      << "max_rel_err = max over pixels of |Ya − Yb| / max(Yb, ε), ε = 1 % of mean(Yb). Definitions: docs/bench.md.\n\n";
 
   md << "## Scenarios and the reference's own noise\n\n"
-     << "| scenario | view | size | reference spp | wavelengths | render s | median SE/Y | p95 SE/Y | noise-only rel_rmse | "
+     << "| scenario | view | size | reference spp | wavelengths | render s | median SE/Y | p95 SE/Y | noise-only "
+        "rel_rmse | "
         "noise-only PSNR dB |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& scenario : config.scenarios) {
     auto it = references.find(scenario.name);
@@ -116,8 +116,8 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
     md << "| " << scenario.name << " | " << scenario.description << " | " << r.width << "×" << r.height << " | "
        << r.samplesPerPixel << " | " << r.wavelengths << " | " << fixed(r.seconds, 1)
        << (r.fromCache ? " (cached)" : "") << " | " << fixed(100 * r.medianRelativeNoise, 2) << " % | "
-       << fixed(100 * r.p95RelativeNoise, 2) << " % | " << general(r.noiseRelRmse) << " | "
-       << fixed(r.noisePsnrDb, 1) << " |\n";
+       << fixed(100 * r.p95RelativeNoise, 2) << " % | " << general(r.noiseRelRmse) << " | " << fixed(r.noisePsnrDb, 1)
+       << " |\n";
   }
   md << "\nThe noise-only columns are what the reference's Monte Carlo noise alone costs in expectation "
         "(sqrt(mean(SE²)/mean(Y²)) and 10 log10(max(Y)²/mean(SE²))): a measured error near them is the "
@@ -137,8 +137,14 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
       correctedPsnr = 10.0 * std::log10(it->second->peakLuminance * it->second->peakLuminance / mse);
     }
     std::string target = "—";
-    if (r.scenario == "noon") target = std::string("≥ 45 dB: ") + (r.psnrDb >= 45 ? "met" : correctedPsnr >= 45 ? "met after noise correction" : "**not met**");
-    if (r.scenario == "sunset") target = std::string("≥ 40 dB: ") + (r.psnrDb >= 40 ? "met" : correctedPsnr >= 40 ? "met after noise correction" : "**not met**");
+    if (r.scenario == "noon")
+      target = std::string("≥ 45 dB: ") + (r.psnrDb >= 45        ? "met"
+                                           : correctedPsnr >= 45 ? "met after noise correction"
+                                                                 : "**not met**");
+    if (r.scenario == "sunset")
+      target = std::string("≥ 40 dB: ") + (r.psnrDb >= 40        ? "met"
+                                           : correctedPsnr >= 40 ? "met after noise correction"
+                                                                 : "**not met**");
     md << "| " << r.scenario << " | " << fixed(r.precomputeMs, 2) << " | " << fixed(r.frameMs, 2) << " | "
        << general(r.relRmse) << " | " << fixed(r.psnrDb, 2) << " | " << general(r.maxRelErr) << " | "
        << general(correctedRel) << " | " << fixed(correctedPsnr, 1) << " | " << target << " |\n";
@@ -157,7 +163,8 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
     md << "\n\n";
   }
   if (!result.fullFrame.empty()) {
-    md << "Full-resolution frame (scenario " << config.scenarios.front().name << ", defaults, tables cached), median:\n\n"
+    md << "Full-resolution frame (scenario " << config.scenarios.front().name
+       << ", defaults, tables cached), median:\n\n"
        << "| method | size | frame_ms | passes | target |\n|---|---|---|---|---|\n";
     for (const auto& f : result.fullFrame) {
       std::string passes;
@@ -176,9 +183,11 @@ void writeAtmosphereBenchOutputs(const AtmosphereBenchConfig& config, const Atmo
   for (size_t i = 0; i < plots.size(); ++i) md << (i ? ", " : "") << "[" << plots[i] << "](" << plots[i] << ")";
   md << ").\n\n";
   for (const auto& knob : config.knobs) {
-    md << "### " << knob.name << "\n\n" << knob.description << " (default " << knob.defaultValue << "; cost: "
-       << (knob.tables ? "precompute" : "frame") << ").\n\n"
-       << "| value | scenario | precompute_ms | frame_ms | rel_rmse | psnr_db | max_rel_err |\n|---|---|---|---|---|---|---|\n";
+    md << "### " << knob.name << "\n\n"
+       << knob.description << " (default " << knob.defaultValue << "; cost: " << (knob.tables ? "precompute" : "frame")
+       << ").\n\n"
+       << "| value | scenario | precompute_ms | frame_ms | rel_rmse | psnr_db | max_rel_err "
+          "|\n|---|---|---|---|---|---|---|\n";
     for (const auto& r : result.rows)
       if (r.knob == knob.name)
         md << "| " << r.value << (r.value == knob.defaultValue ? "*" : "") << " | " << r.scenario << " | "

@@ -19,19 +19,19 @@ namespace firmament {
 struct CloudBenchConfig {
   std::filesystem::path outDir;
   bool quick = false;
-  int repeats = 3;    // frame timing: median of this many after a warm-up
+  int repeats = 3;  // frame timing: median of this many after a warm-up
   // false: each still is rendered once, without the warm-up, and timed as that cold render (with any
   // pipeline compilation it needed). Its image, errors and samples are the same. For the tests, which
   // check the rows, not the times.
   bool timeFrames = true;
-  int threads = 0;    // path tracer threads (0: all cores)
+  int threads = 0;          // path tracer threads (0: all cores)
   int samplesPerPixel = 0;  // paths per reference pixel (0: 64, quick 16); more makes `corrected` robust
   std::string scenario;     // only this scenario (empty: all; checkCloudBenchConfig)
   // DIR/images/<scenario>_{reference,default}.exr (rgb: the clouds' light in cd/m^2, a: transmittance),
   // <scenario>_default_error.png (relative luminance error heat map, 0..20 %) and <scenario>_pixels.csv
-  // (per pixel: the reference's luminance, standard error and transmittance, its even and odd paths' luminance, then the luminance of
-  // every row, a column named knob=value each; where single_scattering rows run, the path tracer's first
-  // order as `reference_order_1_luminance` before them, so a pixel's error splits into orders 1 and >= 2).
+  // (per pixel: the reference's luminance, standard error and transmittance, its even and odd paths' luminance, then
+  // the luminance of every row, a column named knob=value each; where single_scattering rows run, the path tracer's
+  // first order as `reference_order_1_luminance` before them, so a pixel's error splits into orders 1 and >= 2).
   bool images = false;
   // Only the frame timing (runCloudTiming, clouds_timing.*): no path-traced references, no error rows.
   // Not with images or a reference sample count (checkCloudBenchConfig).
@@ -59,10 +59,10 @@ void checkCloudBenchConfig(const CloudBenchConfig& config);
 
 struct CloudBenchRow {
   std::string knob, value, scenario;
-  double precomputeMs = 0.0;      // the noise bake of the scenario's first render (once per seed)
-  double frameMs = 0.0;           // median GPU time of clouds/render_clouds
+  double precomputeMs = 0.0;                            // the noise bake of the scenario's first render (once per seed)
+  double frameMs = 0.0;                                 // median GPU time of clouds/render_clouds
   double relRmse = 0.0, psnrDb = 0.0, maxRelErr = 0.0;  // luminance of the clouds' light vs the path tracer
-  double samplesPerPixel = 0.0;   // density evaluations per pixel (view + light march + the per-frame maps' bakes)
+  double samplesPerPixel = 0.0;     // density evaluations per pixel (view + light march + the per-frame maps' bakes)
   double mapSamplesPerPixel = 0.0;  // the per-frame maps' bakes' part of samplesPerPixel (a fixed cost per frame)
   // Over the cloud pixels (reference transmittance < 0.95; clouds/reference_clouds.h
   // compareWithCloudReference): the error with the reference's Monte Carlo noise subtracted, the noise
@@ -80,8 +80,9 @@ struct CloudBenchRow {
 
 std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig& config);
 // clouds_results.csv (knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,
-// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device) and clouds_report.md in config.outDir (prefixed: `bench all` writes the
-// atmosphere's results.csv into the same folder).
+// samples_per_pixel,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device)
+// and clouds_report.md in config.outDir (prefixed: `bench all` writes the atmosphere's results.csv into the same
+// folder).
 void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<CloudBenchRow>& rows);
 
 // The frame-time table: each scenario's view at 640x360 (320x180 with --quick), full default
@@ -91,8 +92,9 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
 struct CloudTimingRow {
   std::string scenario, setting;
   int width = 0, height = 0;
-  double cloudMs = 0.0;   // the clouds' per-frame passes: the march, its upsampling or temporal resolve, the aerial-perspective volume, the per-frame maps' bakes (cloudPassMs)
-  double frameMs = 0.0;   // every per-frame pass (sky included)
+  double cloudMs = 0.0;  // the clouds' per-frame passes: the march, its upsampling or temporal resolve, the
+                         // aerial-perspective volume, the per-frame maps' bakes (cloudPassMs)
+  double frameMs = 0.0;  // every per-frame pass (sky included)
   double samplesPerPixel = 0.0;
   double mapSamplesPerPixel = 0.0;  // the per-frame maps' bakes' share of samplesPerPixel (not in the CSV)
   // Luminance of the whole frame against the defaults' frame at the same size, over the defaults' cloud

@@ -95,7 +95,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   };
   for (const CalibrationScene& sc : calibrationScenes(config.quick)) {
     if (!config.group.empty() && !inGroup(sc.group, config.group)) continue;
-    const Scene scene = Scene::parse(sc.text, "<calibration " + sc.name + ">", {"/clouds/lighting/phase=" + config.phase});
+    const Scene scene =
+        Scene::parse(sc.text, "<calibration " + sc.name + ">", {"/clouds/lighting/phase=" + config.phase});
     auto renderer = std::make_unique<SkyRenderer>(context);
     const RenderResult first = renderer->render(scene, options);
     const CloudSettings settings = CloudSettings::fromScene(scene);
@@ -103,17 +104,18 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     CloudReferenceSettings rs;
     rs.samplesPerPixel = spp;
     rs.threads = config.threads;
-    const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection, CloudEnvironment{}, rs);
+    const CloudPathTracer tracer(medium, settings.lighting, first.view.atmosphere, first.view.sunDirection,
+                                 CloudEnvironment{}, rs);
     // Kept in DIR/references (eval/cloud_reference_cache.h), so a refit after a model change, or at more
     // paths per pixel once, pays for the references only the first time.
     bool cached = false;
     Prepared p{sc,
-               cachedCloudReference(scene, tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera, config.threads,
-                                    options.cloudNoise, config.outDir / "references", sc.name, &cached),
+               cachedCloudReference(scene, tracer, glm::dvec3(0.0, 0.0, first.view.cameraRadius), first.view.camera,
+                                    config.threads, options.cloudNoise, config.outDir / "references", sc.name, &cached),
                std::move(renderer)};
     logInfo("calibrate clouds: " + sc.name + " reference " + std::to_string(spp) + " paths/pixel " +
-            (cached ? "from " + (config.outDir / "references").string() + " (rendered in " : "in ") + std::to_string(p.reference.seconds) +
-            (cached ? " s)" : " s"));
+            (cached ? "from " + (config.outDir / "references").string() + " (rendered in " : "in ") +
+            std::to_string(p.reference.seconds) + (cached ? " s)" : " s"));
     prepared.push_back(std::move(p));
   }
   result.referenceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -128,13 +130,13 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     double sum = 0.0;
     for (const Prepared& p : prepared) {
       if (!inGroup(p.scene.group, group)) continue;
-      const Scene scene = Scene::parse(p.scene.text, "<calibration " + p.scene.name + ">",
-                                       {"/clouds/lighting/phase=" + config.phase,
-                                        "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
-                                        "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
-                                        "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
-                                        "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra),
-                                        "/clouds/lighting/ms_low_sun_mu=" + number(mu0)});
+      const Scene scene = Scene::parse(
+          p.scene.text, "<calibration " + p.scene.name + ">",
+          {"/clouds/lighting/phase=" + config.phase, "/clouds/lighting/ms_octaves=" + std::to_string(config.octaves),
+           "/clouds/lighting/ms_b=" + number(b), "/clouds/lighting/ms_a=" + number(std::min(a, b)),
+           "/clouds/lighting/ms_c=" + number(c), "/clouds/lighting/ms_d=" + number(d),
+           "/clouds/lighting/ms_r=" + number(r), "/clouds/lighting/ms_ra=" + number(ra),
+           "/clouds/lighting/ms_low_sun_mu=" + number(mu0)});
       const RenderResult rendered = p.renderer->render(scene, options);
       if (!pixelsColumn.empty()) {
         std::filesystem::create_directories(config.outDir / "images");
@@ -152,7 +154,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
   auto pixelsColumn = [&](const char* what, double a, double b, double c, double d, double r, double ra, double mu0) {
     if (!config.images) return std::string();
     char column[200];
-    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f", what, a, b, c, d, r, ra, mu0);
+    std::snprintf(column, sizeof(column), "%s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f", what, a, b, c, d,
+                  r, ra, mu0);
     return std::string(column);
   };
 
@@ -176,23 +179,28 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     // a_r over the shipped reflected-light fit's octaves (until session 28 over the octaves-alone fit's,
     // which for cumulus are not the shipped ones).
     const CloudMultipleScattering shipped =
-        group == "all" ? cloudJointMultipleScattering(phase) : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
+        group == "all" ? cloudJointMultipleScattering(phase)
+                       : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
     auto f = [&](const Point& x) {
       ++fit.evaluations;
       // The low-sun scale stays at the group's shipped mu_0 while the other constants are fitted.
-      if (rOnly) return evaluate(group, shipped.a, shipped.b, shipped.c, shipped.d, 4.0 * x[0], x[1], shipped.lowSunMu, scratch);
+      if (rOnly)
+        return evaluate(group, shipped.a, shipped.b, shipped.c, shipped.d, 4.0 * x[0], x[1], shipped.lowSunMu, scratch);
       return evaluate(group, x[0] * x[1], x[0], x[2], 2.0 * x[3], 4.0 * x[4], x[5], shipped.lowSunMu, scratch);
     };
     fit.lowSunMu = shipped.lowSunMu;
     if (config.evaluateDefaults) {
       // Rendered as overrides, so the numbers are those constants' on every scene of the group.
-      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
+      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r,
+      fit.ra = shipped.ra;
       fit.objectiveStart = evaluate(group, 0.5, 0.5, 0.5, 1.0, 0.0, 0.0, 0.0, fit.start);
       fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
                                   pixelsColumn("shipped", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
       char line[220];
-      std::snprintf(line, sizeof(line), "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f: rms rel RMSE %.4f",
-                    group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, std::sqrt(fit.objectiveFit));
+      std::snprintf(
+          line, sizeof(line),
+          "calibrate clouds: %-14s shipped a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f mu_0 %.3f: rms rel RMSE %.4f",
+          group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, std::sqrt(fit.objectiveFit));
       logInfo(line);
       result.fits.push_back(std::move(fit));
       continue;
@@ -200,7 +208,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     if (config.lowSunOnly) {
       // mu_0 alone: a sweep (the objective against mu_0 is worth seeing whole, and cheap: one parameter),
       // then golden sections inside the best point's neighbours.
-      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r, fit.ra = shipped.ra;
+      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = shipped.r,
+      fit.ra = shipped.ra;
       auto atMu = [&](double mu0, std::vector<CloudCalibrationSceneError>& out) {
         return evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, mu0, out);
       };
@@ -210,11 +219,14 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
         CloudCalibrationSweepPoint point{group, 0.05 * k, 0.0, {}};
         point.objective = atMu(point.lowSunMu, point.scenes);
         ++fit.evaluations;
-        logInfo("calibrate clouds: " + group + " mu_0 " + number(point.lowSunMu) + ": rms rel RMSE " + number(std::sqrt(point.objective)));
+        logInfo("calibrate clouds: " + group + " mu_0 " + number(point.lowSunMu) + ": rms rel RMSE " +
+                number(std::sqrt(point.objective)));
         sweep.push_back(std::move(point));
       }
-      const size_t best = size_t(std::min_element(sweep.begin(), sweep.end(), [](const auto& x, const auto& y) { return x.objective < y.objective; }) -
-                                 sweep.begin());
+      const size_t best =
+          size_t(std::min_element(sweep.begin(), sweep.end(),
+                                  [](const auto& x, const auto& y) { return x.objective < y.objective; }) -
+                 sweep.begin());
       double lo = sweep[best > 0 ? best - 1 : 0].lowSunMu, hi = sweep[std::min(best + 1, sweep.size() - 1)].lowSunMu;
       const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
       double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo);
@@ -232,8 +244,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       fit.lowSunMu = sweep[best].objective <= std::min(f1, f2) ? sweep[best].lowSunMu : f1 < f2 ? x1 : x2;
       fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
                                   pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
-      logInfo("calibrate clouds: " + group + " low-sun mu_0 " + number(fit.lowSunMu) + ": rms rel RMSE " + number(std::sqrt(fit.objectiveStart)) +
-              " (off) -> " + number(std::sqrt(fit.objectiveFit)));
+      logInfo("calibrate clouds: " + group + " low-sun mu_0 " + number(fit.lowSunMu) + ": rms rel RMSE " +
+              number(std::sqrt(fit.objectiveStart)) + " (off) -> " + number(std::sqrt(fit.objectiveFit)));
       result.lowSunSweep.insert(result.lowSunSweep.end(), sweep.begin(), sweep.end());
       result.fits.push_back(std::move(fit));
       continue;
@@ -242,9 +254,11 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     // different (a, b, c, d), and from a fixed start the 90 evaluations could end on a point worse than
     // the shipped one (docs/clouds.md, "Calibration"); from there a fit can only improve on it.
     const bool fromZero = shipped.r <= 0.0;
-    const Point start = rOnly ? Point{0.25, 0.5, 0, 0, 0, 0} : clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d,
-                                 config.reflection ? (fromZero ? 0.25 : 0.25 * shipped.r) : 0.25 * shipped.r,
-                                 config.reflection && fromZero ? 0.5 : shipped.ra});
+    const Point start =
+        rOnly ? Point{0.25, 0.5, 0, 0, 0, 0}
+              : clamp01({shipped.b, shipped.b > 0.0 ? shipped.a / shipped.b : 1.0, shipped.c, 0.5 * shipped.d,
+                         config.reflection ? (fromZero ? 0.25 : 0.25 * shipped.r) : 0.25 * shipped.r,
+                         config.reflection && fromZero ? 0.5 : shipped.ra});
     std::array<Point, 7> simplex;
     simplex[0] = start;
     for (int i = 0; i < N; ++i) {
@@ -275,8 +289,10 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       if (fr < value[order[0]]) {
         const auto expanded = along(-2.0);
         const double fe = f(expanded);
-        if (fe < fr) simplex[worst] = expanded, value[worst] = fe;
-        else simplex[worst] = reflected, value[worst] = fr;
+        if (fe < fr)
+          simplex[worst] = expanded, value[worst] = fe;
+        else
+          simplex[worst] = reflected, value[worst] = fr;
       } else if (fr < value[order[N - 1]]) {
         simplex[worst] = reflected, value[worst] = fr;
       } else {
@@ -301,13 +317,16 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     fit.d = 2.0 * x[3];
     fit.r = 4.0 * x[4];
     fit.ra = x[5];
-    if (rOnly) fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = 4.0 * x[0], fit.ra = x[1];
+    if (rOnly)
+      fit.a = shipped.a, fit.b = shipped.b, fit.c = shipped.c, fit.d = shipped.d, fit.r = 4.0 * x[0], fit.ra = x[1];
     fit.objectiveFit = evaluate(group, fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu, fit.fit,
                                 pixelsColumn("fit", fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, fit.lowSunMu));
     char line[256];
-    std::snprintf(line, sizeof(line), "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d evaluations)",
-                  group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart), std::sqrt(fit.objectiveFit),
-                  fit.evaluations);
+    std::snprintf(line, sizeof(line),
+                  "calibrate clouds: %-14s a %.3f b %.3f c %.3f d %.3f r %.3f a_r %.3f: rms rel RMSE %.4f -> %.4f (%d "
+                  "evaluations)",
+                  group.c_str(), fit.a, fit.b, fit.c, fit.d, fit.r, fit.ra, std::sqrt(fit.objectiveStart),
+                  std::sqrt(fit.objectiveFit), fit.evaluations);
     logInfo(line);
     result.fits.push_back(std::move(fit));
   }
@@ -316,64 +335,76 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
 }
 
 void writeCloudCalibrationOutputs(const CloudCalibrationConfig& config, const CloudCalibrationResult& result) {
-  std::string csv = "group,a,b,c,d,r,a_r,low_sun_mu,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
-  std::string md = "# Cloud march: octave parameters fitted to the path tracer\n\n"
-                   "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
-                   "sc_thin x 0.15, the cumulonimbus x 0.1, cirrus at its own extinction), " +
-                   std::to_string(config.octaves) + " octaves, " +
-                   (config.lightSteps > 0 ? std::to_string(config.lightSteps) : std::string("the default's")) +
-                   " light steps, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
-                   std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
-                   " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2) from the group's shipped constants, minimising the "
-                   "mean squared rel RMSE of the clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with the same multiple-scattering "
-                   "model (d: the Eddington diffusion floor's weight) and no reflected light (r = 0). r, a_r: the reflected light's weight and depth "
-                   "scale (cloudReflectedSource; 0 and unused when it is off). `corrected`: the reference's noise subtracted.\n\n";
+  std::string csv =
+      "group,a,b,c,d,r,a_r,low_sun_mu,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,at\n";
+  std::string md =
+      "# Cloud march: octave parameters fitted to the path tracer\n\n"
+      "Calibration scenes (separate from `bench clouds`' scenarios), sunlight only, extinction x 0.3 (cu_thin, "
+      "sc_thin x 0.15, the cumulonimbus x 0.1, cirrus at its own extinction), " +
+      std::to_string(config.octaves) + " octaves, " +
+      (config.lightSteps > 0 ? std::to_string(config.lightSteps) : std::string("the default's")) +
+      " light steps, phase " + config.phase + " on both sides; reference: the CPU cloud path tracer (all orders, " +
+      std::to_string(config.samplesPerPixel > 0 ? config.samplesPerPixel : (config.quick ? 64 : 128)) +
+      " paths/pixel). Fit: Nelder-Mead over (b, a/b, c, d/2) from the group's shipped constants, minimising the "
+      "mean squared rel RMSE of the clouds' luminance over the group's scenes. `start`: a = b = c = 0.5, d = 1 with "
+      "the same multiple-scattering "
+      "model (d: the Eddington diffusion floor's weight) and no reflected light (r = 0). r, a_r: the reflected light's "
+      "weight and depth "
+      "scale (cloudReflectedSource; 0 and unused when it is off). `corrected`: the reference's noise subtracted.\n\n";
   if (config.evaluateDefaults)
-    md += "**No fit (`--evaluate-defaults`)**: the columns `a b c d` and `at the fit` are each group's shipped constants "
-          "(cloudTypeMultipleScattering; `all`: the joint fit) and their errors.\n\n";
+    md +=
+        "**No fit (`--evaluate-defaults`)**: the columns `a b c d` and `at the fit` are each group's shipped constants "
+        "(cloudTypeMultipleScattering; `all`: the joint fit) and their errors.\n\n";
   if (config.lowSunOnly)
-    md += "**The low-sun scale's mu_0 alone (`--low-sun`)**: every other constant at the group's shipped fit (with the reflected "
-          "light); `start` is those constants with the scale off (mu_0 = 0), `at the fit` with the fitted mu_0. The sweep's points "
-          "are in clouds_calibration_low_sun.csv.\n\n";
+    md +=
+        "**The low-sun scale's mu_0 alone (`--low-sun`)**: every other constant at the group's shipped fit (with the "
+        "reflected "
+        "light); `start` is those constants with the scale off (mu_0 = 0), `at the fit` with the fitted mu_0. The "
+        "sweep's points "
+        "are in clouds_calibration_low_sun.csv.\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";
   char line[512];
   std::snprintf(line, sizeof(line), "References %.1f s, fit %.1f s. Device: %s\n\n", result.referenceSeconds,
                 result.fitSeconds, result.device.c_str());
   md += line;
   md += std::string("| group | a | b | c | d | r | a_r | mu_0 | evaluations | rms rel RMSE at ") +
-        (config.lowSunOnly ? "mu_0 = 0" : "a = b = c = 0.5, d = 1") + " | at the fit |\n"
+        (config.lowSunOnly ? "mu_0 = 0" : "a = b = c = 0.5, d = 1") +
+        " | at the fit |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& f : result.fits) {
-    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n", f.group.c_str(), f.a, f.b,
-                  f.c, f.d, f.r, f.ra, f.lowSunMu, f.evaluations, std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
+    std::snprintf(line, sizeof(line), "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.4f | %.4f |\n",
+                  f.group.c_str(), f.a, f.b, f.c, f.d, f.r, f.ra, f.lowSunMu, f.evaluations,
+                  std::sqrt(f.objectiveStart), std::sqrt(f.objectiveFit));
     md += line;
   }
-  md += "\n| group | scene | rel RMSE start | corrected | bias | rel RMSE fit | corrected | noise | bias |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md +=
+      "\n| group | scene | rel RMSE start | corrected | bias | rel RMSE fit | corrected | noise | bias |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& f : result.fits)
     for (size_t i = 0; i < f.fit.size() && i < f.start.size(); ++i) {
       const auto& s = f.start[i];
       const auto& e = f.fit[i];
-      std::snprintf(line, sizeof(line), "| %s | %s | %.4f | %.4f | %+.3f | %.4f | %.4f | %.4f | %+.3f |\n", f.group.c_str(),
-                    e.scene.c_str(), s.relRmse, s.noiseCorrected, s.meanBias, e.relRmse, e.noiseCorrected, e.noiseFloor,
-                    e.meanBias);
+      std::snprintf(line, sizeof(line), "| %s | %s | %.4f | %.4f | %+.3f | %.4f | %.4f | %.4f | %+.3f |\n",
+                    f.group.c_str(), e.scene.c_str(), s.relRmse, s.noiseCorrected, s.meanBias, e.relRmse,
+                    e.noiseCorrected, e.noiseFloor, e.meanBias);
       md += line;
       for (const auto* x : {&s, &e}) {
         const bool start = x == &s && !config.lowSunOnly;  // the low-sun fit's start is the shipped constants, mu_0 0
-        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n", f.group.c_str(),
-                      start ? 0.5 : f.a, start ? 0.5 : f.b, start ? 0.5 : f.c, start ? 1.0 : f.d, start ? 0.0 : f.r,
-                      start ? 0.0 : f.ra, x == &s ? 0.0 : f.lowSunMu, x->scene.c_str(), x->relRmse,
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%s\n",
+                      f.group.c_str(), start ? 0.5 : f.a, start ? 0.5 : f.b, start ? 0.5 : f.c, start ? 1.0 : f.d,
+                      start ? 0.0 : f.r, start ? 0.0 : f.ra, x == &s ? 0.0 : f.lowSunMu, x->scene.c_str(), x->relRmse,
                       x->noiseCorrected, x->noiseFloor, x->meanBias, x == &s ? "start" : "fit");
         csv += line;
       }
     }
   writeTextFileAtomically(config.outDir / "clouds_calibration.csv", csv);
   if (!result.lowSunSweep.empty()) {
-    std::string sweep = "group,low_sun_mu,rms_rel_rmse,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias\n";
+    std::string sweep =
+        "group,low_sun_mu,rms_rel_rmse,scene,rel_rmse,rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias\n";
     for (const CloudCalibrationSweepPoint& p : result.lowSunSweep)
       for (const CloudCalibrationSceneError& e : p.scenes) {
-        std::snprintf(line, sizeof(line), "%s,%.4f,%.6g,%s,%.6g,%.6g,%.6g,%.6g\n", p.group.c_str(), p.lowSunMu, std::sqrt(p.objective),
-                      e.scene.c_str(), e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias);
+        std::snprintf(line, sizeof(line), "%s,%.4f,%.6g,%s,%.6g,%.6g,%.6g,%.6g\n", p.group.c_str(), p.lowSunMu,
+                      std::sqrt(p.objective), e.scene.c_str(), e.relRmse, e.noiseCorrected, e.noiseFloor, e.meanBias);
         sweep += line;
       }
     writeTextFileAtomically(config.outDir / "clouds_calibration_low_sun.csv", sweep);

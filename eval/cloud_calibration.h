@@ -22,16 +22,16 @@ namespace firmament {
 
 struct CloudCalibrationConfig {
   std::filesystem::path outDir;
-  bool quick = false;  // smaller images (32x18 instead of 48x27), 64 paths per pixel
-  int threads = 0;     // path tracer threads (0: all cores)
+  bool quick = false;       // smaller images (32x18 instead of 48x27), 64 paths per pixel
+  int threads = 0;          // path tracer threads (0: all cores)
   int samplesPerPixel = 0;  // 0: 128 (quick 64): the fit needs a quiet reference
   int octaves = 3;          // the octave count the parameters are fitted for (the default)
   int lightSteps = 0;       // light-march samples (0: the default preset's, CloudMarchSettings::lightSteps)
   // No fit: each group's scenes rendered with the group's shipped constants (cloudTypeMultipleScattering
   // of its type; "all": the joint fit, cloudJointMultipleScattering), reported as the fit, to compare with a refit.
   bool evaluateDefaults = false;
-  bool images = false;  // DIR/images/SCENE_pixels.csv: each scene's pixels with the fit's (or shipped) constants
-  std::string group;  // only this group (its scenes' references alone); empty: every group
+  bool images = false;      // DIR/images/SCENE_pixels.csv: each scene's pixels with the fit's (or shipped) constants
+  std::string group;        // only this group (its scenes' references alone); empty: every group
   int maxEvaluations = 90;  // objective evaluations per group (each renders the group's scenes)
   // Also fit the reflected light's weight r and depth scale a_r (cloudReflectedSource): x gains
   // (r / 4, a_r), started at the shipped reflection fit or, where it has none (r = 0), at (0.25, 0.5).
@@ -57,12 +57,13 @@ struct CloudCalibrationSceneError {
 };
 
 struct CloudCalibrationFit {
-  std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all" (the cumulus and stratocumulus scenes)
+  std::string group;  // "cumulus", "stratocumulus", "stratus", "cumulonimbus", "cirrus", "all" (the cumulus and
+                      // stratocumulus scenes)
   double a = 0.5, b = 0.5, c = 0.5, d = 1.0;  // d: the diffusion floor's weight
-  double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale
-  double lowSunMu = 0.0;     // the octaves' low-sun scale's mu_0 (0: off)
+  double r = 0.0, ra = 0.0;                   // the reflected light's weight and depth scale
+  double lowSunMu = 0.0;                      // the octaves' low-sun scale's mu_0 (0: off)
   int evaluations = 0;
-  double objectiveStart = 0.0, objectiveFit = 0.0;  // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
+  double objectiveStart = 0.0, objectiveFit = 0.0;     // mean squared rel RMSE at a = b = c = 0.5, d = 1 and at the fit
   std::vector<CloudCalibrationSceneError> start, fit;  // per scene
 };
 

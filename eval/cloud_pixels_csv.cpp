@@ -26,9 +26,10 @@ void writeCloudPixelsCsv(const std::filesystem::path& file, const SceneView& vie
     const int x = int(i % size_t(width)), y = int(i / size_t(width));
     bool valid = true;
     const glm::dvec3 dir = shared::cameraRayDirection(view.camera, glm::dvec2(x + 0.5, y + 0.5), valid);
-    const double angle = valid ? std::acos(std::clamp(glm::dot(dir, view.sunDirection), -1.0, 1.0)) * 180.0 / shared::kPi : -1.0;
-    std::snprintf(line, sizeof(line), "%d,%d,%.2f,%.6g,%.6g,%.4f", x, y, angle, reference.luminance[i], reference.luminanceStandardError[i],
-                  reference.image.pixels[4 * i + 3]);
+    const double angle =
+        valid ? std::acos(std::clamp(glm::dot(dir, view.sunDirection), -1.0, 1.0)) * 180.0 / shared::kPi : -1.0;
+    std::snprintf(line, sizeof(line), "%d,%d,%.2f,%.6g,%.6g,%.4f", x, y, angle, reference.luminance[i],
+                  reference.luminanceStandardError[i], reference.image.pixels[4 * i + 3]);
     csv += line;
     if (halves) {
       std::snprintf(line, sizeof(line), ",%.6g,%.6g", reference.luminanceEvenPaths[i], reference.luminanceOddPaths[i]);
@@ -45,7 +46,8 @@ void writeCloudPixelsCsv(const std::filesystem::path& file, const SceneView& vie
 
 std::vector<float> cloudPixelLuminance(const Image& image) {
   std::vector<float> luminance(image.pixelCount());
-  for (size_t i = 0; i < luminance.size(); ++i) luminance[i] = float(luminanceRec709(image.pixels.data() + size_t(image.channels) * i));
+  for (size_t i = 0; i < luminance.size(); ++i)
+    luminance[i] = float(luminanceRec709(image.pixels.data() + size_t(image.channels) * i));
   return luminance;
 }
 

@@ -10,19 +10,22 @@
 
 namespace firmament {
 
-std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& s, const CloudNoiseSettings& noise) {
-  const std::string fields = std::to_string(s.samplesPerPixel) + "/" + std::to_string(s.seed) + "/" + std::to_string(s.maxEvents) + "/" +
-                             std::to_string(s.sunOpticalDepthSteps) + "/" + roundTripDecimal(s.maxDistance_m) + "/" +
-                             std::to_string(s.maxScatteringOrder) + "/" + roundTripDecimal(s.deltaLobeMinG) + "/" +
-                             std::to_string(int(s.exactSingleScattering)) + "/noise " + std::to_string(noise.shapeSize) + " " +
-                             std::to_string(noise.detailSize) + " " + std::to_string(noise.curlSize) + " " +
-                             std::to_string(noise.blueNoiseSize) + "/cloud-reference-v" + std::to_string(kCloudReferenceVersion);
+std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& s,
+                                   const CloudNoiseSettings& noise) {
+  const std::string fields = std::to_string(s.samplesPerPixel) + "/" + std::to_string(s.seed) + "/" +
+                             std::to_string(s.maxEvents) + "/" + std::to_string(s.sunOpticalDepthSteps) + "/" +
+                             roundTripDecimal(s.maxDistance_m) + "/" + std::to_string(s.maxScatteringOrder) + "/" +
+                             roundTripDecimal(s.deltaLobeMinG) + "/" + std::to_string(int(s.exactSingleScattering)) +
+                             "/noise " + std::to_string(noise.shapeSize) + " " + std::to_string(noise.detailSize) +
+                             " " + std::to_string(noise.curlSize) + " " + std::to_string(noise.blueNoiseSize) +
+                             "/cloud-reference-v" + std::to_string(kCloudReferenceVersion);
   return scene.hash() + "-" + hex16(fnv1a(fields));
 }
 
 CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTracer& tracer, glm::dvec3 cameraPosition,
-                                         const shared::CameraParameters& camera, int threads, const CloudNoiseSettings& noise,
-                                         const std::filesystem::path& folder, const std::string& name, bool* fromCache) {
+                                         const shared::CameraParameters& camera, int threads,
+                                         const CloudNoiseSettings& noise, const std::filesystem::path& folder,
+                                         const std::string& name, bool* fromCache) {
   const CloudReferenceSettings& settings = tracer.settings();
   const std::string stem = name + "-" + cloudReferenceCacheKey(scene, settings, noise);
   const std::filesystem::path imageFile = folder / (stem + ".exr"), luminanceFile = folder / (stem + "-luminance.exr");
@@ -55,7 +58,8 @@ CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTrac
           }
           // As renderCloudReference flags them: the pixel's ray inside the tracer's aureole cone.
           bool valid = true;
-          const glm::dvec3 dir = shared::cameraRayDirection(camera, glm::dvec2(double(i % size_t(width)) + 0.5, double(i / size_t(width)) + 0.5), valid);
+          const glm::dvec3 dir = shared::cameraRayDirection(
+              camera, glm::dvec2(double(i % size_t(width)) + 0.5, double(i / size_t(width)) + 0.5), valid);
           cached.inAureole[i] = valid && glm::dot(dir, tracer.sunDirection()) > tracer.aureoleCosine() ? 1 : 0;
         }
         auto it = cached.image.metadata.find("firmament.timing.reference_s");
@@ -63,7 +67,8 @@ CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTrac
         if (fromCache) *fromCache = true;
         return cached;
       }
-      logWarning("cloud reference cache: " + imageFile.string() + " does not fit the scene's image; rendering it again");
+      logWarning("cloud reference cache: " + imageFile.string() +
+                 " does not fit the scene's image; rendering it again");
     } catch (const std::exception& e) {
       logWarning(std::string("cloud reference cache: ") + e.what() + "; rendering it again");
     }
@@ -84,7 +89,8 @@ CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTrac
     luminance.pixels[4 * i + 2] = float(halves ? reference.luminanceEvenPaths[i] : reference.luminance[i]);
     luminance.pixels[4 * i + 3] = float(halves ? reference.luminanceOddPaths[i] : reference.luminance[i]);
   }
-  luminance.metadata["firmament.units"] = "R: luminance, G: its standard error, B, A: the even and odd paths' luminance; cd/m^2";
+  luminance.metadata["firmament.units"] =
+      "R: luminance, G: its standard error, B, A: the even and odd paths' luminance; cd/m^2";
   std::filesystem::create_directories(folder, ec);
   if (ec) throw InputError("cannot create " + folder.string() + ": " + ec.message());
   writeExr(luminanceFile, luminance);

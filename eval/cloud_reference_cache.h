@@ -19,14 +19,16 @@ constexpr int kCloudReferenceVersion = 1;
 
 // "<scene hash>-<settings hash>": every field of CloudReferenceSettings that changes the pixels (not the
 // thread count), the noise sizes and kCloudReferenceVersion.
-std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& settings, const CloudNoiseSettings& noise);
+std::string cloudReferenceCacheKey(const Scene& scene, const CloudReferenceSettings& settings,
+                                   const CloudNoiseSettings& noise);
 
 // Reads folder/<name>-<key>{,-luminance}.exr when both are present and fit the camera's image size;
 // else renders the reference (renderCloudReference with these arguments) and writes it there
 // (atomically, each file). The aureole flags are recomputed from the camera and the tracer either way;
 // the halves are left empty for a reference of fewer than 2 paths per pixel. fromCache says which.
 CloudReferenceImage cachedCloudReference(const Scene& scene, const CloudPathTracer& tracer, glm::dvec3 cameraPosition,
-                                         const shared::CameraParameters& camera, int threads, const CloudNoiseSettings& noise,
-                                         const std::filesystem::path& folder, const std::string& name, bool* fromCache = nullptr);
+                                         const shared::CameraParameters& camera, int threads,
+                                         const CloudNoiseSettings& noise, const std::filesystem::path& folder,
+                                         const std::string& name, bool* fromCache = nullptr);
 
 }  // namespace firmament

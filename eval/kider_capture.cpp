@@ -74,7 +74,8 @@ void readSpectrum(const std::filesystem::path& file, KiderSample& sample) {
   sample.firstWavelengthNm = wavelengths.front();
   sample.spacingNm = (wavelengths.back() - wavelengths.front()) / double(wavelengths.size() - 1);
   for (size_t i = 0; i < wavelengths.size(); ++i)
-    if (std::abs(wavelengths[i] - (sample.firstWavelengthNm + double(i) * sample.spacingNm)) > 1e-6 * sample.spacingNm ||
+    if (std::abs(wavelengths[i] - (sample.firstWavelengthNm + double(i) * sample.spacingNm)) >
+            1e-6 * sample.spacingNm ||
         !(sample.spacingNm > 0))
       throw InputError(file.string() + ": the wavelengths are not evenly spaced and increasing");
 }

@@ -29,8 +29,8 @@ struct KiderSample {
 };
 
 struct KiderCapture {
-  std::string name;  // the folder name, e.g. "2013-05-27___11.45.00" (local time)
-  std::string utc;   // ISO 8601 UTC of the capture
+  std::string name;                  // the folder name, e.g. "2013-05-27___11.45.00" (local time)
+  std::string utc;                   // ISO 8601 UTC of the capture
   std::vector<KiderSample> samples;  // sorted by index
 };
 

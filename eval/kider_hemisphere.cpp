@@ -9,8 +9,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Catmull-Rom through a0 (t = 0) and a1 (t = 1), with tangents (a1 - am1) / 2 and (a2 - a0) / 2.
 double catmullRom(double t, double am1, double a0, double a1, double a2) {
-  return 0.5 * (2.0 * a0 + t * ((a1 - am1) + t * ((2.0 * am1 - 5.0 * a0 + 4.0 * a1 - a2) +
-                                                  t * (-am1 + 3.0 * a0 - 3.0 * a1 + a2))));
+  return 0.5 * (2.0 * a0 + t * ((a1 - am1) +
+                                t * ((2.0 * am1 - 5.0 * a0 + 4.0 * a1 - a2) + t * (-am1 + 3.0 * a0 - 3.0 * a1 + a2))));
 }
 
 double wrapAzimuth(double azimuth) {

@@ -27,9 +27,9 @@ class KiderHemisphere {
   double operator()(double zenith, double azimuth) const;
 
  private:
-  double ring(int k, double azimuth) const;   // ring k at an azimuth, ghost rings included
-  double zenithSlope(double azimuth) const;   // d value / d ring index at the zenith, along azimuth
-  std::vector<double> rings_[5];              // ring k: 8k values (ring 0: one), n-th at n pi / (4k)
+  double ring(int k, double azimuth) const;  // ring k at an azimuth, ghost rings included
+  double zenithSlope(double azimuth) const;  // d value / d ring index at the zenith, along azimuth
+  std::vector<double> rings_[5];             // ring k: 8k values (ring 0: one), n-th at n pi / (4k)
 };
 
 // The published asymmetry about the vertical plane at `axisAzimuth`: the sum over 16 zeniths with

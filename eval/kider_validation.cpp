@@ -49,7 +49,8 @@ double equirectangularLuminance(const Image& image, double azimuth, double eleva
     y = std::clamp(y, 0, h - 1);
     return luminanceRec709(image.at(x, y));
   };
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 // The reference's medium: the scene's atmosphere at the given wavelengths, with the grass albedo
@@ -77,8 +78,9 @@ std::vector<ReferenceRadiance> renderDirections(const ReferenceRenderer& rendere
   threads = std::max(1, std::min<int>(threads, int(samples.size())));
   auto work = [&] {
     for (size_t i = next++; i < samples.size(); i = next++) {
-      out[i] = renderer.radiance(glm::dvec3(0.0, 0.0, cameraRadius),
-                                 astro::enuDirection(samples[i].zenith, samples[i].azimuth), uint64_t(samples[i].index));
+      out[i] =
+          renderer.radiance(glm::dvec3(0.0, 0.0, cameraRadius),
+                            astro::enuDirection(samples[i].zenith, samples[i].azimuth), uint64_t(samples[i].index));
       ++done;
     }
   };
@@ -154,9 +156,12 @@ std::vector<std::string> kiderAtmosphereOverrides() {
 }
 
 const std::vector<PublishedKiderResult>& publishedKiderResults() {
-  static const std::vector<PublishedKiderResult> r = {{"Bruneton 2008 (all orders)", 11.2}, {"Haber 2005", 14.7},
-                                                      {"Nishita 1996", 17.9},               {"Nishita 1993", 26.4},
-                                                      {"Hosek-Wilkie", 41.5},               {"O'Neal", 50.2},
+  static const std::vector<PublishedKiderResult> r = {{"Bruneton 2008 (all orders)", 11.2},
+                                                      {"Haber 2005", 14.7},
+                                                      {"Nishita 1996", 17.9},
+                                                      {"Nishita 1993", 26.4},
+                                                      {"Hosek-Wilkie", 41.5},
+                                                      {"O'Neal", 50.2},
                                                       {"Preetham", 88.2}};
   return r;
 }
@@ -301,7 +306,8 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     sumSquares += c.rmseSpectral * c.rmseSpectral;
     gpuSumSquares += c.gpuRelRmseLuminance * c.gpuRelRmseLuminance;
     char line[200];
-    std::snprintf(line, sizeof(line), "%s: sun zenith %.2f, azimuth %.2f (computed %.2f) deg: RMSE %.2f e-3, luminance %.2f %%",
+    std::snprintf(line, sizeof(line),
+                  "%s: sun zenith %.2f, azimuth %.2f (computed %.2f) deg: RMSE %.2f e-3, luminance %.2f %%",
                   c.capture.c_str(), c.sunZenithDeg, c.sunAzimuthDeg, c.sunAzimuthComputedDeg, c.rmseSpectral,
                   100 * c.relRmseLuminance);
     logInfo(line);

@@ -42,9 +42,9 @@ struct KiderValidationSettings {
   }();
   // The solar spectrum under the compared spectra. `instrument` (the default): ASTM G-173 read through
   // the spectroradiometer's line shape, a Gaussian of `instrumentFwhmNm` (3 nm, ASD's usual VNIR
-  // figure; docs/validation.md gives the totals for 2 and 5 nm too), because the measured radiance at λ resolves the Fraunhofer lines that a 10-nm bin averages
-  // away (at 395.25 nm, between Ca II H and K, the 3-nm reading is 0.71 of the bin's value). Each
-  // wavelength is independent (elastic scattering), so the model's radiance at λ scales with the
+  // figure; docs/validation.md gives the totals for 2 and 5 nm too), because the measured radiance at λ resolves the
+  // Fraunhofer lines that a 10-nm bin averages away (at 395.25 nm, between Ca II H and K, the 3-nm reading is 0.71 of
+  // the bin's value). Each wavelength is independent (elastic scattering), so the model's radiance at λ scales with the
   // solar irradiance at λ: the rendered spectra are rescaled by reading / bin value. `bandMeans`: the
   // atmosphere's own 10-nm means, as the published comparison's models used. The luminances always
   // use the 10-nm means (an integral over wavelength, where the bins are the right input).
@@ -52,9 +52,9 @@ struct KiderValidationSettings {
   SolarSpectrum solarSpectrum = SolarSpectrum::instrument;
   double instrumentFwhmNm = 3.0;
   static constexpr double kMaxInstrumentFwhmNm = 8.0;  // keeps the line shape inside the G-173 table
-  double cameraHeightM = 1.0;  // above the ground sphere
-  bool gpu = true;             // also sample the fast path's luminance in the same directions
-  int gpuWidth = 1440, gpuHeight = 720;  // equirectangular image the fast path renders
+  double cameraHeightM = 1.0;                          // above the ground sphere
+  bool gpu = true;                                     // also sample the fast path's luminance in the same directions
+  int gpuWidth = 1440, gpuHeight = 720;                // equirectangular image the fast path renders
 };
 
 // The atmosphere of the comparison as scene overrides on the built-in default scene (README:
@@ -84,23 +84,23 @@ struct KiderDirectionResult {
   double fileAzimuthDeg = 0.0, azimuthDeg = 0.0, zenithDeg = 0.0;
   std::vector<double> measured, model;  // at the compared wavelengths, W m^-2 sr^-1 nm^-1
   double measuredLuminance = 0.0, modelLuminance = 0.0, modelLuminanceStandardError = 0.0;  // cd/m²
-  double gpuLuminance = 0.0;  // NaN without the GPU path
+  double gpuLuminance = 0.0;                                                                // NaN without the GPU path
   double rmseSpectral = 0.0;  // 1e-3 W m^-2 sr^-1 nm^-1, over the compared wavelengths
   double biasSpectral = 0.0;  // mean(model - measured), same unit
 };
 
 struct KiderCaptureResult {
   std::string capture, utc;
-  double sunZenithDeg = 0.0;             // computed (apparent)
-  double sunAzimuthComputedDeg = 0.0;    // computed, clockwise from north
-  double sunAzimuthDeg = 0.0;            // used: re-fitted by symmetry (or the computed one)
-  std::string azimuthRefit;              // the re-fit that gave it: "published", "log rings" or "none"
-  double rmseSpectral = 0.0;             // 1e-3 W m^-2 sr^-1 nm^-1, all directions x wavelengths
-  double relRmseLuminance = 0.0;         // sqrt(mean((Ym - Ymeas)²)) / sqrt(mean(Ymeas²)) over the directions
-  double bias = 0.0;                     // mean(model - measured) spectral, 1e-3 W m^-2 sr^-1 nm^-1
-  double gpuRelRmseLuminance = 0.0;      // the fast path against the measurements (NaN without it)
-  double gpuVsReferenceRelRmse = 0.0;    // the fast path against the reference, same directions
-  double referenceNoiseRmse = 0.0;       // sqrt(mean(SE²)) of the reference's Monte Carlo noise, same unit
+  double sunZenithDeg = 0.0;           // computed (apparent)
+  double sunAzimuthComputedDeg = 0.0;  // computed, clockwise from north
+  double sunAzimuthDeg = 0.0;          // used: re-fitted by symmetry (or the computed one)
+  std::string azimuthRefit;            // the re-fit that gave it: "published", "log rings" or "none"
+  double rmseSpectral = 0.0;           // 1e-3 W m^-2 sr^-1 nm^-1, all directions x wavelengths
+  double relRmseLuminance = 0.0;       // sqrt(mean((Ym - Ymeas)²)) / sqrt(mean(Ymeas²)) over the directions
+  double bias = 0.0;                   // mean(model - measured) spectral, 1e-3 W m^-2 sr^-1 nm^-1
+  double gpuRelRmseLuminance = 0.0;    // the fast path against the measurements (NaN without it)
+  double gpuVsReferenceRelRmse = 0.0;  // the fast path against the reference, same directions
+  double referenceNoiseRmse = 0.0;     // sqrt(mean(SE²)) of the reference's Monte Carlo noise, same unit
   double referenceSeconds = 0.0;
   std::vector<KiderDirectionResult> directions;
 };
@@ -108,9 +108,9 @@ struct KiderCaptureResult {
 struct KiderValidationResult {
   std::vector<double> wavelengths;  // compared, nm
   std::vector<KiderCaptureResult> captures;
-  double totalRmseSpectral = 0.0;   // sqrt(mean over captures of rmse²), 1e-3 W m^-2 sr^-1 nm^-1
+  double totalRmseSpectral = 0.0;  // sqrt(mean over captures of rmse²), 1e-3 W m^-2 sr^-1 nm^-1
   double totalGpuRelRmseLuminance = 0.0;
-  std::string gpuDevice;            // empty without the GPU path
+  std::string gpuDevice;  // empty without the GPU path
   double seconds = 0.0;
 };
 

@@ -25,7 +25,8 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
   csv << "capture,utc,sun_zenith_deg,sun_azimuth_deg,rmse_spectral,rel_rmse_luminance,bias,azimuth_refit\n";
   for (const auto& c : result.captures)
     csv << c.capture << ',' << c.utc << ',' << num(c.sunZenithDeg, "%.4f") << ',' << num(c.sunAzimuthDeg, "%.4f") << ','
-        << num(c.rmseSpectral, "%.4f") << ',' << num(c.relRmseLuminance) << ',' << num(c.bias, "%.4f") << ',' << c.azimuthRefit << '\n';
+        << num(c.rmseSpectral, "%.4f") << ',' << num(c.relRmseLuminance) << ',' << num(c.bias, "%.4f") << ','
+        << c.azimuthRefit << '\n';
   writeTextFileAtomically(outDir / "results.csv", csv.str());
 
   std::ostringstream dirs;
@@ -67,18 +68,22 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
 
   std::ostringstream md;
   md << "# Validation against measured skies (Kider et al. 2014)\n\n"
-     << "Captures: " << result.captures.size() << ". Model: the CPU reference (spectral, double precision, all "
-        "orders; docs/reference.md), " << settings.quality.samplesPerPixel << " paths per direction, "
-     << settings.quality.wavelengthCount << " wavelengths 360 + 11.75 i nm. Run time " << num(result.seconds, "%.1f")
-     << " s.\n\n"
+     << "Captures: " << result.captures.size()
+     << ". Model: the CPU reference (spectral, double precision, all "
+        "orders; docs/reference.md), "
+     << settings.quality.samplesPerPixel << " paths per direction, " << settings.quality.wavelengthCount
+     << " wavelengths 360 + 11.75 i nm. Run time " << num(result.seconds, "%.1f") << " s.\n\n"
      << "Error measure (Bruneton 2017, as published): per capture, the RMS over the directions and over "
      << result.wavelengths.size() << " wavelengths (" << num(result.wavelengths.front()) << "–"
-     << num(result.wavelengths.back()) << " nm) of the spectral radiance difference, in 10⁻³ W·m⁻²·sr⁻¹·nm⁻¹; "
+     << num(result.wavelengths.back())
+     << " nm) of the spectral radiance difference, in 10⁻³ W·m⁻²·sr⁻¹·nm⁻¹; "
         "total = sqrt(mean over captures of RMSE²). Nothing is fitted to the captures (docs/validation.md).\n\n"
      << "## Total\n\n| model | total RMSE (10⁻³ W·m⁻²·sr⁻¹·nm⁻¹) |\n|---|---|\n"
      << "| **Firmament CPU reference (this run)** | **" << num(result.totalRmseSpectral, "%.1f") << "** |\n";
-  for (const auto& p : publishedKiderResults()) md << "| " << p.model << " (published) | " << num(p.totalRmse, "%.1f") << " |\n";
-  md << "\n## Per capture\n\nThe reference noise RMSE is sqrt(mean(SE²)) of its Monte Carlo standard errors over the same "
+  for (const auto& p : publishedKiderResults())
+    md << "| " << p.model << " (published) | " << num(p.totalRmse, "%.1f") << " |\n";
+  md << "\n## Per capture\n\nThe reference noise RMSE is sqrt(mean(SE²)) of its Monte Carlo standard errors over the "
+        "same "
         "directions and wavelengths: it adds in quadrature to the true RMSE.\n\n"
      << "| capture | UTC | sun zenith ° | sun azimuth ° (computed → re-fitted) | RMSE spectral | bias | rel. RMSE "
         "luminance | reference noise RMSE | reference s |\n|---|---|---|---|---|---|---|---|---|\n";
@@ -92,8 +97,9 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
        << "Rendered as a " << settings.gpuWidth << "×" << settings.gpuHeight
        << " equirectangular image with the same atmosphere (three wavelengths; the grass albedo as its "
           "luminance-weighted mean, "
-       << num(grassAlbedoLuminanceWeighted(), "%.4f") << "), read bilinearly at each direction. Device: "
-       << result.gpuDevice << ".\n\n| capture | rel. RMSE luminance vs measured | vs the CPU reference |\n|---|---|---|\n";
+       << num(grassAlbedoLuminanceWeighted(), "%.4f")
+       << "), read bilinearly at each direction. Device: " << result.gpuDevice
+       << ".\n\n| capture | rel. RMSE luminance vs measured | vs the CPU reference |\n|---|---|---|\n";
     for (const auto& c : result.captures)
       md << "| " << c.capture << " | " << num(100 * c.gpuRelRmseLuminance, "%.2f") << " % | "
          << num(100 * c.gpuVsReferenceRelRmse, "%.2f") << " % |\n";
@@ -118,7 +124,8 @@ void writeKiderValidationOutputs(const std::filesystem::path& outDir, const Kide
      << "- Atmosphere: Bruneton's Earth with Ångström α = 0.8, β = 0.04, Cornette–Shanks g = 0.7, aerosol "
         "single-scattering albedo 0.8, aerosol scale height 1.2 km, no ozone, ground at sea level (6360 km), grass "
         "spectral albedo (Feister & Grewe 1995), camera "
-     << settings.cameraHeightM << " m above the ground; solar spectrum ASTM G-173 at 1 au, scaled to the "
+     << settings.cameraHeightM
+     << " m above the ground; solar spectrum ASTM G-173 at 1 au, scaled to the "
         "capture date's Earth-Sun distance.\n"
      << "- Solar spectrum under the compared spectra: "
      << (settings.solarSpectrum == KiderValidationSettings::SolarSpectrum::instrument

@@ -62,8 +62,7 @@ CachedReference cachedReferenceImage(const Scene& scene, const ReferenceQuality&
                                      [&](size_t done, size_t) { progress.set(done); });
   }
   Image image = std::move(reference.image);
-  for (size_t i = 0; i < image.pixelCount(); ++i)
-    image.pixels[i * 4 + 3] = float(reference.luminanceStandardError[i]);
+  for (size_t i = 0; i < image.pixelCount(); ++i) image.pixels[i * 4 + 3] = float(reference.luminanceStandardError[i]);
   image.metadata["firmament.scene_hash"] = scene.hash();
   image.metadata["firmament.device"] = "cpu reference";
   image.metadata["firmament.units"] = "RGB: linear Rec.709, cd/m^2; A: standard error of the luminance, cd/m^2";

@@ -13,10 +13,10 @@
 namespace firmament {
 
 struct CachedReference {
-  Image image;                    // RGBA, A = standard error of the luminance (cd/m²)
+  Image image;  // RGBA, A = standard error of the luminance (cd/m²)
   std::filesystem::path file;
   bool fromCache = false;
-  double seconds = 0.0;           // render wall clock (as recorded when it was rendered)
+  double seconds = 0.0;  // render wall clock (as recorded when it was rendered)
   double medianRelativeNoise = 0.0, p95RelativeNoise = 0.0;
 };
 

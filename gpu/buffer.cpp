@@ -9,8 +9,7 @@
 
 namespace firmament::gpu {
 
-Buffer::Buffer(Context& context, VkDeviceSize size, BufferUsage usage, MemoryLocation location,
-               const std::string& name)
+Buffer::Buffer(Context& context, VkDeviceSize size, BufferUsage usage, MemoryLocation location, const std::string& name)
     : context_(&context), size_(size), usage_(usage) {
   if (size == 0) throw RuntimeError("gpu::Buffer " + name + ": size 0");
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

@@ -16,9 +16,9 @@ std::string resultName(VkResult result);
 }  // namespace firmament::gpu
 
 // FIRMAMENT_VK(vkCreateBuffer(...)): throws firmament::RuntimeError unless the call returned VK_SUCCESS.
-#define FIRMAMENT_VK(call)                                                                   \
-  do {                                                                                       \
-    VkResult firmament_vk_result_ = (call);                                                  \
-    if (firmament_vk_result_ != VK_SUCCESS)                                                  \
-      ::firmament::gpu::throwVulkanError(firmament_vk_result_, #call, __FILE__, __LINE__);    \
+#define FIRMAMENT_VK(call)                                                                 \
+  do {                                                                                     \
+    VkResult firmament_vk_result_ = (call);                                                \
+    if (firmament_vk_result_ != VK_SUCCESS)                                                \
+      ::firmament::gpu::throwVulkanError(firmament_vk_result_, #call, __FILE__, __LINE__); \
   } while (0)

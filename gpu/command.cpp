@@ -81,8 +81,8 @@ void CommandList::bind(const ComputePipeline& pipeline, std::initializer_list<Re
         BufferUsage needed = type == BindingType::StorageBuffer ? BufferUsage::Storage : BufferUsage::Uniform;
         if (!hasUsage(resource.buffer_->usage(), needed)) throw mismatch("a buffer without that usage");
         bufferInfos[binding] = {resource.buffer_->handle(), 0, VK_WHOLE_SIZE};
-        write.descriptorType = type == BindingType::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                                                  : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        write.descriptorType =
+            type == BindingType::StorageBuffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         write.pBufferInfo = &bufferInfos[binding];
         break;
       }
@@ -184,7 +184,8 @@ uint32_t CommandList::beginRange(std::string_view label) {
 
 void CommandList::endRange(uint32_t rangeIndex) {
   // Bottom of pipe: written once every earlier command has finished.
-  if (context_.timestampsSupported()) ranges_[rangeIndex].endQuery = writeTimestamp(VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+  if (context_.timestampsSupported())
+    ranges_[rangeIndex].endQuery = writeTimestamp(VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
 }
 
 void CommandList::submitAndWait() {
@@ -213,8 +214,8 @@ void CommandList::submitAndWait() {
   std::vector<uint64_t> ticks(queryCount_);
   for (uint32_t first = 0; first < queryCount_; first += kQueriesPerPool) {
     uint32_t count = std::min(kQueriesPerPool, queryCount_ - first);
-    FIRMAMENT_VK(vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count,
-                                       count * sizeof(uint64_t), ticks.data() + first, sizeof(uint64_t),
+    FIRMAMENT_VK(vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count, count * sizeof(uint64_t),
+                                       ticks.data() + first, sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   }
   uint32_t bits = context_.timestampValidBits();

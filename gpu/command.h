@@ -43,7 +43,7 @@ struct MipLevel {
 class Resource {
  public:
   Resource(const Buffer& buffer) : buffer_(&buffer) {}  // NOLINT: implicit on purpose
-  Resource(const Image& image) : image_(&image) {}     // NOLINT
+  Resource(const Image& image) : image_(&image) {}      // NOLINT
   Resource(const Image& image, MipLevel level) : image_(&image), level_(level.level) {}
   Resource(const Image& image, const Sampler& sampler) : image_(&image), sampler_(&sampler) {}
 

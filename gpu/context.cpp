@@ -21,22 +21,32 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 DeviceType toDeviceType(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return DeviceType::Discrete;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return DeviceType::Integrated;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return DeviceType::Virtual;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return DeviceType::Cpu;
-    default: return DeviceType::Other;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return DeviceType::Discrete;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return DeviceType::Integrated;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return DeviceType::Virtual;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return DeviceType::Cpu;
+    default:
+      return DeviceType::Other;
   }
 }
 
 // Lower is better: a discrete GPU, then integrated, then any other GPU, then the CPU (lavapipe).
 int preferenceRank(DeviceType type) {
   switch (type) {
-    case DeviceType::Discrete: return 0;
-    case DeviceType::Integrated: return 1;
-    case DeviceType::Virtual: return 2;
-    case DeviceType::Other: return 3;
-    case DeviceType::Cpu: return 4;
+    case DeviceType::Discrete:
+      return 0;
+    case DeviceType::Integrated:
+      return 1;
+    case DeviceType::Virtual:
+      return 2;
+    case DeviceType::Other:
+      return 3;
+    case DeviceType::Cpu:
+      return 4;
   }
   return 5;
 }
@@ -116,11 +126,16 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
 
 const char* deviceTypeName(DeviceType type) {
   switch (type) {
-    case DeviceType::Discrete: return "discrete GPU";
-    case DeviceType::Integrated: return "integrated GPU";
-    case DeviceType::Virtual: return "virtual GPU";
-    case DeviceType::Cpu: return "CPU";
-    case DeviceType::Other: return "other";
+    case DeviceType::Discrete:
+      return "discrete GPU";
+    case DeviceType::Integrated:
+      return "integrated GPU";
+    case DeviceType::Virtual:
+      return "virtual GPU";
+    case DeviceType::Cpu:
+      return "CPU";
+    case DeviceType::Other:
+      return "other";
   }
   return "other";
 }
@@ -178,8 +193,7 @@ void Context::release() {
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                        VkDebugUtilsMessageTypeFlagsEXT types,
-                                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                       void* user) {
+                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* self = static_cast<Context*>(user);
   std::string text = data && data->pMessage ? data->pMessage : "(no message)";
   // The loader reports its own housekeeping (drivers it skipped) through the same messenger; those
@@ -236,10 +250,9 @@ void Context::createInstance(bool validation) {
   }
 
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_VERBOSE_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_VERBOSE_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT |
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
   messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
@@ -306,9 +319,10 @@ void Context::pickPhysicalDevice(const std::string& selector) {
       if (!chosen || preferenceRank(d.type) < preferenceRank(infos[*chosen].type)) chosen = d.index;
     }
     if (!chosen)
-      throw RuntimeError("no Vulkan device can run Firmament (Vulkan 1.3 compute with push descriptors); "
-                         "install mesa-vulkan-drivers for lavapipe, the CPU fallback. Devices:" +
-                         deviceList(infos) + rejected);
+      throw RuntimeError(
+          "no Vulkan device can run Firmament (Vulkan 1.3 compute with push descriptors); "
+          "install mesa-vulkan-drivers for lavapipe, the CPU fallback. Devices:" +
+          deviceList(infos) + rejected);
   }
   physicalDevice_ = devices[*chosen];
   info_ = infos[*chosen];
@@ -340,8 +354,8 @@ void Context::createDevice() {
   features_.scalarBlockLayout = supported12.scalarBlockLayout;
   features_.shaderInt64 = supported.features.shaderInt64;
   features_.shaderFloat64 = supported.features.shaderFloat64;
-  features_.storageImageWithoutFormat = supported.features.shaderStorageImageReadWithoutFormat &&
-                                        supported.features.shaderStorageImageWriteWithoutFormat;
+  features_.storageImageWithoutFormat =
+      supported.features.shaderStorageImageReadWithoutFormat && supported.features.shaderStorageImageWriteWithoutFormat;
 
   // maintenance4 is mandatory in Vulkan 1.3 and needed: glslang's vulkan1.3 target emits LocalSizeId.
   VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -370,8 +384,8 @@ void Context::createDevice() {
   FIRMAMENT_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
-  cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
-      vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  cmdPushDescriptorSet =
+      reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!cmdPushDescriptorSet) throw RuntimeError("vkCmdPushDescriptorSetKHR is missing on " + info_.name);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -428,7 +442,9 @@ void Context::submitOneShot(const std::function<void(VkCommandBuffer)>& record) 
   VkCommandBuffer commands = VK_NULL_HANDLE;
   FIRMAMENT_VK(vkAllocateCommandBuffers(device_, &allocInfo, &commands));
   struct Free {  // returns the buffer to the pool even when recording throws
-    VkDevice device; VkCommandPool pool; VkCommandBuffer commands;
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer commands;
     ~Free() { vkFreeCommandBuffers(device, pool, 1, &commands); }
   } release{device_, oneShotPool_, commands};
 

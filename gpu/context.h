@@ -35,7 +35,7 @@ bool validationRequestedByEnvironment();
 
 // Optional device features, enabled when the device has them (lavapipe and NVIDIA have all).
 struct DeviceFeatures {
-  bool scalarBlockLayout = false;     // GL_EXT_scalar_block_layout: C++ structs with vec3 as-is
+  bool scalarBlockLayout = false;  // GL_EXT_scalar_block_layout: C++ structs with vec3 as-is
   bool shaderInt64 = false;
   bool shaderFloat64 = false;
   bool storageImageWithoutFormat = false;  // read and write storage images with no format qualifier
@@ -88,8 +88,7 @@ class Context {
   void clearValidationMessages();
 
   // A memory type index with all `required` flags, preferring one that also has `preferred`.
-  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
-                          VkMemoryPropertyFlags preferred = 0) const;
+  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred = 0) const;
   VkMemoryPropertyFlags memoryTypeFlags(uint32_t typeIndex) const;
 
   // Records `record` into a fresh command buffer, submits it and waits (uploads, layout changes).
@@ -110,8 +109,7 @@ class Context {
  private:
   static VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                        VkDebugUtilsMessageTypeFlagsEXT types,
-                                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                       void* user);
+                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
   void release();
   void createInstance(bool validation);
   void pickPhysicalDevice(const std::string& selector);

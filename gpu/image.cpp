@@ -15,22 +15,36 @@ namespace firmament::gpu {
 
 VkFormat vulkanFormat(Format format) {
   switch (format) {
-    case Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case Format::RG32F: return VK_FORMAT_R32G32_SFLOAT;
-    case Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
-    case Format::R32F: return VK_FORMAT_R32_SFLOAT;
-    case Format::R16F: return VK_FORMAT_R16_SFLOAT;
-    case Format::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case Format::RGBA32F:
+      return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case Format::RGBA16F:
+      return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case Format::RG32F:
+      return VK_FORMAT_R32G32_SFLOAT;
+    case Format::RG16F:
+      return VK_FORMAT_R16G16_SFLOAT;
+    case Format::R32F:
+      return VK_FORMAT_R32_SFLOAT;
+    case Format::R16F:
+      return VK_FORMAT_R16_SFLOAT;
+    case Format::RGBA8:
+      return VK_FORMAT_R8G8B8A8_UNORM;
   }
   return VK_FORMAT_UNDEFINED;
 }
 
 uint32_t channelCount(Format format) {
   switch (format) {
-    case Format::RGBA32F: case Format::RGBA16F: case Format::RGBA8: return 4;
-    case Format::RG32F: case Format::RG16F: return 2;
-    case Format::R32F: case Format::R16F: return 1;
+    case Format::RGBA32F:
+    case Format::RGBA16F:
+    case Format::RGBA8:
+      return 4;
+    case Format::RG32F:
+    case Format::RG16F:
+      return 2;
+    case Format::R32F:
+    case Format::R16F:
+      return 1;
   }
   return 0;
 }
@@ -38,9 +52,16 @@ uint32_t channelCount(Format format) {
 namespace {
 uint32_t bytesPerChannel(Format format) {
   switch (format) {
-    case Format::RGBA32F: case Format::RG32F: case Format::R32F: return 4;
-    case Format::RGBA16F: case Format::RG16F: case Format::R16F: return 2;
-    case Format::RGBA8: return 1;
+    case Format::RGBA32F:
+    case Format::RG32F:
+    case Format::R32F:
+      return 4;
+    case Format::RGBA16F:
+    case Format::RG16F:
+    case Format::R16F:
+      return 2;
+    case Format::RGBA8:
+      return 1;
   }
   return 0;
 }
@@ -50,13 +71,20 @@ uint32_t bytesPerTexel(Format format) { return channelCount(format) * bytesPerCh
 
 const char* formatName(Format format) {
   switch (format) {
-    case Format::RGBA32F: return "rgba32f";
-    case Format::RGBA16F: return "rgba16f";
-    case Format::RG32F: return "rg32f";
-    case Format::RG16F: return "rg16f";
-    case Format::R32F: return "r32f";
-    case Format::R16F: return "r16f";
-    case Format::RGBA8: return "rgba8";
+    case Format::RGBA32F:
+      return "rgba32f";
+    case Format::RGBA16F:
+      return "rgba16f";
+    case Format::RG32F:
+      return "rg32f";
+    case Format::RG16F:
+      return "rg16f";
+    case Format::R32F:
+      return "r32f";
+    case Format::R16F:
+      return "r16f";
+    case Format::RGBA8:
+      return "rgba8";
   }
   return "?";
 }
@@ -69,8 +97,8 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
   uint32_t fullChain = 1;
   while ((largest >> fullChain) > 0) ++fullChain;
   if (desc.mipLevels == 0 || desc.mipLevels > fullChain)
-    throw RuntimeError("gpu::Image " + desc.name + ": " + std::to_string(desc.mipLevels) + " mip levels; allowed 1 to " +
-                       std::to_string(fullChain));
+    throw RuntimeError("gpu::Image " + desc.name + ": " + std::to_string(desc.mipLevels) +
+                       " mip levels; allowed 1 to " + std::to_string(fullChain));
   VkFormat format = vulkanFormat(desc.format);
   VkFormatProperties properties;
   vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), format, &properties);
@@ -183,8 +211,8 @@ void transition(VkCommandBuffer commands, VkImage image, VkImageLayout from, VkI
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0,
-                       nullptr, 0, nullptr, 1, &barrier);
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
+                       0, nullptr, 1, &barrier);
 }
 
 VkBufferImageCopy wholeLevelRegion(glm::uvec3 extent, uint32_t level) {
@@ -212,7 +240,8 @@ void Image::upload(const void* data, size_t bytes) {
 
 VkImageView Image::storageView(uint32_t level) const {
   if (level >= desc_.mipLevels)
-    throw RuntimeError("gpu::Image " + desc_.name + ": level " + std::to_string(level) + " of " + std::to_string(desc_.mipLevels));
+    throw RuntimeError("gpu::Image " + desc_.name + ": level " + std::to_string(level) + " of " +
+                       std::to_string(desc_.mipLevels));
   return levelViews_.empty() ? view_ : levelViews_[level];
 }
 

@@ -54,7 +54,7 @@ class Image {
   Image& operator=(const Image&) = delete;
 
   VkImage handle() const { return image_; }
-  VkImageView view() const { return view_; }  // every mip level
+  VkImageView view() const { return view_; }      // every mip level
   VkImageView storageView(uint32_t level) const;  // one level, for a storage binding
   uint32_t mipLevels() const { return desc_.mipLevels; }
   const ImageDesc& desc() const { return desc_; }

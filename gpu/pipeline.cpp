@@ -11,10 +11,14 @@ namespace firmament::gpu {
 
 const char* bindingTypeName(BindingType type) {
   switch (type) {
-    case BindingType::StorageBuffer: return "storage buffer";
-    case BindingType::UniformBuffer: return "uniform buffer";
-    case BindingType::StorageImage: return "storage image";
-    case BindingType::SampledImage: return "sampled image";
+    case BindingType::StorageBuffer:
+      return "storage buffer";
+    case BindingType::UniformBuffer:
+      return "uniform buffer";
+    case BindingType::StorageImage:
+      return "storage image";
+    case BindingType::SampledImage:
+      return "sampled image";
   }
   return "?";
 }
@@ -22,10 +26,14 @@ const char* bindingTypeName(BindingType type) {
 namespace {
 VkDescriptorType descriptorType(BindingType type) {
   switch (type) {
-    case BindingType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case BindingType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case BindingType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    case BindingType::SampledImage: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case BindingType::StorageBuffer:
+      return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingType::UniformBuffer:
+      return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingType::StorageImage:
+      return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case BindingType::SampledImage:
+      return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   }
   return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
@@ -71,8 +79,8 @@ ComputePipeline::ComputePipeline(Context& context, const PipelineDesc& desc) : c
     std::vector<VkSpecializationMapEntry> entries;
     for (uint32_t i = 0; i < desc.specialization.size(); ++i)
       entries.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
-    VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), desc.specialization.size() * sizeof(uint32_t),
-                                        desc.specialization.data()};
+    VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
+                                        desc.specialization.size() * sizeof(uint32_t), desc.specialization.data()};
     if (!entries.empty()) info.stage.pSpecializationInfo = &specialization;
     info.layout = layout_;
     FIRMAMENT_VK(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &info, nullptr, &pipeline_));

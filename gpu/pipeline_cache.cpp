@@ -39,8 +39,7 @@ std::filesystem::path defaultCacheDir() {
   return {};
 }
 
-PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& properties,
-                             std::filesystem::path dir)
+PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& properties, std::filesystem::path dir)
     : device_(device), properties_(properties) {
   std::vector<char> data;
   if (!dir.empty()) {
@@ -80,8 +79,8 @@ bool PipelineCache::headerMatches(const std::vector<char>& data) const {
   if (data.size() < sizeof(header)) return false;
   std::memcpy(&header, data.data(), sizeof(header));
   return header.headerSize >= sizeof(header) && header.headerSize <= data.size() &&
-         header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
-         header.vendorID == properties_.vendorID && header.deviceID == properties_.deviceID &&
+         header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header.vendorID == properties_.vendorID &&
+         header.deviceID == properties_.deviceID &&
          std::memcmp(header.pipelineCacheUUID, properties_.pipelineCacheUUID, VK_UUID_SIZE) == 0;
 }
 

@@ -22,7 +22,8 @@ class Sampler {
  public:
   Sampler() = default;
   Sampler(Context& context, const SamplerDesc& desc);
-  Sampler(Context& context, Filter filter, AddressMode mode) : Sampler(context, SamplerDesc{filter, mode, mode, mode}) {}
+  Sampler(Context& context, Filter filter, AddressMode mode)
+      : Sampler(context, SamplerDesc{filter, mode, mode, mode}) {}
   ~Sampler();
   Sampler(Sampler&& other) noexcept;
   Sampler& operator=(Sampler&& other) noexcept;

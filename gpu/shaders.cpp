@@ -11,8 +11,7 @@ std::span<const uint32_t> shaderCode(const std::string& name) {
   if (found != registry.end()) return found->second;
   std::string known;
   for (const auto& [key, code] : registry) known += (known.empty() ? "" : ", ") + key;
-  throw RuntimeError("no compiled shader named \"" + name + "\" (a shaders/" + name +
-                     ".comp file); known: " + known);
+  throw RuntimeError("no compiled shader named \"" + name + "\" (a shaders/" + name + ".comp file); known: " + known);
 }
 
 std::string shaderCodeHash(std::initializer_list<const char*> names) {

@@ -38,7 +38,7 @@ struct AerialPerspectiveVolumeSettings {
 // (the volume's alpha channels, common/aerial_perspective.glsl) for the sky behind
 // (sky/cloud_light_shafts.comp).
 struct AerialCloudShadow {
-  const gpu::Image* map = nullptr;  // RGBA32F: front depth, mean extinction, total optical depth
+  const gpu::Image* map = nullptr;        // RGBA32F: front depth, mean extinction, total optical depth
   const gpu::Sampler* sampler = nullptr;  // linear, clamp
   glm::dvec3 centre{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0};
   double extent_m = 1.0, start_m = 0.0;

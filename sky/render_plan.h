@@ -18,9 +18,9 @@ enum class MultipleScattering { HillaireFms, BrunetonTables };
 // The render options that change which passes run.
 struct PlanOptions {
   MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
-  int scatteringOrders = 4;  // BrunetonTables only
-  bool skyViewLut = true;     // HillaireFms: read a per-frame sky-view table (cameras inside the atmosphere)
-  int spectralSamples = 3;    // HillaireFms: wavelengths, in batches of three
+  int scatteringOrders = 4;          // BrunetonTables only
+  bool skyViewLut = true;            // HillaireFms: read a per-frame sky-view table (cameras inside the atmosphere)
+  int spectralSamples = 3;           // HillaireFms: wavelengths, in batches of three
   int multipleScatteringOrders = 3;  // HillaireFms: Psi_ms orders iterated (1 = Hillaire's one pass)
   // Replaces the scene's /clouds/aerial_perspective (SkyRenderOptions::clouds.aerialPerspective).
   std::optional<AerialPerspective> aerialPerspective;
@@ -35,14 +35,14 @@ struct PlanOptions {
   // The march's defaults unless set (SkyRenderOptions::clouds.lightThroughOtherLayers, .otherLayerMap).
   std::optional<bool> cloudLightThroughOtherLayers;
   std::optional<bool> cloudOtherLayerMap;
-  std::optional<bool> cloudColumnMap;  // SkyRenderOptions::clouds.columnMap
+  std::optional<bool> cloudColumnMap;      // SkyRenderOptions::clouds.columnMap
   std::optional<bool> cloudDeepShadowMap;  // SkyRenderOptions::clouds.deepShadowMap
 };
 
 struct PlannedPass {
-  std::string name;    // the pass and its shader, e.g. "atmosphere/transmittance_lut"
-  std::string output;  // what it produces
-  std::string reason;  // why this scene needs it
+  std::string name;      // the pass and its shader, e.g. "atmosphere/transmittance_lut"
+  std::string output;    // what it produces
+  std::string reason;    // why this scene needs it
   bool perFrame = true;  // false: depends on parameters only, cached by their hash
 };
 

@@ -10,7 +10,7 @@ namespace firmament {
 namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 constexpr double kAstronomicalUnit = 1.495978707e11;  // m (IAU 2012 Resolution B2)
-}
+}  // namespace
 
 SceneView makeSceneView(const Scene& scene) {
   SceneView view;
@@ -37,8 +37,8 @@ SceneView makeSceneView(const Scene& scene) {
     view.atmosphere.solarIrradianceScale = 1.0 / (view.sunDistanceAu * view.sunDistanceAu);
   }
   // The ground sphere is at the location's height (atmosphereParametersAt); the camera is above it.
-  view.cameraRadius = view.atmosphere.bottomRadius + view.atmosphere.groundHeight +
-                      scene.number("/camera/height_above_ground_m");
+  view.cameraRadius =
+      view.atmosphere.bottomRadius + view.atmosphere.groundHeight + scene.number("/camera/height_above_ground_m");
 
   shared::CameraParameters& c = view.camera;
   shared::cameraBasis(scene.number("/camera/yaw_deg") * kDegree, scene.number("/camera/pitch_deg") * kDegree,
@@ -56,8 +56,8 @@ SceneView makeSceneView(const Scene& scene) {
 
 ExposureSettings sceneExposure(const Scene& scene) {
   ExposureSettings exposure;
-  exposure.mode = scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed
-                                                                   : ExposureSettings::Mode::Auto;
+  exposure.mode =
+      scene.string("/camera/exposure/mode") == "fixed" ? ExposureSettings::Mode::Fixed : ExposureSettings::Mode::Auto;
   exposure.ev100 = scene.number("/camera/exposure/ev100");
   exposure.compensationEv = scene.number("/camera/exposure/compensation_ev");
   exposure.tonemap = scene.string("/camera/exposure/tonemap");

@@ -18,11 +18,11 @@ struct SceneView {
   // Frame: the local East-North-Up axes of the ground point, origin at the planet centre; the
   // camera sits on the +z axis.
   glm::dvec3 sunDirection{0.0, 0.0, 1.0};
-  double sunZenith = 0.0;   // rad (apparent, refraction included when computed from time)
-  double sunAzimuth = 0.0;  // rad clockwise from north
-  std::string sunSource;    // "time and location" or "scene sun section"
+  double sunZenith = 0.0;      // rad (apparent, refraction included when computed from time)
+  double sunAzimuth = 0.0;     // rad clockwise from north
+  std::string sunSource;       // "time and location" or "scene sun section"
   double sunDistanceAu = 1.0;  // Earth-Sun distance (au): from the ephemeris, 1 with a scene sun section
-  double cameraRadius = 0.0;  // m from the planet centre
+  double cameraRadius = 0.0;   // m from the planet centre
   shared::CameraParameters camera{};
 };
 

@@ -52,7 +52,8 @@ CloudWeatherMap cloudMapOf(const WeatherModel& model, const weather::RegionPlace
 CloudWeatherMap interpolate(const CloudWeatherMap& a, const CloudWeatherMap& b, double w) {
   CloudWeatherMap m = a;
   const float wf = float(w);
-  for (size_t i = 0; i < m.map.pixels.size(); ++i) m.map.pixels[i] = (1.0f - wf) * a.map.pixels[i] + wf * b.map.pixels[i];
+  for (size_t i = 0; i < m.map.pixels.size(); ++i)
+    m.map.pixels[i] = (1.0f - wf) * a.map.pixels[i] + wf * b.map.pixels[i];
   if (a.skew != b.skew) m.skew = (1.0 - w) * a.skew + w * b.skew;
   return m;
 }
@@ -85,8 +86,7 @@ void clearSceneWeatherCache() {
 
 CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* info) {
   if (info) *info = {};
-  if (!scene.hasSection("weather"))
-    return proceduralCloudWeatherMap(uint32_t(scene.number("/clouds/seed")));
+  if (!scene.hasSection("weather")) return proceduralCloudWeatherMap(uint32_t(scene.number("/clouds/seed")));
 
   const double latitude = scene.number("/location/latitude_deg"), longitude = scene.number("/location/longitude_deg");
   const std::string utc = scene.string("/time/utc");
@@ -104,7 +104,8 @@ CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* in
       if (info) *info = {run_s, 0.0, 0.0, true, false};
       return it->second;
     }
-    if (auto it = cache.checkpoints.find(day); it != cache.checkpoints.end() && it->second.model.time_s() <= run_s + 1e-6)
+    if (auto it = cache.checkpoints.find(day);
+        it != cache.checkpoints.end() && it->second.model.time_s() <= run_s + 1e-6)
       from.emplace(it->second);
   }
 

@@ -19,7 +19,7 @@
 namespace firmament {
 
 struct SceneWeatherInfo {
-  double simulated_s = 0.0;  // model time of the map since the solar midnight (0 for the procedural map)
+  double simulated_s = 0.0;   // model time of the map since the solar midnight (0 for the procedural map)
   double stepped_s = 0.0;     // model time this call ran in whole steps (from 0 or a checkpoint; 0 when cached)
   double milliseconds = 0.0;  // wall clock of the simulation (0 when cached or procedural)
   bool cached = false;

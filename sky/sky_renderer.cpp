@@ -58,11 +58,11 @@ gpu::PipelineDesc renderSkyPipeline(const char* shader) {
 SkyRenderer::SkyRenderer(gpu::Context& context)
     : context_(context),
       luts_(context),
-      skyViewPipeline_(context, {"sky/sky_view_lut",
-                                 {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
-                                  gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
-                                 4 * sizeof(float)}),
+      skyViewPipeline_(
+          context, {"sky/sky_view_lut",
+                    {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                     gpu::BindingType::StorageImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
+                    4 * sizeof(float)}),
       skyPipeline_(context, renderSkyPipeline("sky/render_sky")),
       frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
 
@@ -92,11 +92,11 @@ int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool
 
 // What one render() carries from step to step.
 struct SkyRenderer::Frame {
-  SkyRenderOptions options;  // the request, its automatic choices resolved (spectral samples)
-  bool useTables = false;    // Bruneton's 4D tables read per pixel instead of the f_ms march
-  bool useSkyView = false;   // the sky-view table read per pixel (else a march per pixel per batch)
-  bool derivedRecorded = false;   // the derived tables (4D tables or the ground's skylight) were recomputed
-  bool lutsComputed = false;      // the atmosphere LUTs were computed (not from memory or disk)
+  SkyRenderOptions options;               // the request, its automatic choices resolved (spectral samples)
+  bool useTables = false;                 // Bruneton's 4D tables read per pixel instead of the f_ms march
+  bool useSkyView = false;                // the sky-view table read per pixel (else a march per pixel per batch)
+  bool derivedRecorded = false;           // the derived tables (4D tables or the ground's skylight) were recomputed
+  bool lutsComputed = false;              // the atmosphere LUTs were computed (not from memory or disk)
   std::unique_ptr<CloudSettings> clouds;  // null without cloud layers
   std::unique_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
   gpu::TileDispatch tiles{};
@@ -123,7 +123,8 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
   result.view = makeSceneView(scene);
   frame.options = requested;
   const bool hasClouds = sceneHasCloudLayers(scene);
-  if (hasClouds && frame.useTables) throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
+  if (hasClouds && frame.useTables)
+    throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
   frame.options.luts.spectralSamples =
       resolveSpectralSamples(frame.options.luts.spectralSamples, result.view.sunZenith, hasClouds, frame.useTables);
   result.spectralSamples = frame.options.luts.spectralSamples;
@@ -213,8 +214,8 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
   block.image[3] = options.viewSteps;
   // The sky-view table holds the sky seen from inside the atmosphere; from above its top every
   // pixel is marched (the same integral, so there is no seam at the switch).
-  const bool useSkyView = !useTables && options.method == SkyMethod::SkyViewLut &&
-                          view.cameraRadius <= luts_.parameters().top_radius;
+  const bool useSkyView =
+      !useTables && options.method == SkyMethod::SkyViewLut && view.cameraRadius <= luts_.parameters().top_radius;
   frame.useSkyView = useSkyView;
   result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
   block.options[0] = useSkyView ? 1 : 0;
@@ -240,8 +241,8 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
   std::string skyViewKey;
   if (useSkyView) {
     char inputs[160];  // the floats the pass is given, exactly (%a)
-    std::snprintf(inputs, sizeof(inputs), "|%a|%a|%d|%dx%d", double(float(view.cameraRadius)), double(float(view.sunDirection.z)),
-                  options.viewSteps, options.skyViewWidth, options.skyViewHeight);
+    std::snprintf(inputs, sizeof(inputs), "|%a|%a|%d|%dx%d", double(float(view.cameraRadius)),
+                  double(float(view.sunDirection.z)), options.viewSteps, options.skyViewWidth, options.skyViewHeight);
     skyViewKey = luts_.key() + inputs;
   }
   if (frame.derivedRecorded || frame.lutsComputed) skyViewKey_.clear();  // inputs recomputed
@@ -273,18 +274,22 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
     // Bruneton 2017: the in-scattering is a lookup in the 4D tables; no march.
     if (!skyTablesPipeline_)
       skyTablesPipeline_ = std::make_unique<gpu::ComputePipeline>(
-          context_, gpu::PipelineDesc{"sky/render_sky_tables",
-                                      {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                       gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                       gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
-                                       gpu::BindingType::UniformBuffer},
-                                      sizeof(TablesPush)});
+          context_, gpu::PipelineDesc{
+                        "sky/render_sky_tables",
+                        {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                         gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                         gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                        sizeof(TablesPush)});
     const gpu::Sampler& linear = luts_.linearClamp();
     const ScatteringTableSettings& t = tables_->settings();
     TablesPush push{tiles, {t.nuSize, t.muSSize, t.muSize, t.rSize}};
-    commands.bind(*skyTablesPipeline_, {luts_.atmosphereBlock(), {luts_.transmittance(), linear},
-                                        {tables_->scattering(), linear}, {tables_->singleMieScattering(), linear},
-                                        {tables_->irradiance(), linear}, output, frameBlock_});
+    commands.bind(*skyTablesPipeline_, {luts_.atmosphereBlock(),
+                                        {luts_.transmittance(), linear},
+                                        {tables_->scattering(), linear},
+                                        {tables_->singleMieScattering(), linear},
+                                        {tables_->irradiance(), linear},
+                                        output,
+                                        frameBlock_});
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "sky/render_sky_tables");
   }
@@ -292,7 +297,8 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
   const size_t renderPasses = useTables ? 0 : useSkyView ? 1 : batches;
   if (!useTables && !useSkyView && !skyMarchPipeline_)
     skyMarchPipeline_ = std::make_unique<gpu::ComputePipeline>(context_, renderSkyPipeline("sky/render_sky_march"));
-  const gpu::ComputePipeline* skyPipeline = useSkyView ? &skyPipeline_ : skyMarchPipeline_.get();  // null with the 4D tables
+  const gpu::ComputePipeline* skyPipeline =
+      useSkyView ? &skyPipeline_ : skyMarchPipeline_.get();  // null with the 4D tables
   for (size_t b = 0; b < renderPasses; ++b) {
     const AtmosphereLuts::Batch& batch = luts_.batch(b);
     struct {
@@ -339,10 +345,12 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
   const bool volume = march.aerialPerspective == AerialPerspective::Volume;
   AerialPerspectiveVolumeSettings aerialSettings = options.aerialPerspective;
   if (!(aerialSettings.maxDistance_m > 0.0)) aerialSettings.maxDistance_m = march.maxDistance_m;
-  // Light shafts: the shadow map is baked first, for the volume to read (docs/clouds/aerial-perspective-and-light-shafts.md).
+  // Light shafts: the shadow map is baked first, for the volume to read
+  // (docs/clouds/aerial-perspective-and-light-shafts.md).
   const bool shafts = volume && march.beerShadowMap && march.lightShafts;
   if (march.beerShadowMap)
-    clouds_->recordShadowMap(clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0, commands);
+    clouds_->recordShadowMap(clouds, cloudView, luts_, irradiance, output, volume ? aerialSettings.maxDistance_m : 0.0,
+                             commands);
   if (volume) {
     if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
     AerialCloudShadow shadow;
@@ -368,12 +376,14 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
       float maxDistance;
       float pad[3];
     } push{tiles, float(aerialSettings.maxDistance_m), {0.0f, 0.0f, 0.0f}};
-    commands.bind(*lightShaftsPipeline_, {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
+    commands.bind(*lightShaftsPipeline_,
+                  {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
     commands.barrier();
   }
-  clouds_->record(clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume, options.continueSequence);
+  clouds_->record(clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume,
+                  options.continueSequence);
 }
 
 // Resolve: submit and wait, the timings, the images downloaded (unless the caller keeps them on the

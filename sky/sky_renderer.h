@@ -38,14 +38,14 @@ int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool
 struct SkyRenderOptions {
   AtmosphereLutSettings luts{.spectralSamples = kSpectralSamplesAuto};
   MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
-  ScatteringTableSettings tables;              // BrunetonTables: orders (tables.scatteringOrders), sizes
-  FmsSkyIrradianceSettings fmsSkyIrradiance;   // HillaireFms: the ground's skylight table
-  SkyMethod method = SkyMethod::SkyViewLut;    // HillaireFms: how the march reaches the pixels
-  int viewSteps = 32;      // march steps along each view ray (per pixel, or per sky-view texel)
-  int skyViewWidth = 192;  // azimuth samples
-  int skyViewHeight = 108; // zenith samples
+  ScatteringTableSettings tables;             // BrunetonTables: orders (tables.scatteringOrders), sizes
+  FmsSkyIrradianceSettings fmsSkyIrradiance;  // HillaireFms: the ground's skylight table
+  SkyMethod method = SkyMethod::SkyViewLut;   // HillaireFms: how the march reaches the pixels
+  int viewSteps = 32;                         // march steps along each view ray (per pixel, or per sky-view texel)
+  int skyViewWidth = 192;                     // azimuth samples
+  int skyViewHeight = 108;                    // zenith samples
   gpu::DispatchOrder dispatchOrder = gpu::DispatchOrder::Auto;
-  CloudOverrides clouds;          // march knobs over the scene's clouds quality preset
+  CloudOverrides clouds;  // march knobs over the scene's clouds quality preset
   // The aerial-perspective volume, for scenes whose clouds read it (aerial perspective "volume").
   AerialPerspectiveVolumeSettings aerialPerspective;
   CloudNoiseSettings cloudNoise;  // noise texture sizes (tests use small ones)
@@ -72,13 +72,13 @@ struct RenderResult {
   std::vector<gpu::PassTiming> timings;  // GPU time per pass (ms), in execution order
   double frameMilliseconds = 0.0;        // GPU time of the per-frame passes
   double precomputeMilliseconds = 0.0;   // GPU time of the tables (0 when cached)
-  bool tablesReused = false;     // from memory or the disk cache
-  bool skyViewReused = false;    // a sequence's frame kept the previous frame's sky-view table (same inputs)
-  std::string tablesSource;      // atmosphere tables: "memory", "disk cache" or "computed"
+  bool tablesReused = false;             // from memory or the disk cache
+  bool skyViewReused = false;            // a sequence's frame kept the previous frame's sky-view table (same inputs)
+  std::string tablesSource;              // atmosphere tables: "memory", "disk cache" or "computed"
   std::string cloudNoiseSource;  // cloud noise textures: "memory", "disk cache" or "baked"; empty without clouds
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
-  int spectralSamples = 3;               // the wavelengths used (kSpectralSamplesAuto resolved)
-  std::string timingNote;                // non-empty when timings are wall clock
+  int spectralSamples = 3;  // the wavelengths used (kSpectralSamplesAuto resolved)
+  std::string timingNote;   // non-empty when timings are wall clock
   // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
   // is sky * a + rgb). Empty without clouds (and, like image, with SkyRenderOptions::downloadImages off).
   Image clouds;
@@ -109,14 +109,14 @@ class SkyRenderer {
   gpu::Context& context_;
   AtmosphereLuts luts_;
   std::vector<std::unique_ptr<FmsSkyIrradiance>> fmsSkyIrradiance_;  // one per spectral batch
-  std::unique_ptr<ScatteringTables> tables_;  // created on first use (5 pipelines)
+  std::unique_ptr<ScatteringTables> tables_;                         // created on first use (5 pipelines)
   gpu::ComputePipeline skyViewPipeline_;
-  gpu::ComputePipeline skyPipeline_;                       // sky/render_sky: the sky-view table read
+  gpu::ComputePipeline skyPipeline_;                        // sky/render_sky: the sky-view table read
   std::unique_ptr<gpu::ComputePipeline> skyMarchPipeline_;  // sky/render_sky_march: a march per pixel
   std::unique_ptr<gpu::ComputePipeline> skyTablesPipeline_;
-  std::unique_ptr<CloudPass> clouds_;  // created for the first scene with clouds
+  std::unique_ptr<CloudPass> clouds_;                          // created for the first scene with clouds
   std::unique_ptr<gpu::ComputePipeline> lightShaftsPipeline_;  // sky/cloud_light_shafts
-  std::unique_ptr<AerialPerspectiveVolume> aerial_;  // created for the first scene that reads it
+  std::unique_ptr<AerialPerspectiveVolume> aerial_;            // created for the first scene that reads it
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
   // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:

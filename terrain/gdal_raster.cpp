@@ -62,8 +62,7 @@ GdalRaster readGdalRaster(const fs::path& file) {
   QuietGdal quiet;
   std::unique_ptr<GDALDataset, DatasetCloser> dataset(
       GDALDataset::FromHandle(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!dataset)
-    throw InputError("'" + name + "': not a raster GDAL reads (GDAL: " + QuietGdal::last() + ")");
+  if (!dataset) throw InputError("'" + name + "': not a raster GDAL reads (GDAL: " + QuietGdal::last() + ")");
   if (dataset->GetRasterCount() < 1) throw InputError("'" + name + "': the raster has no band");
   GdalRaster r;
   r.file = name;
@@ -109,18 +108,20 @@ GdalRaster readGdalRaster(const fs::path& file) {
       continue;
     }
     if (!std::isfinite(v) || v < kLowestHeight_m || v > kHighestHeight_m)
-      throw InputError("'" + name + "': height " + number(v) + " at pixel (column " + std::to_string(k % size_t(r.width)) +
-                       ", row " + std::to_string(k / size_t(r.width)) + ") is absurd; allowed: [" +
-                       number(kLowestHeight_m) + ", " + number(kHighestHeight_m) +
+      throw InputError("'" + name + "': height " + number(v) + " at pixel (column " +
+                       std::to_string(k % size_t(r.width)) + ", row " + std::to_string(k / size_t(r.width)) +
+                       ") is absurd; allowed: [" + number(kLowestHeight_m) + ", " + number(kHighestHeight_m) +
                        "] m above sea level (Challenger Deep to above Everest). Is the raster in feet or "
                        "centimetres, or is its nodata value " +
-                       (r.hasNodata ? "(" + number(r.nodata) + ") not the one it uses" : std::string("undeclared")) + "?");
+                       (r.hasNodata ? "(" + number(r.nodata) + ") not the one it uses" : std::string("undeclared")) +
+                       "?");
     r.minimum = std::min(r.minimum, double(v));
     r.maximum = std::max(r.maximum, double(v));
     ++r.validCount;
   }
   if (r.validCount == 0)
-    throw InputError("'" + name + "': every pixel is nodata" + (r.hasNodata ? " (" + number(r.nodata) + ")" : std::string()));
+    throw InputError("'" + name + "': every pixel is nodata" +
+                     (r.hasNodata ? " (" + number(r.nodata) + ")" : std::string()));
   return r;
 }
 
@@ -248,8 +249,8 @@ void GdalPlacement::checkCoversLocation(const std::string& sceneSource) const {
   }
   const double latMin = *std::min_element(lat, lat + 4), latMax = *std::max_element(lat, lat + 4);
   const double lonMin = *std::min_element(lon, lon + 4), lonMax = *std::max_element(lon, lon + 4);
-  corners = "latitude " + number(latMin, 8) + " to " + number(latMax, 8) + ", longitude " + number(lonMin, 8) +
-            " to " + number(lonMax, 8);
+  corners = "latitude " + number(latMin, 8) + " to " + number(latMax, 8) + ", longitude " + number(lonMin, 8) + " to " +
+            number(lonMax, 8);
   const auto& loc = frame_->location();
   throw InputError(sceneSource + ": /terrain/file: the raster '" + raster_->file +
                    "' does not cover the scene: it spans " + corners + " (degrees); the scene's location is latitude " +

@@ -31,10 +31,10 @@ namespace firmament::terrain {
 // are exact), its validity, geotransform and coordinate system.
 struct GdalRaster {
   std::string file;
-  std::string driver;      // GDAL's short name ("GTiff", "SRTMHGT", ...)
-  std::string dataType;    // GDAL's name of the band's type ("UInt16", "Float32", ...)
-  std::string srsName;     // the coordinate system's name ("WGS 84", "WGS 84 / UTM zone 25S", ...)
-  std::string srsWkt;      // its WKT2
+  std::string driver;    // GDAL's short name ("GTiff", "SRTMHGT", ...)
+  std::string dataType;  // GDAL's name of the band's type ("UInt16", "Float32", ...)
+  std::string srsName;   // the coordinate system's name ("WGS 84", "WGS 84 / UTM zone 25S", ...)
+  std::string srsWkt;    // its WKT2
   int width = 0;
   int height = 0;
   std::array<double, 6> geoTransform{};  // GDAL's: x = g0 + col g1 + row g2, y = g3 + col g4 + row g5
@@ -85,6 +85,7 @@ class GdalPlacement {
 // Writes a single-band Float32 GeoTIFF with a geotransform, a coordinate system (any "EPSG:n" or WKT
 // that OGR reads) and an optional nodata value: what the tests use to make rasters, through GDAL itself.
 void writeGdalGeoTiff(const std::filesystem::path& file, int width, int height, const std::vector<float>& values,
-                      const std::array<double, 6>& geoTransform, const std::string& srs, const double* nodata = nullptr);
+                      const std::array<double, 6>& geoTransform, const std::string& srs,
+                      const double* nodata = nullptr);
 
 }  // namespace firmament::terrain

@@ -59,8 +59,10 @@ NoiseSample gradientNoise(double x, double y, uint64_t seed) {
   const double k1 = n10 - n00, k2 = n01 - n00, k3 = n00 - n10 - n01 + n11;
   NoiseSample s;
   s.value = kScale * (n00 + fu * k1 + fv * k2 + fu * fv * k3);
-  const double gx = g00[0] + fu * (g10[0] - g00[0]) + fv * (g01[0] - g00[0]) + fu * fv * (g00[0] - g10[0] - g01[0] + g11[0]);
-  const double gy = g00[1] + fu * (g10[1] - g00[1]) + fv * (g01[1] - g00[1]) + fu * fv * (g00[1] - g10[1] - g01[1] + g11[1]);
+  const double gx =
+      g00[0] + fu * (g10[0] - g00[0]) + fv * (g01[0] - g00[0]) + fu * fv * (g00[0] - g10[0] - g01[0] + g11[0]);
+  const double gy =
+      g00[1] + fu * (g10[1] - g00[1]) + fv * (g01[1] - g00[1]) + fu * fv * (g00[1] - g10[1] - g01[1] + g11[1]);
   s.dx = kScale * (gx + du * (k1 + fv * k3));
   s.dy = kScale * (gy + dv * (k2 + fu * k3));
   return s;

@@ -25,10 +25,10 @@ namespace firmament::terrain {
 struct HeightField {
   int nx = 0;
   int ny = 0;
-  double x0 = 0.0;  // plane position of sample (0, 0), metres east of the location
-  double y0 = 0.0;  // metres north
-  double dx = 1.0;  // sample spacing east, metres (> 0)
-  double dy = 1.0;  // sample spacing north, metres (> 0)
+  double x0 = 0.0;             // plane position of sample (0, 0), metres east of the location
+  double y0 = 0.0;             // metres north
+  double dx = 1.0;             // sample spacing east, metres (> 0)
+  double dy = 1.0;             // sample spacing north, metres (> 0)
   std::vector<float> heights;  // nx × ny, j-major: heights[j * nx + i]
   double outsideHeight = std::numeric_limits<double>::quiet_NaN();
   std::string source;  // where the heights came from (for reports)

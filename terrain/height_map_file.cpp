@@ -69,7 +69,8 @@ HeightField readHeightMap(const fs::path& file, const HeightMapPlacement& p) {
   return field;
 }
 
-void writeHeightFieldExr(const fs::path& file, const HeightField& field, const std::map<std::string, std::string>& metadata) {
+void writeHeightFieldExr(const fs::path& file, const HeightField& field,
+                         const std::map<std::string, std::string>& metadata) {
   ExrChannel channel;
   channel.width = field.nx;
   channel.height = field.ny;

@@ -14,8 +14,8 @@
 namespace firmament::terrain {
 
 struct MinMaxLevel {
-  int width = 0;   // texels east
-  int height = 0;  // texels north
+  int width = 0;               // texels east
+  int height = 0;              // texels north
   std::vector<float> minimum;  // width × height, row-major, row 0 south
   std::vector<float> maximum;
   float min(int i, int j) const { return minimum[size_t(j) * size_t(width) + size_t(i)]; }

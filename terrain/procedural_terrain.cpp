@@ -18,8 +18,7 @@ const TerrainStyleParameters kStyles[] = {
      1.0, 0},
     {"hills", "rolling hills (6 km, 300 m)", 6000.0, 300.0, 0.5, false, 1.0, 0},
     {"plains", "low-relief lowland (40 km, 40 m)", 40000.0, 40.0, 0.5, false, 0.5, 0},
-    {"canyon", "plateau cut into terraces with steep risers (8 km, 600 m, 6 steps)", 8000.0, 600.0, 0.5, false, 0.5,
-     6},
+    {"canyon", "plateau cut into terraces with steep risers (8 km, 600 m, 6 steps)", 8000.0, 600.0, 0.5, false, 0.5, 6},
 };
 
 constexpr int kMaxOctaves = 28;
@@ -143,8 +142,8 @@ HeightField ProceduralTerrainField::tile(const TileRegion& region) const {
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(rows, t);
   rows(0);
   for (auto& t : pool) t.join();
-  field.source = std::string("procedural ") + styleParameters(settings_.style).name + ", seed " +
-                 std::to_string(settings_.seed);
+  field.source =
+      std::string("procedural ") + styleParameters(settings_.style).name + ", seed " + std::to_string(settings_.seed);
   return field;
 }
 

@@ -62,7 +62,8 @@ ResolvedTerrain resolveSceneTerrain(const Scene& scene, double planetRadius, con
     placement.checkCoversLocation(scene.source());
     out.field = placement.resample(region);
     out.dataFraction = fillFromFallback(out.field, fallback, s.edgeBlend_m);
-    if (s.fallback == TerrainFallback::Procedural) checkHeightLimits(out.field, scene.source(), "the fallback, " + styleWords);
+    if (s.fallback == TerrainFallback::Procedural)
+      checkHeightLimits(out.field, scene.source(), "the fallback, " + styleWords);
     out.source = out.field.source;
   } else {
     const HeightField map = readHeightMap(s.file, s.heightMap);
@@ -71,11 +72,13 @@ ResolvedTerrain resolveSceneTerrain(const Scene& scene, double planetRadius, con
       throw InputError(scene.source() + ": /terrain/heightmap: the height map '" + s.file.string() +
                        "' does not cover the scene: it spans east " + number(map.x0 - halfX) + " to " +
                        number(map.xMax() + halfX) + " m and north " + number(map.y0 - halfY) + " to " +
-                       number(map.yMax() + halfY) + " m of the location; allowed: a placement that contains the "
+                       number(map.yMax() + halfY) +
+                       " m of the location; allowed: a placement that contains the "
                        "location (0, 0)");
     out.field = resampleField(map, region, halfX, halfY);
     out.dataFraction = fillFromFallback(out.field, fallback, s.edgeBlend_m);
-    if (s.fallback == TerrainFallback::Procedural) checkHeightLimits(out.field, scene.source(), "the fallback, " + styleWords);
+    if (s.fallback == TerrainFallback::Procedural)
+      checkHeightLimits(out.field, scene.source(), "the fallback, " + styleWords);
     out.source = map.source;
   }
   out.field.outsideHeight = s.locationHeight_m;

@@ -16,7 +16,7 @@
 namespace firmament::terrain {
 
 struct ResolvedTerrain {
-  HeightField field;          // outsideHeight = /location/height_m (the atmosphere's ground sphere)
+  HeightField field;  // outsideHeight = /location/height_m (the atmosphere's ground sphere)
   TerrainSettings settings;
   TileRegion region;
   std::string source;         // what the heights are, in words

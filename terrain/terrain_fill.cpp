@@ -78,7 +78,8 @@ HeightField resampleField(const HeightField& source, const TileRegion& region, d
         out.at(i, j) = nan;
         continue;
       }
-      out.at(i, j) = float(source.sample(std::clamp(x, source.x0, source.xMax()), std::clamp(y, source.y0, source.yMax())));
+      out.at(i, j) =
+          float(source.sample(std::clamp(x, source.x0, source.xMax()), std::clamp(y, source.y0, source.yMax())));
     }
   out.source = source.source;
   return out;

@@ -18,8 +18,7 @@ namespace firmament::terrain {
 
 // Replaces every NaN height of `field`; returns the fraction of samples that were valid (1: nothing
 // to fill; 0: the whole tile is the fallback).
-double fillFromFallback(HeightField& field, const std::function<double(double x, double y)>& fallback,
-                        double blend_m);
+double fillFromFallback(HeightField& field, const std::function<double(double x, double y)>& fallback, double blend_m);
 
 // A field's samples on another grid: bilinear inside the source's rectangle, the edge sample within
 // `margin` metres outside it (an image covers half a pixel beyond its outer pixel centres), NaN

@@ -21,8 +21,8 @@ glm::dvec2 TerrainFrame::planeToGeodetic(glm::dvec2 plane) const {
   const double scale = rho > 0.0 ? s / rho : 1.0;
   static const GeographicLib::AzimuthalEquidistant projection(GeographicLib::Geodesic::WGS84());
   double lat = 0.0, lon = 0.0, azimuth = 0.0, rk = 0.0;
-  projection.Reverse(location_.latitude / kDegree, location_.longitude / kDegree, plane.x * scale, plane.y * scale,
-                     lat, lon, azimuth, rk);
+  projection.Reverse(location_.latitude / kDegree, location_.longitude / kDegree, plane.x * scale, plane.y * scale, lat,
+                     lon, azimuth, rk);
   return {lat * kDegree, lon * kDegree};
 }
 

@@ -211,8 +211,8 @@ TerrainHit TerrainIntersector::walk(const TerrainRay& input, bool usePyramid) co
 
   // Past the grid: the outside solid, whose wall faces the grid where the ray leaves the cone.
   if (q1 < tb) {
-    const glm::dvec3 wall = exitIndex >= 0 && exitIndex < 4 ? glm::normalize(constraints[exitIndex].gradient)
-                                                            : glm::dvec3(0.0, 0.0, 1.0);
+    const glm::dvec3 wall =
+        exitIndex >= 0 && exitIndex < 4 ? glm::normalize(constraints[exitIndex].gradient) : glm::dvec3(0.0, 0.0, 1.0);
     outside(q1, tb, exitIndex >= 0 && exitIndex < 4 ? &wall : nullptr);
   }
   return result;

@@ -28,8 +28,8 @@
 namespace firmament::terrain {
 
 struct TerrainRay {
-  glm::dvec3 origin{0.0};                      // planet-centred, ENU axes of the location (metres)
-  glm::dvec3 direction{0.0, 0.0, 1.0};         // normalised by the intersector
+  glm::dvec3 origin{0.0};               // planet-centred, ENU axes of the location (metres)
+  glm::dvec3 direction{0.0, 0.0, 1.0};  // normalised by the intersector
   double tMin = 0.0;
   double tMax = std::numeric_limits<double>::infinity();
 };

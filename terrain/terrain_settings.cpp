@@ -14,9 +14,12 @@ shared::vec3 colour(const Scene& scene, const std::string& pointer) {
 
 const char* kindName(TerrainKind kind) {
   switch (kind) {
-    case TerrainKind::Procedural: return "procedural";
-    case TerrainKind::Gdal: return "gdal";
-    case TerrainKind::HeightMap: return "heightmap";
+    case TerrainKind::Procedural:
+      return "procedural";
+    case TerrainKind::Gdal:
+      return "gdal";
+    case TerrainKind::HeightMap:
+      return "heightmap";
   }
   return "?";
 }
@@ -60,7 +63,8 @@ TerrainSettings terrainSettingsFromScene(const Scene& scene) {
     throw InputError(scene.source() + ": /terrain/heightmap/max_height_m: found " +
                      std::to_string(s.heightMap.maxHeight_m) + ", allowed: a number above min_height_m (" +
                      std::to_string(s.heightMap.minHeight_m) + ")");
-  s.fallback = scene.string("/terrain/fallback") == "procedural" ? TerrainFallback::Procedural : TerrainFallback::Sphere;
+  s.fallback =
+      scene.string("/terrain/fallback") == "procedural" ? TerrainFallback::Procedural : TerrainFallback::Sphere;
   s.edgeBlend_m = scene.number("/terrain/edge_blend_m");
   shared::TerrainAlbedoParameters& a = s.albedo;
   a.rock = colour(scene, "/terrain/albedo/rock");

@@ -45,8 +45,8 @@ inline void nearDeparture(int i, float x, int n, int32_t& cell, float& fraction)
 
 }  // namespace
 
-void SemiLagrangianAdvection::departureRow(int j, const float* windU, const float* windV, int nx, int ny,
-                                           double scale, int32_t* cellI, int32_t* cellJ, float* fx, float* fy) {
+void SemiLagrangianAdvection::departureRow(int j, const float* windU, const float* windV, int nx, int ny, double scale,
+                                           int32_t* cellI, int32_t* cellJ, float* fx, float* fy) {
   const float s = float(scale);
   const float nearX = std::min(kNearDeparture, float(nx - 1)), nearY = std::min(kNearDeparture, float(ny - 1));
   int i = 0;
@@ -72,7 +72,8 @@ void SemiLagrangianAdvection::departureRow(int j, const float* windU, const floa
       const __m128 y = _mm_xor_ps(_mm_mul_ps(_mm_loadu_ps(windV + i), sV), sign);
       split(x, _mm_add_epi32(_mm_set1_epi32(i), lanes), nxV, fx + i, cellI + i);
       split(y, jV, nyV, fy + i, cellJ + i);
-      const __m128 near = _mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(sign, x), nearXV), _mm_cmplt_ps(_mm_andnot_ps(sign, y), nearYV));
+      const __m128 near =
+          _mm_and_ps(_mm_cmplt_ps(_mm_andnot_ps(sign, x), nearXV), _mm_cmplt_ps(_mm_andnot_ps(sign, y), nearYV));
       if (_mm_movemask_ps(near) != 0xF)
         for (int l = i; l < i + 4; ++l) {
           farDeparture(l, windU[l], scale, nx, cellI[l], fx[l]);
@@ -120,7 +121,8 @@ namespace {
 void interleave4(const float* const* src, size_t n, float* out, size_t stride) {
   size_t c = 0;
   for (; c + 4 <= n; c += 4) {
-    __m128 a = _mm_loadu_ps(src[0] + c), b = _mm_loadu_ps(src[1] + c), d = _mm_loadu_ps(src[2] + c), e = _mm_loadu_ps(src[3] + c);
+    __m128 a = _mm_loadu_ps(src[0] + c), b = _mm_loadu_ps(src[1] + c), d = _mm_loadu_ps(src[2] + c),
+           e = _mm_loadu_ps(src[3] + c);
     _MM_TRANSPOSE4_PS(a, b, d, e);
     _mm_store_ps(out + (c + 0) * stride, a);
     _mm_store_ps(out + (c + 1) * stride, b);

@@ -27,8 +27,8 @@ class SemiLagrangianAdvection {
   void prepare(const Field& windU, const Field& windV, int nx, int ny, double cellSize_m, double dt_s);
   // The departure points of row j alone (what prepare() stores for every row): the cell west and south of
   // the departure point, wrapped into the grid, and the fractions (0 ≤ f ≤ 1) within it.
-  static void departureRow(int j, const float* windU, const float* windV, int nx, int ny, double scale,
-                           int32_t* cellI, int32_t* cellJ, float* fx, float* fy);
+  static void departureRow(int j, const float* windU, const float* windV, int nx, int ny, double scale, int32_t* cellI,
+                           int32_t* cellJ, float* fx, float* fy);
   // Advects f in place (scratch is resized as needed).
   void advect(Field& f);
   // Advects and restores the domain total (the mass fixer). Returns the relative correction applied.

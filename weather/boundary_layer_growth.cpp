@@ -9,8 +9,7 @@
 namespace firmament::weather {
 
 double mixedLayerCeiling(double lcl, const LayerGrowthParameters& p) {
-  return std::max(p.morningDepth_m,
-                  std::min({kMaxLayerDepth_m, p.stableLayerBase_m - 300.0, lcl / kThermalOvershoot}));
+  return std::max(p.morningDepth_m, std::min({kMaxLayerDepth_m, p.stableLayerBase_m - 300.0, lcl / kThermalOvershoot}));
 }
 
 double applyLayerGrowth(WeatherState& s, const LayerGrowthParameters& p, double dt_s) {
@@ -24,8 +23,8 @@ double applyLayerGrowth(WeatherState& s, const LayerGrowthParameters& p, double 
   double grown = 0.0, vented = 0.0, after = before;
   if (flux > 0.0) {
     const double gamma = std::max(kDryAdiabaticLapseRate - p.freeLapseRate_K_m, 1e-4);  // never neutral
-    const double entrained = (1.0 + 2.0 * kEntrainmentRatio) * flux * dt_s /
-                             (p.density_kg_m3 * kDryAirHeatCapacity * gamma * before);
+    const double entrained =
+        (1.0 + 2.0 * kEntrainmentRatio) * flux * dt_s / (p.density_kg_m3 * kDryAirHeatCapacity * gamma * before);
     const double lcl = sumField(s.cloudBase) / double(n);
     const double ceiling = mixedLayerCeiling(lcl > 0.0 ? lcl : 1e9, p);
     grown = std::clamp(ceiling - before, 0.0, entrained);

@@ -33,18 +33,18 @@
 namespace firmament::weather {
 
 struct LayerGrowthParameters {
-  double morningDepth_m = 800.0;          // h₀
-  double freeLapseRate_K_m = 6.5e-3;      // Γ of the free troposphere
+  double morningDepth_m = 800.0;      // h₀
+  double freeLapseRate_K_m = 6.5e-3;  // Γ of the free troposphere
   double stableLayerBase_m = 11000.0;
-  double density_kg_m3 = 1.15;            // ρ of the layer
-  double entrainedMixingRatio = 0.004;    // r_ft (kg/kg)
+  double density_kg_m3 = 1.15;          // ρ of the layer
+  double entrainedMixingRatio = 0.004;  // r_ft (kg/kg)
   bool exchangeWithSurroundings = true;
 };
 
 inline constexpr double kEntrainmentRatio = 0.2;        // A (Stull 1988 §11.2)
 inline constexpr double kLayerCollapseTime_s = 3600.0;  // τ of the evening collapse
 inline constexpr double kMaxLayerDepth_m = 3000.0;
-inline constexpr double kThermalOvershoot = 1.2;        // thermal tops / h
+inline constexpr double kThermalOvershoot = 1.2;  // thermal tops / h
 
 // The highest the layer may grow for a domain-mean condensation level `lcl_m` (m).
 double mixedLayerCeiling(double lcl_m, const LayerGrowthParameters& p);

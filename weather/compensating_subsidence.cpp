@@ -48,8 +48,7 @@ CompensatingSubsidence::CompensatingSubsidence(int nx, int ny, double cellSize_m
   // Runs of four columns that share their coarse neighbours (every aligned four when the block is a
   // multiple of eight cells).
   uniform_.resize(size_t(nx / 4));
-  for (int q = 0; q + 4 <= nx; q += 4)
-    uniform_[size_t(q / 4)] = x0_[q] == x0_[q + 3] && x1_[q] == x1_[q + 3];
+  for (int q = 0; q + 4 <= nx; q += 4) uniform_[size_t(q / 4)] = x0_[q] == x0_[q + 3] && x1_[q] == x1_[q + 3];
 }
 
 double CompensatingSubsidence::domainMean_K() const {
@@ -148,7 +147,8 @@ void CompensatingSubsidence::apply(const WeatherState& s, double coreFraction, d
       }
       const int a = x0_[i], c = x1_[i];
       const __m128 w = _mm_loadu_ps(&wx_[i]);
-      const __m128 r0a = _mm_set1_ps(r0[a]), r0c = _mm_set1_ps(r0[c]), r1a = _mm_set1_ps(r1[a]), r1c = _mm_set1_ps(r1[c]);
+      const __m128 r0a = _mm_set1_ps(r0[a]), r0c = _mm_set1_ps(r0[c]), r1a = _mm_set1_ps(r1[a]),
+                   r1c = _mm_set1_ps(r1[c]);
       const __m128 lo = _mm_add_ps(r0a, _mm_mul_ps(w, _mm_sub_ps(r0c, r0a)));
       const __m128 hi = _mm_add_ps(r1a, _mm_mul_ps(w, _mm_sub_ps(r1c, r1a)));
       _mm_storeu_ps(out + i, _mm_add_ps(lo, _mm_mul_ps(wyV, _mm_sub_ps(hi, lo))));

@@ -118,7 +118,8 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
     const F4 perDegree = set1(float(1.0 / kLclMetresPerKelvin));
     const F4 maxA = set1(locate.maxA), maxD = set1(locate.maxD), rowLength = set1(float(locate.nAnomaly));
     const F4 relaxV = set1(relax), tRefV = set1(tRef), environmentV = set1(environment);
-    __m128d updraftLo = _mm_setzero_pd(), updraftHi = _mm_setzero_pd(), drawnLo = _mm_setzero_pd(), drawnHi = _mm_setzero_pd();
+    __m128d updraftLo = _mm_setzero_pd(), updraftHi = _mm_setzero_pd(), drawnLo = _mm_setzero_pd(),
+            drawnHi = _mm_setzero_pd();
     float* anomalyT = s.temperature.data();
     float* vapourW = s.vapour.data();
     float* cloudW = s.cloudWater.data();
@@ -154,7 +155,8 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
       for (size_t c = chunk; c < end; c += 4) {
         const F4 anomaly = _mm_loadu_ps(anomalyT + c);
         const F4 x = _mm_load_ps(chunkTa + (c - chunk));
-        const F4 dew = _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
+        const F4 dew =
+            _mm_div_ps(_mm_sub_ps(set1(17.27f * 273.15f), _mm_mul_ps(set1(35.85f), x)), _mm_sub_ps(set1(17.27f), x));
         const F4 surfaceT = _mm_add_ps(tRefV, anomaly);
         const F4 lcl = _mm_mul_ps(set1(float(kLclMetresPerKelvin)), maxStd(zero, _mm_sub_ps(surfaceT, dew)));
         _mm_storeu_ps(baseZ + c, lcl);
@@ -173,115 +175,132 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
         const F4 a = _mm_cvtepi32_ps(_mm_cvttps_epi32(fa)), d = _mm_cvtepi32_ps(_mm_cvttps_epi32(fd));
         _mm_store_ps(chunkTa + k, _mm_sub_ps(fa, a));
         _mm_store_ps(chunkTd + k, _mm_sub_ps(fd, d));
-        _mm_store_si128(reinterpret_cast<__m128i*>(chunkAt + k), _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(d, rowLength), a)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(chunkAt + k),
+                        _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(d, rowLength), a)));
         // The thermal's kinetic energy.
         const F4 heat = _mm_loadu_ps(heatFlux + c);
-        const F4 wStar = _mm_and_ps(_mm_cmpgt_ps(heat, zero), cbrtFast(_mm_div_ps(_mm_mul_ps(set1(deardorff), heat), surfaceT)));
-        const F4 inflow = clampStd(_mm_add_ps(one, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), set1(inflowPerKelvin))), zero, one);
-        const F4 thermal = _mm_add_ps(_mm_add_ps(wStar, maxStd(zero, _mm_loadu_ps(liftW + c))), _mm_mul_ps(_mm_loadu_ps(updraftW + c), inflow));
+        const F4 wStar =
+            _mm_and_ps(_mm_cmpgt_ps(heat, zero), cbrtFast(_mm_div_ps(_mm_mul_ps(set1(deardorff), heat), surfaceT)));
+        const F4 inflow =
+            clampStd(_mm_add_ps(one, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), set1(inflowPerKelvin))), zero, one);
+        const F4 thermal = _mm_add_ps(_mm_add_ps(wStar, maxStd(zero, _mm_loadu_ps(liftW + c))),
+                                      _mm_mul_ps(_mm_loadu_ps(updraftW + c), inflow));
         _mm_store_ps(chunkKinetic + k, _mm_mul_ps(_mm_mul_ps(half, thermal), thermal));
       }
       for (start = chunk; start < end; start += 4) {
-      const size_t c = start, k = c - chunk;
-      const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
-      const F4 lcl = _mm_loadu_ps(baseZ + c);
-      const F4 ta = _mm_load_ps(chunkTa + k), td = _mm_load_ps(chunkTd + k), kineticV = _mm_load_ps(chunkKinetic + k);
-      const int32_t* at = chunkAt + k;
-      const F4 w0 = _mm_loadu_ps(updraftW + c);
-      // The table cell's bounds and v_c's corners (32 bytes per cell), then the interpolated CIN; the
-      // interpolated CAPE only where a cell may trigger (bounds passed, and the CIN paid or a corner
-      // without free convection).
-      F4 bounds[4], corners[4];
-      for (int l = 0; l < 4; ++l) bounds[l] = _mm_load_ps(&summaries[at[l]].maxCape);
-      _MM_TRANSPOSE4_PS(bounds[0], bounds[1], bounds[2], bounds[3]);  // max CAPE, min CIN, all free, −
-      const F4 bound = _mm_and_ps(_mm_cmpgt_ps(bounds[0], zero), _mm_cmpge_ps(kineticV, bounds[1]));
-      const F4 moving = _mm_cmpneq_ps(w0, zero);
-      if (_mm_movemask_ps(_mm_or_ps(bound, moving)) == 0) continue;
-      for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&summaries[at[l]].cinSpeed.c00);
-      _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
-      const F4 speed = bilinear(corners, ta, td);
-      F4 cin = _mm_mul_ps(_mm_mul_ps(half, speed), speed);
-      const F4 allFreeCorners = _mm_cmpgt_ps(bounds[2], zero);
-      const F4 possible = _mm_and_ps(bound, _mm_or_ps(_mm_cmpge_ps(kineticV, cin), _mm_andnot_ps(allFreeCorners, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
-      if (_mm_movemask_ps(_mm_or_ps(possible, moving)) == 0) continue;
-      for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&capeCorners[at[l]].c00);
-      _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
-      const F4 cape = bilinear(corners, ta, td);
-      const F4 capeBound = _mm_and_ps(bound, _mm_cmpgt_ps(cape, zero));
-      const F4 edge = _mm_andnot_ps(allFreeCorners, capeBound);  // not all corners free
-      const int edgeLanes = _mm_movemask_ps(edge);
-      // Next to the edge of free convection the table's lookup gives CIN and LNB (its CAPE is the same
-      // interpolation as above).
-      alignas(16) float edgeCin[4], edgeNeutral[4], fractionA[4], fractionD[4];
-      if (edgeLanes) {
-        _mm_store_ps(edgeCin, cin);
-        _mm_store_ps(fractionA, ta);
-        _mm_store_ps(fractionD, td);
-        for (int l = 0; l < 4; ++l)
-          if (edgeLanes & (1 << l)) {
-            const ParcelProperties exact = table.lookup(ParcelTable::Position{size_t(at[l]), fractionA[l], fractionD[l]});
-            edgeCin[l] = exact.cin_J_kg;
-            edgeNeutral[l] = exact.neutralBuoyancyLevel_m;
-          }
-        cin = _mm_load_ps(edgeCin);
-      }
-      const F4 triggered = _mm_and_ps(capeBound, _mm_cmpge_ps(kineticV, cin));
-      // The updraft.
-      const F4 target = _mm_and_ps(triggered, minStd(_mm_mul_ps(half, _mm_sqrt_ps(_mm_mul_ps(set1(2.0f), cape))), set1(60.0f)));
-      F4 w = _mm_add_ps(w0, _mm_mul_ps(_mm_sub_ps(target, w0), relaxV));
-      w = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.01f)), w);
-      const F4 visited = _mm_or_ps(triggered, moving);
-      w = select(visited, w, w0);
-      _mm_storeu_ps(updraftW + c, w);
-      const F4 wVisited = _mm_and_ps(visited, w);
-      updraftLo = _mm_add_pd(updraftLo, _mm_cvtps_pd(wVisited));
-      updraftHi = _mm_add_pd(updraftHi, _mm_cvtps_pd(_mm_movehl_ps(wVisited, wVisited)));
-      const F4 runs = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.05f)), triggered);
-      if (_mm_movemask_ps(runs) == 0) continue;
-      // The level of neutral buoyancy: the nodes' interpolation, or the lookup's next to the edge.
-      alignas(16) float neutralLanes[4];
-      {
-        _mm_store_ps(fractionA, ta);
-        _mm_store_ps(fractionD, td);
-        for (int l = 0; l < 4; ++l) {
-          const float tal = fractionA[l], tdl = fractionD[l];
-          const int32_t i = at[l];
-          const Lanes v00 = node(i), v10 = node(i + 1), v01 = node(i + stride), v11 = node(i + stride + 1);
-          const Lanes lo = v00 + tal * (v10 - v00), hi = v01 + tal * (v11 - v01), v = lo + tdl * (hi - lo);
-          neutralLanes[l] = edgeLanes & (1 << l) ? edgeNeutral[l] : v[2];
+        const size_t c = start, k = c - chunk;
+        const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c);
+        const F4 lcl = _mm_loadu_ps(baseZ + c);
+        const F4 ta = _mm_load_ps(chunkTa + k), td = _mm_load_ps(chunkTd + k), kineticV = _mm_load_ps(chunkKinetic + k);
+        const int32_t* at = chunkAt + k;
+        const F4 w0 = _mm_loadu_ps(updraftW + c);
+        // The table cell's bounds and v_c's corners (32 bytes per cell), then the interpolated CIN; the
+        // interpolated CAPE only where a cell may trigger (bounds passed, and the CIN paid or a corner
+        // without free convection).
+        F4 bounds[4], corners[4];
+        for (int l = 0; l < 4; ++l) bounds[l] = _mm_load_ps(&summaries[at[l]].maxCape);
+        _MM_TRANSPOSE4_PS(bounds[0], bounds[1], bounds[2], bounds[3]);  // max CAPE, min CIN, all free, −
+        const F4 bound = _mm_and_ps(_mm_cmpgt_ps(bounds[0], zero), _mm_cmpge_ps(kineticV, bounds[1]));
+        const F4 moving = _mm_cmpneq_ps(w0, zero);
+        if (_mm_movemask_ps(_mm_or_ps(bound, moving)) == 0) continue;
+        for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&summaries[at[l]].cinSpeed.c00);
+        _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
+        const F4 speed = bilinear(corners, ta, td);
+        F4 cin = _mm_mul_ps(_mm_mul_ps(half, speed), speed);
+        const F4 allFreeCorners = _mm_cmpgt_ps(bounds[2], zero);
+        const F4 possible =
+            _mm_and_ps(bound, _mm_or_ps(_mm_cmpge_ps(kineticV, cin),
+                                        _mm_andnot_ps(allFreeCorners, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
+        if (_mm_movemask_ps(_mm_or_ps(possible, moving)) == 0) continue;
+        for (int l = 0; l < 4; ++l) corners[l] = _mm_load_ps(&capeCorners[at[l]].c00);
+        _MM_TRANSPOSE4_PS(corners[0], corners[1], corners[2], corners[3]);
+        const F4 cape = bilinear(corners, ta, td);
+        const F4 capeBound = _mm_and_ps(bound, _mm_cmpgt_ps(cape, zero));
+        const F4 edge = _mm_andnot_ps(allFreeCorners, capeBound);  // not all corners free
+        const int edgeLanes = _mm_movemask_ps(edge);
+        // Next to the edge of free convection the table's lookup gives CIN and LNB (its CAPE is the same
+        // interpolation as above).
+        alignas(16) float edgeCin[4], edgeNeutral[4], fractionA[4], fractionD[4];
+        if (edgeLanes) {
+          _mm_store_ps(edgeCin, cin);
+          _mm_store_ps(fractionA, ta);
+          _mm_store_ps(fractionD, td);
+          for (int l = 0; l < 4; ++l)
+            if (edgeLanes & (1 << l)) {
+              const ParcelProperties exact =
+                  table.lookup(ParcelTable::Position{size_t(at[l]), fractionA[l], fractionD[l]});
+              edgeCin[l] = exact.cin_J_kg;
+              edgeNeutral[l] = exact.neutralBuoyancyLevel_m;
+            }
+          cin = _mm_load_ps(edgeCin);
         }
-      }
-      const F4 neutral = _mm_load_ps(neutralLanes);
-      // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
-      const F4 topTarget = minStd(_mm_add_ps(maxStd(neutral, lcl), _mm_div_ps(w, set1(kBuoyancyFrequency))), set1(maxTop));
-      const F4 oldTop = _mm_loadu_ps(cloudTopZ + c);
-      F4 top = maxStd(oldTop, lcl);
-      top = select(_mm_cmplt_ps(top, topTarget), minStd(topTarget, _mm_add_ps(top, _mm_mul_ps(w, set1(dt)))),
-                   _mm_add_ps(topTarget, _mm_mul_ps(_mm_sub_ps(top, topTarget), _mm_sub_ps(one, relaxV))));
-      _mm_storeu_ps(cloudTopZ + c, select(runs, top, oldTop));
-      // Condensation into the core.
-      const F4 cloud = _mm_loadu_ps(cloudW + c);
-      const F4 lclTemperature = _mm_sub_ps(_mm_add_ps(tRefV, anomaly), _mm_mul_ps(set1(float(kDryAdiabaticLapseRate)), lcl));
-      const F4 topTemperature = _mm_sub_ps(lclTemperature, _mm_mul_ps(set1(kMeanMoistLapse), _mm_sub_ps(top, lcl)));
-      const F4 topPressure = _mm_mul_ps(set1(p0), expFast(_mm_mul_ps(top, set1(invScaleHeight))));
-      const F4 remaining = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(topTemperature, topPressure));
-      const F4 exchange = oneMinusExpFast(_mm_mul_ps(set1(exchangePerUpdraft), w));
-      const F4 dq = _mm_mul_ps(maxStd(zero, _mm_sub_ps(vapour, remaining)), exchange);
-      const F4 newCloud = _mm_add_ps(cloud, dq), newVapour = maxStd(zero, _mm_sub_ps(vapour, _mm_mul_ps(set1(ownShare), dq)));
-      const __m128d gainLo = _mm_sub_pd(_mm_cvtps_pd(newCloud), _mm_cvtps_pd(cloud));
-      const __m128d gainHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newCloud, newCloud)), _mm_cvtps_pd(_mm_movehl_ps(cloud, cloud)));
-      const __m128d lossLo = _mm_sub_pd(_mm_cvtps_pd(vapour), _mm_cvtps_pd(newVapour));
-      const __m128d lossHi = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)), _mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)));
-      drawnLo = _mm_add_pd(drawnLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(runs, runs)), _mm_sub_pd(gainLo, lossLo)));
-      drawnHi = _mm_add_pd(drawnHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(runs, runs)), _mm_sub_pd(gainHi, lossHi)));
-      _mm_storeu_ps(cloudW + c, select(runs, newCloud, cloud));
-      _mm_storeu_ps(vapourW + c, select(runs, newVapour, vapour));
-      const F4 conv = _mm_loadu_ps(convective + c), total = _mm_add_ps(cloud, dq);
-      const F4 mixed = select(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_add_ps(_mm_mul_ps(conv, cloud), dq), total), one);
-      _mm_storeu_ps(convective + c, select(runs, mixed, conv));
-      // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
-      const F4 vented = _mm_add_ps(environmentV, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), _mm_sub_ps(one, exchange)));
-      _mm_storeu_ps(anomalyT + c, select(_mm_and_ps(runs, _mm_cmpgt_ps(anomaly, environmentV)), vented, anomaly));
+        const F4 triggered = _mm_and_ps(capeBound, _mm_cmpge_ps(kineticV, cin));
+        // The updraft.
+        const F4 target =
+            _mm_and_ps(triggered, minStd(_mm_mul_ps(half, _mm_sqrt_ps(_mm_mul_ps(set1(2.0f), cape))), set1(60.0f)));
+        F4 w = _mm_add_ps(w0, _mm_mul_ps(_mm_sub_ps(target, w0), relaxV));
+        w = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.01f)), w);
+        const F4 visited = _mm_or_ps(triggered, moving);
+        w = select(visited, w, w0);
+        _mm_storeu_ps(updraftW + c, w);
+        const F4 wVisited = _mm_and_ps(visited, w);
+        updraftLo = _mm_add_pd(updraftLo, _mm_cvtps_pd(wVisited));
+        updraftHi = _mm_add_pd(updraftHi, _mm_cvtps_pd(_mm_movehl_ps(wVisited, wVisited)));
+        const F4 runs = _mm_andnot_ps(_mm_cmplt_ps(w, set1(0.05f)), triggered);
+        if (_mm_movemask_ps(runs) == 0) continue;
+        // The level of neutral buoyancy: the nodes' interpolation, or the lookup's next to the edge.
+        alignas(16) float neutralLanes[4];
+        {
+          _mm_store_ps(fractionA, ta);
+          _mm_store_ps(fractionD, td);
+          for (int l = 0; l < 4; ++l) {
+            const float tal = fractionA[l], tdl = fractionD[l];
+            const int32_t i = at[l];
+            const Lanes v00 = node(i), v10 = node(i + 1), v01 = node(i + stride), v11 = node(i + stride + 1);
+            const Lanes lo = v00 + tal * (v10 - v00), hi = v01 + tal * (v11 - v01), v = lo + tdl * (hi - lo);
+            neutralLanes[l] = edgeLanes & (1 << l) ? edgeNeutral[l] : v[2];
+          }
+        }
+        const F4 neutral = _mm_load_ps(neutralLanes);
+        // Cloud top: grows at w toward the LNB plus overshoot; collapses toward it if above.
+        const F4 topTarget =
+            minStd(_mm_add_ps(maxStd(neutral, lcl), _mm_div_ps(w, set1(kBuoyancyFrequency))), set1(maxTop));
+        const F4 oldTop = _mm_loadu_ps(cloudTopZ + c);
+        F4 top = maxStd(oldTop, lcl);
+        top = select(_mm_cmplt_ps(top, topTarget), minStd(topTarget, _mm_add_ps(top, _mm_mul_ps(w, set1(dt)))),
+                     _mm_add_ps(topTarget, _mm_mul_ps(_mm_sub_ps(top, topTarget), _mm_sub_ps(one, relaxV))));
+        _mm_storeu_ps(cloudTopZ + c, select(runs, top, oldTop));
+        // Condensation into the core.
+        const F4 cloud = _mm_loadu_ps(cloudW + c);
+        const F4 lclTemperature =
+            _mm_sub_ps(_mm_add_ps(tRefV, anomaly), _mm_mul_ps(set1(float(kDryAdiabaticLapseRate)), lcl));
+        const F4 topTemperature = _mm_sub_ps(lclTemperature, _mm_mul_ps(set1(kMeanMoistLapse), _mm_sub_ps(top, lcl)));
+        const F4 topPressure = _mm_mul_ps(set1(p0), expFast(_mm_mul_ps(top, set1(invScaleHeight))));
+        const F4 remaining = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(topTemperature, topPressure));
+        const F4 exchange = oneMinusExpFast(_mm_mul_ps(set1(exchangePerUpdraft), w));
+        const F4 dq = _mm_mul_ps(maxStd(zero, _mm_sub_ps(vapour, remaining)), exchange);
+        const F4 newCloud = _mm_add_ps(cloud, dq),
+                 newVapour = maxStd(zero, _mm_sub_ps(vapour, _mm_mul_ps(set1(ownShare), dq)));
+        const __m128d gainLo = _mm_sub_pd(_mm_cvtps_pd(newCloud), _mm_cvtps_pd(cloud));
+        const __m128d gainHi =
+            _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newCloud, newCloud)), _mm_cvtps_pd(_mm_movehl_ps(cloud, cloud)));
+        const __m128d lossLo = _mm_sub_pd(_mm_cvtps_pd(vapour), _mm_cvtps_pd(newVapour));
+        const __m128d lossHi =
+            _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)), _mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)));
+        drawnLo =
+            _mm_add_pd(drawnLo, _mm_and_pd(_mm_castps_pd(_mm_unpacklo_ps(runs, runs)), _mm_sub_pd(gainLo, lossLo)));
+        drawnHi =
+            _mm_add_pd(drawnHi, _mm_and_pd(_mm_castps_pd(_mm_unpackhi_ps(runs, runs)), _mm_sub_pd(gainHi, lossHi)));
+        _mm_storeu_ps(cloudW + c, select(runs, newCloud, cloud));
+        _mm_storeu_ps(vapourW + c, select(runs, newVapour, vapour));
+        const F4 conv = _mm_loadu_ps(convective + c), total = _mm_add_ps(cloud, dq);
+        const F4 mixed =
+            select(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_add_ps(_mm_mul_ps(conv, cloud), dq), total), one);
+        _mm_storeu_ps(convective + c, select(runs, mixed, conv));
+        // The exchanged air is replaced by the surroundings': a warm anomaly relaxes toward them.
+        const F4 vented =
+            _mm_add_ps(environmentV, _mm_mul_ps(_mm_sub_ps(anomaly, environmentV), _mm_sub_ps(one, exchange)));
+        _mm_storeu_ps(anomalyT + c, select(_mm_and_ps(runs, _mm_cmpgt_ps(anomaly, environmentV)), vented, anomaly));
       }
     }
     alignas(16) double parts[8];
@@ -305,8 +324,8 @@ ConvectionResult applyConvection(WeatherState& s, const ParcelTable& table, cons
   const int32_t* index = work.index.data();
   Thermals thermals{invRhoH, p0, tRef, deardorff, environment, inflowPerKelvin};
   cloudBaseAndThermal(rest, s.vapour.data() + start, s.temperature.data() + start, s.surfaceHeatFlux.data() + start,
-                      s.lift.data() + start, s.updraft.data() + start, warming.data() + start, table.indexer(), thermals,
-                      s.cloudBase.data() + start, work.index.data(), fractionA, fractionD, kinetic);
+                      s.lift.data() + start, s.updraft.data() + start, warming.data() + start, table.indexer(),
+                      thermals, s.cloudBase.data() + start, work.index.data(), fractionA, fractionD, kinetic);
   mayTrigger(rest, work.index.data(), kinetic, s.updraft.data() + start, maxCape, minCin, work.active.data());
   forEachActiveCell(work.active, [&](size_t k) {
     const size_t c = start + k;

@@ -11,8 +11,8 @@
 // Cold pools. Rain-cooled outflow (T′ < 0) raises CIN and lowers CAPE through the parcel table, and it
 // also cuts a running cell off from its warm inflow: the updraft's own contribution to the thermal is
 // scaled by s = clamp(1 + (T′ − T̄′)/ΔT_c, 0, 1), ΔT_c = 1 K, T̄′ the domain mean, so a cell whose inflow
-// air is a kelvin colder than its surroundings must pay the cold air's CIN with w* and lift alone. That is how a single cell dies
-// once its outflow undercuts it (Byers & Braham 1949; Weisman & Klemp 1982: the gust front outruns the
+// air is a kelvin colder than its surroundings must pay the cold air's CIN with w* and lift alone. That is how a single
+// cell dies once its outflow undercuts it (Byers & Braham 1949; Weisman & Klemp 1982: the gust front outruns the
 // updraft when shear is weak), while the convergence at the pool's edge (lift, wind_field.h) triggers
 // new cells there.
 //
@@ -51,8 +51,8 @@ namespace firmament::weather {
 struct ConvectionParameters {
   double tropopause_m = 11000.0;
   const Field* subsidenceWarming_K = nullptr;  // δ per cell (none: 0)
-  double coldPoolCutoff_K = 1.0;     // ΔT_c
-  double inflowFraction = 0.9;       // φ
+  double coldPoolCutoff_K = 1.0;               // ΔT_c
+  double inflowFraction = 0.9;                 // φ
 };
 
 struct ConvectionResult {

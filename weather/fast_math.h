@@ -39,7 +39,8 @@ inline float expFast(float x) {
 // below ¼ (truncation ≤ 5e-8 relative). Relative error ≤ 1e-6.
 inline float oneMinusExpFast(float x) {
   if (x >= 0.25f) return 1.0f - expFast(-x);
-  return x * (1.0f - x * (0.5f - x * (1.0f / 6 - x * (1.0f / 24 - x * (1.0f / 120 - x * (1.0f / 720 - x * (1.0f / 5040)))))));
+  return x * (1.0f -
+              x * (0.5f - x * (1.0f / 6 - x * (1.0f / 24 - x * (1.0f / 120 - x * (1.0f / 720 - x * (1.0f / 5040)))))));
 }
 
 inline float logFast(float x) {

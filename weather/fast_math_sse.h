@@ -43,8 +43,8 @@ inline F4 logFast(F4 x) {
 // Unsigned 32-bit division by 3 (x < 2³¹ here: positive floats' bits): ⌊x · 0xAAAAAAAB / 2³³⌋.
 inline I4 divideBy3(I4 x) {
   const I4 magic = _mm_set1_epi32(int32_t(0xAAAAAAABu));
-  const I4 even = _mm_srli_epi64(_mm_mul_epu32(x, magic), 33);                                     // lanes 0, 2
-  const I4 odd = _mm_srli_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), magic), 33);                   // lanes 1, 3
+  const I4 even = _mm_srli_epi64(_mm_mul_epu32(x, magic), 33);                     // lanes 0, 2
+  const I4 odd = _mm_srli_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), magic), 33);  // lanes 1, 3
   return _mm_or_si128(even, _mm_slli_epi64(odd, 32));
 }
 
@@ -78,7 +78,8 @@ inline F4 expFast(F4 x) {
   p = _mm_add_ps(set1(0.5f), _mm_mul_ps(r, p));
   p = _mm_add_ps(set1(1.0f), _mm_mul_ps(r, p));
   p = _mm_add_ps(set1(1.0f), _mm_mul_ps(r, p));
-  const I4 bits = _mm_slli_epi32(_mm_add_epi32(_mm_sub_epi32(_mm_castps_si128(t), _mm_set1_epi32(0x4B400000)), _mm_set1_epi32(127)), 23);
+  const I4 bits = _mm_slli_epi32(
+      _mm_add_epi32(_mm_sub_epi32(_mm_castps_si128(t), _mm_set1_epi32(0x4B400000)), _mm_set1_epi32(127)), 23);
   return _mm_mul_ps(p, _mm_castsi128_ps(bits));
 }
 

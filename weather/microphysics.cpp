@@ -80,7 +80,8 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
       }
       for (size_t k = 0; k < count; ++k) {
         const size_t c = blockOf[k];
-        saturatedOf[k] = _mm_mul_ps(set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + c)), set1(p0)));
+        saturatedOf[k] = _mm_mul_ps(
+            set1(rhoH), saturationMixingRatioFast4(_mm_add_ps(set1(tRef), _mm_loadu_ps(anomalyT + c)), set1(p0)));
         // Accretion's (r_r)^0.875 and the share of the rain that falls out in the step.
         const Column column = columnAt(c);
         accretionOf[k] = powFast(_mm_div_ps(_mm_loadu_ps(rainW + c), _mm_mul_ps(rhoV, column.depth)), 0.875f);
@@ -96,50 +97,59 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
         const F4 rate = _mm_add_ps(_mm_mul_ps(set1(kAutoconversionRate), maxStd(zero, _mm_sub_ps(cloud, threshold))),
                                    _mm_mul_ps(_mm_mul_ps(set1(2.2f), cloud), accretionOf[k]));
         const F4 converts = _mm_and_ps(_mm_cmpgt_ps(cloud, zero), _mm_cmpgt_ps(rate, zero));
-        convertedOf[k] = _mm_and_ps(converts, _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud))));
+        convertedOf[k] =
+            _mm_and_ps(converts, _mm_mul_ps(cloud, oneMinusExpFast(_mm_div_ps(_mm_mul_ps(rate, set1(dt)), cloud))));
         const F4 saturated = saturatedOf[k];
-        const F4 humidity = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_div_ps(_mm_loadu_ps(vapourW + c), saturated), zero, set1(1.0f)), set1(1.0f));
-        evaporatingShareOf[k] = minStd(set1(0.9f), _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
+        const F4 humidity =
+            select(_mm_cmpgt_ps(saturated, zero),
+                   clampStd(_mm_div_ps(_mm_loadu_ps(vapourW + c), saturated), zero, set1(1.0f)), set1(1.0f));
+        evaporatingShareOf[k] =
+            minStd(set1(0.9f),
+                   _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(set1(0.5f), _mm_sub_ps(set1(1.0f), humidity)), base), set1(1e-3f)));
       }
       for (size_t k = 0; k < count; ++k) {
-      const size_t c = blockOf[k];
-      F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
-      const F4 active = activeMask(cloud, rain, columnAt(c).threshold);
-      // Cloud → rain (the amount from above; 0: no move).
-      F4 newCloud = cloud, rainNow = rain;
-      transferWater(newCloud, rainNow, convertedOf[k]);
-      // Rain-out, part evaporating below the base.
-      const F4 fallen = _mm_mul_ps(rainNow, fallShareOf[k]);
-      const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
-      const F4 share = evaporatingShareOf[k];
-      F4 evaporated = _mm_mul_ps(fallen, share);
-      const F4 newRain = _mm_sub_ps(rainNow, fallen);
-      F4 newVapour = _mm_add_ps(vapour, evaporated);
-      // A trace below the vapour path's resolution cannot evaporate exactly: the rounded gain could
-      // exceed what the rain lost (a negative rate at the ground); it falls out instead (both
-      // differences are exact in double).
-      const __m128d lostA = _mm_sub_pd(_mm_cvtps_pd(rainNow), _mm_cvtps_pd(newRain));
-      const __m128d lostB = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(rainNow, rainNow)), _mm_cvtps_pd(_mm_movehl_ps(newRain, newRain)));
-      const __m128d gainA = _mm_sub_pd(_mm_cvtps_pd(newVapour), _mm_cvtps_pd(vapour));
-      const __m128d gainB = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)), _mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)));
-      const F4 inexact = _mm_shuffle_ps(_mm_castpd_ps(_mm_cmpgt_pd(gainA, lostA)), _mm_castpd_ps(_mm_cmpgt_pd(gainB, lostB)),
-                                        _MM_SHUFFLE(2, 0, 2, 0));
-      evaporated = _mm_andnot_ps(inexact, evaporated);
-      newVapour = select(inexact, vapour, newVapour);
-      // What left the fields is exactly what the stored values lost (round-off included), in double.
-      const __m128d leftA = _mm_sub_pd(lostA, _mm_and_pd(_mm_cmple_pd(gainA, lostA), gainA));
-      const __m128d leftB = _mm_sub_pd(lostB, _mm_and_pd(_mm_cmple_pd(gainB, lostB), gainB));
-      const F4 precipitation = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(leftA, dtPair)), _mm_cvtpd_ps(_mm_div_pd(leftB, dtPair)));
-      // Lanes without work keep everything (their update would change nothing: see the scalar pass).
-      const __m128d activeLo = _mm_castps_pd(_mm_unpacklo_ps(active, active));
-      const __m128d activeHi = _mm_castps_pd(_mm_unpackhi_ps(active, active));
-      leftLo = _mm_add_pd(leftLo, _mm_and_pd(activeLo, leftA));
-      leftHi = _mm_add_pd(leftHi, _mm_and_pd(activeHi, leftB));
-      _mm_storeu_ps(cloudW + c, select(active, newCloud, cloud));
-      _mm_storeu_ps(rainW + c, select(active, newRain, rain));
-      _mm_storeu_ps(vapourW + c, select(active, newVapour, vapour));
-      _mm_storeu_ps(anomalyT + c, select(active, _mm_sub_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), evaporated)), anomaly));
-      _mm_storeu_ps(rateOut + c, _mm_and_ps(active, precipitation));
+        const size_t c = blockOf[k];
+        F4 cloud = _mm_loadu_ps(cloudW + c), rain = _mm_loadu_ps(rainW + c);
+        const F4 active = activeMask(cloud, rain, columnAt(c).threshold);
+        // Cloud → rain (the amount from above; 0: no move).
+        F4 newCloud = cloud, rainNow = rain;
+        transferWater(newCloud, rainNow, convertedOf[k]);
+        // Rain-out, part evaporating below the base.
+        const F4 fallen = _mm_mul_ps(rainNow, fallShareOf[k]);
+        const F4 vapour = _mm_loadu_ps(vapourW + c), anomaly = _mm_loadu_ps(anomalyT + c);
+        const F4 share = evaporatingShareOf[k];
+        F4 evaporated = _mm_mul_ps(fallen, share);
+        const F4 newRain = _mm_sub_ps(rainNow, fallen);
+        F4 newVapour = _mm_add_ps(vapour, evaporated);
+        // A trace below the vapour path's resolution cannot evaporate exactly: the rounded gain could
+        // exceed what the rain lost (a negative rate at the ground); it falls out instead (both
+        // differences are exact in double).
+        const __m128d lostA = _mm_sub_pd(_mm_cvtps_pd(rainNow), _mm_cvtps_pd(newRain));
+        const __m128d lostB =
+            _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(rainNow, rainNow)), _mm_cvtps_pd(_mm_movehl_ps(newRain, newRain)));
+        const __m128d gainA = _mm_sub_pd(_mm_cvtps_pd(newVapour), _mm_cvtps_pd(vapour));
+        const __m128d gainB =
+            _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(newVapour, newVapour)), _mm_cvtps_pd(_mm_movehl_ps(vapour, vapour)));
+        const F4 inexact = _mm_shuffle_ps(_mm_castpd_ps(_mm_cmpgt_pd(gainA, lostA)),
+                                          _mm_castpd_ps(_mm_cmpgt_pd(gainB, lostB)), _MM_SHUFFLE(2, 0, 2, 0));
+        evaporated = _mm_andnot_ps(inexact, evaporated);
+        newVapour = select(inexact, vapour, newVapour);
+        // What left the fields is exactly what the stored values lost (round-off included), in double.
+        const __m128d leftA = _mm_sub_pd(lostA, _mm_and_pd(_mm_cmple_pd(gainA, lostA), gainA));
+        const __m128d leftB = _mm_sub_pd(lostB, _mm_and_pd(_mm_cmple_pd(gainB, lostB), gainB));
+        const F4 precipitation =
+            _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(leftA, dtPair)), _mm_cvtpd_ps(_mm_div_pd(leftB, dtPair)));
+        // Lanes without work keep everything (their update would change nothing: see the scalar pass).
+        const __m128d activeLo = _mm_castps_pd(_mm_unpacklo_ps(active, active));
+        const __m128d activeHi = _mm_castps_pd(_mm_unpackhi_ps(active, active));
+        leftLo = _mm_add_pd(leftLo, _mm_and_pd(activeLo, leftA));
+        leftHi = _mm_add_pd(leftHi, _mm_and_pd(activeHi, leftB));
+        _mm_storeu_ps(cloudW + c, select(active, newCloud, cloud));
+        _mm_storeu_ps(rainW + c, select(active, newRain, rain));
+        _mm_storeu_ps(vapourW + c, select(active, newVapour, vapour));
+        _mm_storeu_ps(anomalyT + c,
+                      select(active, _mm_sub_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), evaporated)), anomaly));
+        _mm_storeu_ps(rateOut + c, _mm_and_ps(active, precipitation));
       }
     }
     alignas(16) double parts[4];
@@ -171,8 +181,7 @@ double applyMicrophysics(WeatherState& s, const BoundaryLayer& layer, double dt_
     if (cloud > 0.0f) {
       float threshold = rho * kThresholdMixingRatio * std::min(depth, 2000.0f);
       float rainMixing = rain / (rho * depth);
-      float rate = kAutoconversionRate * std::max(0.0f, cloud - threshold) +
-                   2.2f * cloud * powFast(rainMixing, 0.875f);
+      float rate = kAutoconversionRate * std::max(0.0f, cloud - threshold) + 2.2f * cloud * powFast(rainMixing, 0.875f);
       if (rate > 0.0f) {
         float converted = cloud * oneMinusExpFast(rate * dt / cloud);
         transferWater(s.cloudWater[c], rain, converted);

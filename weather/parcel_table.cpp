@@ -101,8 +101,9 @@ void ParcelTable::build(const Sounding& s) {
     profiles_.resize(n * kLevels);
     for (int d = 0; d < nDepression_; ++d)
       for (int a = 0; a < nAnomaly_; ++a)
-        parcelProfile(s.surfaceTemperature_K + kMinAnomaly + a * kAnomalyStep, kLclMetresPerKelvin * (d * kDepressionStep),
-                      s.surfacePressure_Pa, &profiles_[(size_t(d) * nAnomaly_ + a) * kLevels]);
+        parcelProfile(s.surfaceTemperature_K + kMinAnomaly + a * kAnomalyStep,
+                      kLclMetresPerKelvin * (d * kDepressionStep), s.surfacePressure_Pa,
+                      &profiles_[(size_t(d) * nAnomaly_ + a) * kLevels]);
     profileTemperature_ = s.surfaceTemperature_K;
     profilePressure_ = s.surfacePressure_Pa;
   }
@@ -112,8 +113,9 @@ void ParcelTable::build(const Sounding& s) {
   for (int d = 0; d < nDepression_; ++d)
     for (int a = 0; a < nAnomaly_; ++a) {
       size_t i = size_t(d) * nAnomaly_ + a;
-      ParcelProperties p = integrate(&profiles_[i * kLevels], env, s.surfaceTemperature_K + kMinAnomaly + a * kAnomalyStep,
-                                     surfaceEnv, kLclMetresPerKelvin * (d * kDepressionStep));
+      ParcelProperties p =
+          integrate(&profiles_[i * kLevels], env, s.surfaceTemperature_K + kMinAnomaly + a * kAnomalyStep, surfaceEnv,
+                    kLclMetresPerKelvin * (d * kDepressionStep));
       cin_[i] = std::sqrt(2.0f * p.cin_J_kg);
       cape_[i] = p.cape_J_kg;
       lfc_[i] = p.freeConvectionLevel_m;
@@ -133,7 +135,11 @@ void ParcelTable::build(const Sounding& s) {
       nodes_[i] = {cape_[i], cin_[i], lnb_[i], lfc_[i]};
       allFree_[i] = cape_[i] > 0 && cape_[right] > 0 && cape_[i + up] > 0 && cape_[right + up] > 0;
       capeCorners_[i] = {cape_[i], cape_[right], cape_[i + up], cape_[right + up]};
-      summaries_[i] = {{cin_[i], cin_[right], cin_[i + up], cin_[right + up]}, maxCape_[i], minCin_[i], allFree_[i] ? 1.0f : 0.0f, 0.0f};
+      summaries_[i] = {{cin_[i], cin_[right], cin_[i + up], cin_[right + up]},
+                       maxCape_[i],
+                       minCin_[i],
+                       allFree_[i] ? 1.0f : 0.0f,
+                       0.0f};
     }
 }
 

@@ -23,8 +23,8 @@ namespace firmament::weather {
 struct ParcelProperties {
   float cin_J_kg = 0.0f;
   float cape_J_kg = 0.0f;
-  float freeConvectionLevel_m = 0.0f;  // LFC; 0 when there is none
-  float neutralBuoyancyLevel_m = 0.0f; // LNB; 0 when there is no free convection
+  float freeConvectionLevel_m = 0.0f;   // LFC; 0 when there is none
+  float neutralBuoyancyLevel_m = 0.0f;  // LNB; 0 when there is no free convection
 };
 
 class ParcelTable {

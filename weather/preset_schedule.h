@@ -10,7 +10,7 @@
 namespace firmament::weather {
 
 struct PresetChange {
-  double at_s = 0.0;          // model time the change starts
+  double at_s = 0.0;  // model time the change starts
   std::string preset;
   double transition_s = 3600.0;  // blend duration; 0 = immediate switch
 };

@@ -17,8 +17,7 @@ namespace {
 // here and not on pointers taken from vectors inside the caller.
 void markColumns(size_t n, float s0, float s1, const float* __restrict anomaly, const float* __restrict vapour,
                  const float* __restrict cloud, uint8_t* __restrict active) {
-  for (size_t c = 0; c < n; ++c)
-    active[c] = uint8_t((cloud[c] > 0.0f) | (vapour[c] > s0 + s1 * anomaly[c]));
+  for (size_t c = 0; c < n; ++c) active[c] = uint8_t((cloud[c] > 0.0f) | (vapour[c] > s0 + s1 * anomaly[c]));
 }
 
 }  // namespace
@@ -92,36 +91,46 @@ void applyStratiform(WeatherState& s, const BoundaryLayer& layer, const Stratifo
     for (size_t chunk = 0; chunk + 4 <= n; chunk += kChunk) {
       const size_t end = std::min(n - n % 4, chunk + kChunk);
       for (size_t c = chunk; c < end; c += 4)
-        saturatedOf[(c - chunk) / 4] = _mm_mul_ps(rhoHV, saturationMixingRatioFast4(_mm_sub_ps(_mm_add_ps(tRef, _mm_loadu_ps(anomalyT + c)), topCoolingV), topPressureV));
-    for (start = chunk; start < end; start += 4) {
-      const size_t c = start;
-      const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c), cloud = _mm_loadu_ps(cloudW + c);
-      const F4 cloudy = _mm_cmpgt_ps(cloud, zero);
-      if (_mm_movemask_ps(_mm_or_ps(cloudy, _mm_cmpgt_ps(vapour, _mm_add_ps(set1(s0), _mm_mul_ps(set1(s1), anomaly))))) == 0)
-        continue;
-      const F4 conv = _mm_loadu_ps(convective + c), top = _mm_loadu_ps(cloudTop + c);
-      const F4 saturated = saturatedOf[(c - chunk) / 4];
-      const F4 condensing = _mm_cmpgt_ps(vapour, saturated);
-      const F4 evaporating = _mm_andnot_ps(condensing, cloudy);
-      const F4 dq = _mm_mul_ps(_mm_sub_ps(vapour, saturated), set1(condense));
-      const F4 layerDeficit = select(_mm_cmpgt_ps(saturated, zero), clampStd(_mm_sub_ps(one, _mm_div_ps(vapour, saturated)), zero, one), one);
-      const F4 stratiformShare = _mm_sub_ps(one, conv);
-      const F4 e = _mm_mul_ps(_mm_mul_ps(cloud, set1(evaporate)),
-                              _mm_add_ps(_mm_mul_ps(conv, set1(ftDeficit)), _mm_mul_ps(stratiformShare, layerDeficit)));
-      F4 from = select(condensing, vapour, cloud), to = select(condensing, cloud, vapour);
-      transferWater(from, to, select(condensing, dq, _mm_and_ps(evaporating, e)));
-      _mm_storeu_ps(vapourW + c, select(condensing, from, to));
-      _mm_storeu_ps(cloudW + c, select(condensing, to, from));
-      const F4 warmed = _mm_add_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), dq));
-      const F4 cooled = _mm_sub_ps(anomaly, _mm_mul_ps(_mm_mul_ps(stratiformShare, set1(kelvinPerKg)), e));
-      _mm_storeu_ps(anomalyT + c, select(condensing, warmed, select(evaporating, cooled, anomaly)));
-      const F4 total = _mm_add_ps(cloud, dq);
-      const F4 mixedShare = _mm_and_ps(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_mul_ps(conv, cloud), total));
-      _mm_storeu_ps(convective + c, select(condensing, mixedShare, conv));
-      const F4 stratiformTop = _mm_add_ps(set1(depth), minStd(set1(8000.0f), _mm_mul_ps(maxStd(ascent ? _mm_loadu_ps(ascent + c) : uniformAscent, zero), set1(1e5f))));
-      const F4 lower = _mm_or_ps(_mm_cmplt_ps(conv, set1(0.5f)), _mm_cmplt_ps(top, stratiformTop));
-      _mm_storeu_ps(cloudTop + c, select(_mm_and_ps(condensing, lower), maxStd(_mm_mul_ps(top, conv), stratiformTop), top));
-    }
+        saturatedOf[(c - chunk) / 4] =
+            _mm_mul_ps(rhoHV, saturationMixingRatioFast4(
+                                  _mm_sub_ps(_mm_add_ps(tRef, _mm_loadu_ps(anomalyT + c)), topCoolingV), topPressureV));
+      for (start = chunk; start < end; start += 4) {
+        const size_t c = start;
+        const F4 anomaly = _mm_loadu_ps(anomalyT + c), vapour = _mm_loadu_ps(vapourW + c),
+                 cloud = _mm_loadu_ps(cloudW + c);
+        const F4 cloudy = _mm_cmpgt_ps(cloud, zero);
+        if (_mm_movemask_ps(
+                _mm_or_ps(cloudy, _mm_cmpgt_ps(vapour, _mm_add_ps(set1(s0), _mm_mul_ps(set1(s1), anomaly))))) == 0)
+          continue;
+        const F4 conv = _mm_loadu_ps(convective + c), top = _mm_loadu_ps(cloudTop + c);
+        const F4 saturated = saturatedOf[(c - chunk) / 4];
+        const F4 condensing = _mm_cmpgt_ps(vapour, saturated);
+        const F4 evaporating = _mm_andnot_ps(condensing, cloudy);
+        const F4 dq = _mm_mul_ps(_mm_sub_ps(vapour, saturated), set1(condense));
+        const F4 layerDeficit = select(_mm_cmpgt_ps(saturated, zero),
+                                       clampStd(_mm_sub_ps(one, _mm_div_ps(vapour, saturated)), zero, one), one);
+        const F4 stratiformShare = _mm_sub_ps(one, conv);
+        const F4 e =
+            _mm_mul_ps(_mm_mul_ps(cloud, set1(evaporate)),
+                       _mm_add_ps(_mm_mul_ps(conv, set1(ftDeficit)), _mm_mul_ps(stratiformShare, layerDeficit)));
+        F4 from = select(condensing, vapour, cloud), to = select(condensing, cloud, vapour);
+        transferWater(from, to, select(condensing, dq, _mm_and_ps(evaporating, e)));
+        _mm_storeu_ps(vapourW + c, select(condensing, from, to));
+        _mm_storeu_ps(cloudW + c, select(condensing, to, from));
+        const F4 warmed = _mm_add_ps(anomaly, _mm_mul_ps(set1(kelvinPerKg), dq));
+        const F4 cooled = _mm_sub_ps(anomaly, _mm_mul_ps(_mm_mul_ps(stratiformShare, set1(kelvinPerKg)), e));
+        _mm_storeu_ps(anomalyT + c, select(condensing, warmed, select(evaporating, cooled, anomaly)));
+        const F4 total = _mm_add_ps(cloud, dq);
+        const F4 mixedShare = _mm_and_ps(_mm_cmpgt_ps(total, zero), _mm_div_ps(_mm_mul_ps(conv, cloud), total));
+        _mm_storeu_ps(convective + c, select(condensing, mixedShare, conv));
+        const F4 stratiformTop =
+            _mm_add_ps(set1(depth),
+                       minStd(set1(8000.0f),
+                              _mm_mul_ps(maxStd(ascent ? _mm_loadu_ps(ascent + c) : uniformAscent, zero), set1(1e5f))));
+        const F4 lower = _mm_or_ps(_mm_cmplt_ps(conv, set1(0.5f)), _mm_cmplt_ps(top, stratiformTop));
+        _mm_storeu_ps(cloudTop + c,
+                      select(_mm_and_ps(condensing, lower), maxStd(_mm_mul_ps(top, conv), stratiformTop), top));
+      }
     }
   }
 #endif

@@ -21,7 +21,7 @@ struct StratiformParameters {
   double largeScaleLift_m_s = 0.0;
   double frontLift_m_s = 0.0;
   double frontWidth_m = 15000.0;
-  double frontPosition_m = 0.0;          // along the wind direction, from the domain's west/south corner
+  double frontPosition_m = 0.0;                         // along the wind direction, from the domain's west/south corner
   double frontDirectionX = 1.0, frontDirectionY = 0.0;  // unit vector the front moves toward
   double freeTroposphereRH = 0.5;
 };

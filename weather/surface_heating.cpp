@@ -77,9 +77,11 @@ void heatColumns(size_t n, const HeatingConstants k, const float* heatingMap, co
     for (size_t c = start; c < start + m; ++c) cloudy |= cloud[c] > 0.0f;
     if (sums && kExchange) sums->before(vapour, start, start + m);
     if (cloudy)
-      heatRun<true, kExchange>(m, k, heatingMap + start, cloud + start, heatFlux + start, temperature + start, vapour + start);
+      heatRun<true, kExchange>(m, k, heatingMap + start, cloud + start, heatFlux + start, temperature + start,
+                               vapour + start);
     else
-      heatRun<false, kExchange>(m, k, heatingMap + start, cloud + start, heatFlux + start, temperature + start, vapour + start);
+      heatRun<false, kExchange>(m, k, heatingMap + start, cloud + start, heatFlux + start, temperature + start,
+                                vapour + start);
     if (sums) {
       if (kExchange) sums->after(vapour, start, start + m);
       sums->flux(heatFlux, start, start + m);

@@ -40,7 +40,8 @@ std::string renderSvg(const LinePlot& p) {
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << p.width << "\" height=\"" << p.height
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"" << p.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << svgEscape(p.title) << "</text>\n";
+  o << "<text x=\"" << p.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << svgEscape(p.title)
+    << "</text>\n";
   // Grid and ticks.
   double xs = niceStep(xMax - xMin, 8);
   for (double x = std::ceil(xMin / xs) * xs; x <= xMax + 1e-9; x += xs)
@@ -50,15 +51,19 @@ std::string renderSvg(const LinePlot& p) {
   for (int r = 0; r < 2; ++r) {
     double ys = niceStep(yMax[r], 5);
     for (double y = 0; y <= yMax[r] + 1e-9; y += ys) {
-      if (r == 0) o << "<line x1=\"" << left << "\" y1=\"" << py(y, 0) << "\" x2=\"" << left + w << "\" y2=\"" << py(y, 0) << "\" stroke=\"#ddd\"/>";
+      if (r == 0)
+        o << "<line x1=\"" << left << "\" y1=\"" << py(y, 0) << "\" x2=\"" << left + w << "\" y2=\"" << py(y, 0)
+          << "\" stroke=\"#ddd\"/>";
       o << "<text x=\"" << (r ? left + w + 6 : left - 6) << "\" y=\"" << py(y, r) + 4 << "\" text-anchor=\""
         << (r ? "start" : "end") << "\">" << svgNumber(y) << "</text>\n";
     }
   }
   o << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << w << "\" height=\"" << h
     << "\" fill=\"none\" stroke=\"black\"/>\n";
-  o << "<text x=\"" << left + w / 2 << "\" y=\"" << p.height - 10 << "\" text-anchor=\"middle\">" << svgEscape(p.xLabel) << "</text>\n";
-  o << "<text transform=\"translate(16," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << svgEscape(p.leftLabel) << "</text>\n";
+  o << "<text x=\"" << left + w / 2 << "\" y=\"" << p.height - 10 << "\" text-anchor=\"middle\">" << svgEscape(p.xLabel)
+    << "</text>\n";
+  o << "<text transform=\"translate(16," << top + h / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
+    << svgEscape(p.leftLabel) << "</text>\n";
   o << "<text transform=\"translate(" << p.width - 14 << "," << top + h / 2 << ") rotate(90)\" text-anchor=\"middle\">"
     << svgEscape(p.rightLabel) << "</text>\n";
   // Lines.
@@ -81,7 +86,8 @@ std::string renderSvg(const LinePlot& p) {
     double ly = top + 14 + 16 * legend++;
     o << "<line x1=\"" << left + 10 << "\" y1=\"" << ly << "\" x2=\"" << left + 34 << "\" y2=\"" << ly << "\" stroke=\""
       << s.colour << "\" stroke-width=\"2\"" << (s.rightAxis ? " stroke-dasharray=\"6,3\"" : "") << "/><text x=\""
-      << left + 40 << "\" y=\"" << ly + 4 << "\">" << svgEscape(s.name) << (s.rightAxis ? " (right axis)" : "") << "</text>\n";
+      << left + 40 << "\" y=\"" << ly + 4 << "\">" << svgEscape(s.name) << (s.rightAxis ? " (right axis)" : "")
+      << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();

@@ -8,7 +8,7 @@ namespace firmament::weather {
 
 struct PlotSeries {
   std::string name;
-  std::string colour;  // any SVG colour, e.g. "#1f77b4"
+  std::string colour;          // any SVG colour, e.g. "#1f77b4"
   std::vector<double> values;  // one per x
   bool rightAxis = false;
 };

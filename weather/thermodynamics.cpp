@@ -42,8 +42,8 @@ double moistAdiabaticLapseRate(double temperature_K, double pressure_Pa) {
   double t = std::max(temperature_K, 150.0);
   double rs = saturationMixingRatio(t, pressure_Pa);
   double numerator = kGravity * (1.0 + kLatentHeatVaporization * rs / (kDryAirGasConstant * t));
-  double denominator = kDryAirHeatCapacity + kLatentHeatVaporization * kLatentHeatVaporization * rs * kEpsilon /
-                                                 (kDryAirGasConstant * t * t);
+  double denominator = kDryAirHeatCapacity +
+                       kLatentHeatVaporization * kLatentHeatVaporization * rs * kEpsilon / (kDryAirGasConstant * t * t);
   return numerator / denominator;
 }
 

@@ -55,7 +55,8 @@ extern const SaturationTables gSaturationTables;
 
 inline float saturationVapourPressureFast(float t) {
   const SaturationTables& s = gSaturationTables;
-  t = t < SaturationTables::kMinT ? SaturationTables::kMinT : (t > SaturationTables::kMaxT ? SaturationTables::kMaxT : t);
+  t = t < SaturationTables::kMinT ? SaturationTables::kMinT
+                                  : (t > SaturationTables::kMaxT ? SaturationTables::kMaxT : t);
   float x = (t - SaturationTables::kMinT) * (1.0f / SaturationTables::kStepT);
   int i = int(x);
   i = i > int(s.es.size()) - 2 ? int(s.es.size()) - 2 : i;
@@ -74,7 +75,8 @@ inline float saturationMixingRatioFast(float t, float p) {
 inline __m128 saturationMixingRatioFast4(__m128 t, __m128 p) {
   const SaturationTables& s = gSaturationTables;
   t = _mm_max_ps(_mm_set1_ps(SaturationTables::kMinT), _mm_min_ps(_mm_set1_ps(SaturationTables::kMaxT), t));
-  const __m128 x = _mm_mul_ps(_mm_sub_ps(t, _mm_set1_ps(SaturationTables::kMinT)), _mm_set1_ps(1.0f / SaturationTables::kStepT));
+  const __m128 x =
+      _mm_mul_ps(_mm_sub_ps(t, _mm_set1_ps(SaturationTables::kMinT)), _mm_set1_ps(1.0f / SaturationTables::kStepT));
   // i = min(⌊x⌋, size − 2), in float (exact integers).
   const __m128 fi = _mm_min_ps(_mm_cvtepi32_ps(_mm_cvttps_epi32(x)), _mm_set1_ps(float(int(s.es.size()) - 2)));
   const __m128 f = _mm_sub_ps(x, fi);

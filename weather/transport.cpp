@@ -73,7 +73,8 @@ void Transport::advect(WeatherState& s, double dt_s) {
   const bool convective = anyNonZero(s.cloudTop) || anyNonZero(s.updraft);  // both are ≥ 0
   advection_.prepare(s.windU, s.windV, s.nx, s.ny, s.cellSize_m, dt_s);
   if (convective)
-    advection_.advectFields({&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
+    advection_.advectFields(
+        {&s.temperature, &s.vapour, &s.updraft, &s.cloudTop, &s.convectiveFraction, &s.cloudWater, &s.rain});
   else if (cloudBefore_ > 0.0 || rainBefore_ > 0.0)
     advection_.advectFields({&s.temperature, &s.vapour, &s.cloudWater, &s.rain});
   else
@@ -167,7 +168,8 @@ void Transport::sweep(WeatherState& s, double dt_s, sse::DomainSum& rainSum) {
     for (int i = 0; i < nx; i += 4) {
       const __m128 tx = _mm_loadu_ps(&rowFx_[size_t(i)]), ty = _mm_loadu_ps(&rowFy_[size_t(i)]);
       const __m128 sx = _mm_sub_ps(one, tx), sy = _mm_sub_ps(one, ty);
-      const __m128 w00 = _mm_mul_ps(sx, sy), w10 = _mm_mul_ps(tx, sy), w01 = _mm_mul_ps(sx, ty), w11 = _mm_mul_ps(tx, ty);
+      const __m128 w00 = _mm_mul_ps(sx, sy), w10 = _mm_mul_ps(tx, sy), w01 = _mm_mul_ps(sx, ty),
+                   w11 = _mm_mul_ps(tx, ty);
       size_t corner[4][4];
       for (int l = 0; l < 4; ++l) {
         const int x0 = rowI_[size_t(i + l)], y0 = rowJ_[size_t(i + l)];
@@ -179,10 +181,14 @@ void Transport::sweep(WeatherState& s, double dt_s, sse::DomainSum& rainSum) {
         corner[l][3] = r1 + size_t(x1);
       }
       __m128 first[4], second[4];
-      interpolateCell<V, 0>(packed_, corner[0][0], corner[0][1], corner[0][2], corner[0][3], w00, w10, w01, w11, first[0], second[0]);
-      interpolateCell<V, 1>(packed_, corner[1][0], corner[1][1], corner[1][2], corner[1][3], w00, w10, w01, w11, first[1], second[1]);
-      interpolateCell<V, 2>(packed_, corner[2][0], corner[2][1], corner[2][2], corner[2][3], w00, w10, w01, w11, first[2], second[2]);
-      interpolateCell<V, 3>(packed_, corner[3][0], corner[3][1], corner[3][2], corner[3][3], w00, w10, w01, w11, first[3], second[3]);
+      interpolateCell<V, 0>(packed_, corner[0][0], corner[0][1], corner[0][2], corner[0][3], w00, w10, w01, w11,
+                            first[0], second[0]);
+      interpolateCell<V, 1>(packed_, corner[1][0], corner[1][1], corner[1][2], corner[1][3], w00, w10, w01, w11,
+                            first[1], second[1]);
+      interpolateCell<V, 2>(packed_, corner[2][0], corner[2][1], corner[2][2], corner[2][3], w00, w10, w01, w11,
+                            first[2], second[2]);
+      interpolateCell<V, 3>(packed_, corner[3][0], corner[3][1], corner[3][2], corner[3][3], w00, w10, w01, w11,
+                            first[3], second[3]);
       const size_t c = row + size_t(i);
       _MM_TRANSPOSE4_PS(first[0], first[1], first[2], first[3]);
       _mm_storeu_ps(t + c, first[0]);
@@ -215,7 +221,8 @@ void mixRow(const float* in, float* out, int j, int nx, int ny, __m128 k, sse::D
   for (int i = 0; i < nx; i += 4) {
     const __m128 centre = _mm_loadu_ps(row + i);
     const __m128 west = i == 0 ? _mm_setr_ps(row[nx - 1], row[0], row[1], row[2]) : _mm_loadu_ps(row + i - 1);
-    const __m128 east = i + 4 == nx ? _mm_setr_ps(row[i + 1], row[i + 2], row[i + 3], row[0]) : _mm_loadu_ps(row + i + 1);
+    const __m128 east =
+        i + 4 == nx ? _mm_setr_ps(row[i + 1], row[i + 2], row[i + 3], row[0]) : _mm_loadu_ps(row + i + 1);
     __m128 flux = _mm_add_ps(_mm_add_ps(_mm_add_ps(east, west), _mm_loadu_ps(north + i)), _mm_loadu_ps(south + i));
     flux = _mm_sub_ps(flux, _mm_mul_ps(four, centre));
     const __m128 mixed = _mm_add_ps(centre, _mm_mul_ps(k, flux));

@@ -28,13 +28,13 @@ double number(const json& object, const std::string& key, const std::string& pat
   if (!v.is_number()) throw InputError(path + "/" + key + ": expected a number");
   double d = v.get<double>();
   if (!std::isfinite(d) || d < lo || d > hi)
-    throw InputError(path + "/" + key + ": " + v.dump() + " is outside [" + json(lo).dump() + ", " +
-                     json(hi).dump() + "]");
+    throw InputError(path + "/" + key + ": " + v.dump() + " is outside [" + json(lo).dump() + ", " + json(hi).dump() +
+                     "]");
   return d;
 }
 
-long long integer(const json& object, const std::string& key, const std::string& path, long long fallback,
-                  long long lo, long long hi) {
+long long integer(const json& object, const std::string& key, const std::string& path, long long fallback, long long lo,
+                  long long hi) {
   if (!object.contains(key)) return fallback;
   const json& v = object.at(key);
   if (!v.is_number_integer() && !v.is_number_unsigned()) throw InputError(path + "/" + key + ": expected an integer");
@@ -61,15 +61,16 @@ std::string presetName(const json& object, const std::string& key, const std::st
 
 }  // namespace
 
-double surfacePressureFromHeight(double height_m) { return kSeaLevelPressure * std::exp(-height_m / kPressureScaleHeight); }
+double surfacePressureFromHeight(double height_m) {
+  return kSeaLevelPressure * std::exp(-height_m / kPressureScaleHeight);
+}
 
 WeatherConfig configFromJson(const json& w) {
   const std::string path = "/weather";
   WeatherConfig c;
   if (w.is_null()) return c;
-  rejectUnknownKeys(w, path,
-                    {"preset", "seed", "wind", "grid", "time_step_s", "heating_scale", "surface_heterogeneity",
-                     "schedule"});
+  rejectUnknownKeys(
+      w, path, {"preset", "seed", "wind", "grid", "time_step_s", "heating_scale", "surface_heterogeneity", "schedule"});
   c.preset = presetName(w, "preset", path, c.preset);
   c.seed = uint32_t(integer(w, "seed", path, c.seed, 0, 4294967295LL));
   if (w.contains("wind")) {

@@ -55,8 +55,10 @@ WeatherMap makeWeatherMap(const WeatherState& s, const RegionPlacement& placemen
   for (Image* image : {&m.map, &m.wind}) {
     image->metadata["weather:time_s"] = std::to_string(s.time_s);
     image->metadata["weather:cell_size_m"] = std::to_string(s.cellSize_m);
-    image->metadata["weather:centre_latitude_deg"] = std::to_string(placement.centreLatitude_rad * 180.0 / std::numbers::pi);
-    image->metadata["weather:centre_longitude_deg"] = std::to_string(placement.centreLongitude_rad * 180.0 / std::numbers::pi);
+    image->metadata["weather:centre_latitude_deg"] =
+        std::to_string(placement.centreLatitude_rad * 180.0 / std::numbers::pi);
+    image->metadata["weather:centre_longitude_deg"] =
+        std::to_string(placement.centreLongitude_rad * 180.0 / std::numbers::pi);
   }
   m.map.metadata["weather:channels"] = "coverage, type (0 St, 1/3 Cu, 2/3 Cg, 1 Cb), precipitation mm/h, top m";
   m.wind.metadata["weather:channels"] = "east m/s, north m/s, updraft m/s, cloud base m";

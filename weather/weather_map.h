@@ -30,9 +30,9 @@ struct WeatherMap {
   Image map;   // coverage, type, precipitation mm/h, top m
   Image wind;  // east m/s, north m/s, updraft m/s, base m
   double cellSize_m = 200.0;
-  double time_s = 0.0;             // model time of the snapshot (seconds since the scene's start time)
-  glm::dvec2 meanWind_m_s{0.0};    // domain-mean wind at cloud base (east, north)
-  glm::dvec2 windShear_per_s{0.0}; // d(east, north wind)/dz
+  double time_s = 0.0;              // model time of the snapshot (seconds since the scene's start time)
+  glm::dvec2 meanWind_m_s{0.0};     // domain-mean wind at cloud base (east, north)
+  glm::dvec2 windShear_per_s{0.0};  // d(east, north wind)/dz
   RegionPlacement placement;
 
   static constexpr double kSkewRiseTime_s = 300.0;

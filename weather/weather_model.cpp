@@ -1,8 +1,8 @@
 #include "weather/weather_model.h"
 
 #include <algorithm>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <numbers>
 
 #include "core/error.h"
@@ -261,7 +261,8 @@ void WeatherModel::substep(double dt, bool windCurrent) {
       // The remnants, summed as doubles (a float sum of the two could round).
       const F4 cloudRem = _mm_and_ps(cloudGone, cloud), rainRem = _mm_and_ps(rainGone, rain);
       sumLo = _mm_add_pd(sumLo, _mm_add_pd(_mm_cvtps_pd(cloudRem), _mm_cvtps_pd(rainRem)));
-      sumHi = _mm_add_pd(sumHi, _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(cloudRem, cloudRem)), _mm_cvtps_pd(_mm_movehl_ps(rainRem, rainRem))));
+      sumHi = _mm_add_pd(sumHi, _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(cloudRem, cloudRem)),
+                                           _mm_cvtps_pd(_mm_movehl_ps(rainRem, rainRem))));
       const F4 clear = _mm_andnot_ps(bare, _mm_and_ps(_mm_cmpeq_ps(cloudLeft, zero), _mm_cmpeq_ps(rainLeft, zero)));
       _mm_storeu_ps(&s.cloudWater[c], cloudLeft);
       _mm_storeu_ps(&s.rain[c], rainLeft);

@@ -27,7 +27,7 @@
 namespace firmament::weather {
 
 struct WaterBudget {
-  double total_kg = 0.0;          // vapour + cloud + rain in the domain now
+  double total_kg = 0.0;  // vapour + cloud + rain in the domain now
   double precipitatedOut_kg = 0.0;
   double exchangedIn_kg = 0.0;
   double initial_kg = 0.0;
@@ -67,7 +67,9 @@ class WeatherModel {
   double time_s() const { return state_.time_s; }
   int lastSubsteps() const { return lastSubsteps_; }
   // The parameters in effect now, with the mixed layer at its current depth.
-  PresetParameters currentParameters() const { return withDepth(schedule_.parametersAt(state_.time_s), state_.layerDepth_m); }
+  PresetParameters currentParameters() const {
+    return withDepth(schedule_.parametersAt(state_.time_s), state_.layerDepth_m);
+  }
   double layerDepth_m() const { return state_.layerDepth_m; }
   double subsidenceWarming_K() const { return state_.subsidenceWarming_K; }
 

@@ -5,10 +5,20 @@
 namespace firmament::weather {
 
 std::array<double, PresetParameters::kCount> PresetParameters::toArray() const {
-  return {referenceTemperature_K, boundaryLayerDepth_m, relativeHumidity,   inversion_K,
-          lapseRate_K_per_km,     stableLayerBase_m,    upperLapseRate_K_per_km, tropopause_m,
-          freeTroposphereRH,      absorbedSolar_W_m2,   bowenRatio,         largeScaleLift_m_s,
-          frontLift_m_s,          frontWidth_m};
+  return {referenceTemperature_K,
+          boundaryLayerDepth_m,
+          relativeHumidity,
+          inversion_K,
+          lapseRate_K_per_km,
+          stableLayerBase_m,
+          upperLapseRate_K_per_km,
+          tropopause_m,
+          freeTroposphereRH,
+          absorbedSolar_W_m2,
+          bowenRatio,
+          largeScaleLift_m_s,
+          frontLift_m_s,
+          frontWidth_m};
 }
 
 PresetParameters PresetParameters::fromArray(const std::array<double, kCount>& v) {
@@ -31,8 +41,8 @@ PresetParameters PresetParameters::fromArray(const std::array<double, kCount>& v
 }
 
 const std::vector<std::string>& presetNames() {
-  static const std::vector<std::string> names = {"clear",    "fair-weather", "scattered-showers",
-                                                 "thunderstorm", "overcast", "frontal"};
+  static const std::vector<std::string> names = {"clear",        "fair-weather", "scattered-showers",
+                                                 "thunderstorm", "overcast",     "frontal"};
   return names;
 }
 

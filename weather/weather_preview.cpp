@@ -12,7 +12,8 @@ std::vector<uint8_t> previewRgb(const WeatherMap& m) {
     for (int k = 0; k < 3; ++k) out[k] = a[k] + t * (b[k] - a[k]);
   };
   const float ground[3] = {0.16f, 0.24f, 0.14f}, stratus[3] = {0.62f, 0.66f, 0.74f}, cumulus[3] = {0.97f, 0.97f, 0.97f},
-              congestus[3] = {0.98f, 0.90f, 0.62f}, cumulonimbus[3] = {0.95f, 0.45f, 0.25f}, rain[3] = {0.15f, 0.35f, 0.95f};
+              congestus[3] = {0.98f, 0.90f, 0.62f}, cumulonimbus[3] = {0.95f, 0.45f, 0.25f},
+              rain[3] = {0.15f, 0.35f, 0.95f};
   for (size_t i = 0; i < image.pixelCount(); ++i) {
     const float* px = image.pixels.data() + 4 * i;
     float cover = std::clamp(px[0], 0.0f, 1.0f), type = std::clamp(px[1], 0.0f, 1.0f);

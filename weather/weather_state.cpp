@@ -5,8 +5,8 @@
 namespace firmament::weather {
 
 WeatherState::WeatherState(int nx_, int ny_, double cellSize) : nx(nx_), ny(ny_), cellSize_m(cellSize) {
-  for (Field* f : {&temperature, &vapour, &cloudWater, &rain, &updraft, &cloudTop, &convectiveFraction,
-                   &cloudBase, &surfaceHeatFlux, &precipitationRate, &windU, &windV, &lift})
+  for (Field* f : {&temperature, &vapour, &cloudWater, &rain, &updraft, &cloudTop, &convectiveFraction, &cloudBase,
+                   &surfaceHeatFlux, &precipitationRate, &windU, &windV, &lift})
     f->assign(cells(), 0.0f);
 }
 

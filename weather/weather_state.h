@@ -47,13 +47,13 @@ struct WeatherState {
   double time_s = 0.0;
 
   // Prognostic.
-  Field temperature;        // boundary-layer temperature anomaly against the preset's reference (K)
-  Field vapour;             // boundary-layer water vapour path (kg/m²)
-  Field cloudWater;         // cloud liquid water path (kg/m²)
-  Field rain;               // rain water path aloft (kg/m²)
-  Field updraft;            // convective updraft strength (m/s)
-  Field cloudTop;           // cloud-top height above ground (m); 0 where there is no cloud
-  Field convectiveFraction; // share of the cloud water that is convective (0 stratiform … 1 convective)
+  Field temperature;         // boundary-layer temperature anomaly against the preset's reference (K)
+  Field vapour;              // boundary-layer water vapour path (kg/m²)
+  Field cloudWater;          // cloud liquid water path (kg/m²)
+  Field rain;                // rain water path aloft (kg/m²)
+  Field updraft;             // convective updraft strength (m/s)
+  Field cloudTop;            // cloud-top height above ground (m); 0 where there is no cloud
+  Field convectiveFraction;  // share of the cloud water that is convective (0 stratiform … 1 convective)
 
   // Diagnostic (recomputed every step).
   Field cloudBase;          // m above ground (lifting condensation level)
@@ -63,10 +63,10 @@ struct WeatherState {
   Field lift;               // ascent at the boundary-layer top from convergence and large-scale lifting (m/s)
 
   // Domain-wide state of the layer and its environment.
-  double layerDepth_m = 1000.0;          // mixed-layer depth h (boundary_layer_growth.h)
-  double meanSensibleHeat_W_m2 = 0.0;    // domain mean of surfaceHeatFlux, last step
-  double subsidenceWarming_K = 0.0;      // domain mean of δ, compensating_subsidence.h
-  double meanMassFlux_m_s = 0.0;         // σ w̄ of the last convection step
+  double layerDepth_m = 1000.0;        // mixed-layer depth h (boundary_layer_growth.h)
+  double meanSensibleHeat_W_m2 = 0.0;  // domain mean of surfaceHeatFlux, last step
+  double subsidenceWarming_K = 0.0;    // domain mean of δ, compensating_subsidence.h
+  double meanMassFlux_m_s = 0.0;       // σ w̄ of the last convection step
 
   // Water that left or entered the domain, integrated (kg).
   double precipitatedOut_kg = 0.0;

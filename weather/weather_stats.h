@@ -8,12 +8,12 @@ namespace firmament::weather {
 
 struct WeatherStats {
   double time_h = 0.0;
-  double cloudFraction = 0.0;       // mean cloud cover (cover = 1 − exp(−LWP/0.05 kg m⁻²))
-  double meanTop_m = 0.0;           // cover-weighted mean cloud top over cells with cover > 0.1 (0 if none)
-  double maxTop_m = 0.0;            // over cells with cover > 0.1
-  double precipAreaFraction = 0.0;  // share of cells with rain at the ground > 0.1 mm/h
-  double waterTotal_kg = 0.0;       // vapour + cloud + rain
-  double precipOut_kg = 0.0;        // rain that reached the ground since the start
+  double cloudFraction = 0.0;         // mean cloud cover (cover = 1 − exp(−LWP/0.05 kg m⁻²))
+  double meanTop_m = 0.0;             // cover-weighted mean cloud top over cells with cover > 0.1 (0 if none)
+  double maxTop_m = 0.0;              // over cells with cover > 0.1
+  double precipAreaFraction = 0.0;    // share of cells with rain at the ground > 0.1 mm/h
+  double waterTotal_kg = 0.0;         // vapour + cloud + rain
+  double precipOut_kg = 0.0;          // rain that reached the ground since the start
   double cumulonimbusFraction = 0.0;  // share of cells with cover > 0.1 and top ≥ 7 km and convective
 };
 

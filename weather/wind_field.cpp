@@ -28,7 +28,8 @@ void binomialSmooth(Field& f, Field& scratch, int nx, int ny) {
 #if defined(__SSE2__)
     // The interior four cells at a time, the same operations per lane.
     for (; i + 4 <= nx - 1; i += 4)
-      _mm_storeu_ps(out + i, _mm_add_ps(_mm_mul_ps(_mm_set1_ps(0.25f), _mm_add_ps(_mm_loadu_ps(row + i - 1), _mm_loadu_ps(row + i + 1))),
+      _mm_storeu_ps(out + i, _mm_add_ps(_mm_mul_ps(_mm_set1_ps(0.25f),
+                                                   _mm_add_ps(_mm_loadu_ps(row + i - 1), _mm_loadu_ps(row + i + 1))),
                                         _mm_mul_ps(_mm_set1_ps(0.5f), _mm_loadu_ps(row + i))));
 #endif
     for (; i < nx; ++i) at(i);
@@ -61,7 +62,8 @@ void interpolatePairs(const std::vector<float>& coarse, float offset, bool withO
   const __m128 b0V = _mm_set1_ps(b0), b1V = _mm_set1_ps(b1);
   size_t k = 0;
   for (; k + 4 <= cn; k += 4) {
-    const __m128 left = _mm_loadu_ps(&padded[k]), centre = _mm_loadu_ps(&padded[k + 1]), right = _mm_loadu_ps(&padded[k + 2]);
+    const __m128 left = _mm_loadu_ps(&padded[k]), centre = _mm_loadu_ps(&padded[k + 1]),
+                 right = _mm_loadu_ps(&padded[k + 2]);
     const __m128 evenBase = withOffset ? _mm_add_ps(offsetV, left) : left;
     const __m128 oddBase = withOffset ? _mm_add_ps(offsetV, centre) : centre;
     const __m128 even = _mm_add_ps(evenBase, _mm_mul_ps(threeQuarters, _mm_sub_ps(centre, left)));
@@ -213,9 +215,12 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
       const float* b = a + nx_;
       float* out = &coarseT_[size_t(j0 / 2) * cnx];
       for (int i = 0; i < nx_; i += 8) {
-        const __m128 a0 = _mm_loadu_ps(a + i), a1 = _mm_loadu_ps(a + i + 4), b0 = _mm_loadu_ps(b + i), b1 = _mm_loadu_ps(b + i + 4);
-        const __m128 first = _mm_add_ps(_mm_shuffle_ps(a0, a1, _MM_SHUFFLE(2, 0, 2, 0)), _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(3, 1, 3, 1)));
-        const __m128 second = _mm_add_ps(_mm_shuffle_ps(b0, b1, _MM_SHUFFLE(2, 0, 2, 0)), _mm_shuffle_ps(b0, b1, _MM_SHUFFLE(3, 1, 3, 1)));
+        const __m128 a0 = _mm_loadu_ps(a + i), a1 = _mm_loadu_ps(a + i + 4), b0 = _mm_loadu_ps(b + i),
+                     b1 = _mm_loadu_ps(b + i + 4);
+        const __m128 first = _mm_add_ps(_mm_shuffle_ps(a0, a1, _MM_SHUFFLE(2, 0, 2, 0)),
+                                        _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(3, 1, 3, 1)));
+        const __m128 second = _mm_add_ps(_mm_shuffle_ps(b0, b1, _MM_SHUFFLE(2, 0, 2, 0)),
+                                         _mm_shuffle_ps(b0, b1, _MM_SHUFFLE(3, 1, 3, 1)));
         _mm_storeu_ps(out + i / 2, _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_setzero_ps(), first), second), invV));
       }
     }
@@ -252,7 +257,8 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
     // ∇·u_b = κ ∇²T̃′ (limited alike); w at the boundary-layer top = −h ∇·u_b.
     float laplacian = (te + tw + tn + ts - 4.0f * tc) * invD2;
     coarseLift_[c] = -depth * kappa * limit * laplacian;
-    maxCurvature = std::max(maxCurvature, kappa * limit * (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
+    maxCurvature =
+        std::max(maxCurvature, kappa * limit * (std::fabs(te + tw - 2.0f * tc) + std::fabs(tn + ts - 2.0f * tc)));
   };
   for (int j = 0; j < cny; ++j) {
     int jn = j + 1 == cny ? 0 : j + 1, js = j == 0 ? cny - 1 : j - 1;
@@ -265,7 +271,8 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
 #if defined(__SSE2__)
     {
       const __m128 kappaV = _mm_set1_ps(kappa), inv2dV = _mm_set1_ps(inv2d), invD2V = _mm_set1_ps(invD2);
-      const __m128 maxSpeedV = _mm_set1_ps(maxSpeed), maxSpeed2 = _mm_set1_ps(maxSpeed * maxSpeed), one = _mm_set1_ps(1.0f);
+      const __m128 maxSpeedV = _mm_set1_ps(maxSpeed), maxSpeed2 = _mm_set1_ps(maxSpeed * maxSpeed),
+                   one = _mm_set1_ps(1.0f);
       const __m128 four = _mm_set1_ps(4.0f), two = _mm_set1_ps(2.0f), minusDepthKappa = _mm_set1_ps(-depth * kappa);
       const __m128 sign = _mm_set1_ps(-0.0f);
       __m128 curvature = _mm_setzero_ps();
@@ -276,10 +283,12 @@ double WindField::buoyancyFlow(const WeatherState& s, const WindParameters& p) {
         const __m128 vb = _mm_mul_ps(_mm_mul_ps(kappaV, _mm_sub_ps(tn, ts)), inv2dV);
         const __m128 speed2 = _mm_add_ps(_mm_mul_ps(ub, ub), _mm_mul_ps(vb, vb));
         const __m128 fast = _mm_cmpgt_ps(speed2, maxSpeed2);
-        const __m128 limit = _mm_or_ps(_mm_and_ps(fast, _mm_div_ps(maxSpeedV, _mm_sqrt_ps(speed2))), _mm_andnot_ps(fast, one));
+        const __m128 limit =
+            _mm_or_ps(_mm_and_ps(fast, _mm_div_ps(maxSpeedV, _mm_sqrt_ps(speed2))), _mm_andnot_ps(fast, one));
         _mm_storeu_ps(&coarseU_[base + i], _mm_mul_ps(ub, limit));
         _mm_storeu_ps(&coarseV_[base + i], _mm_mul_ps(vb, limit));
-        const __m128 laplacian = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_add_ps(te, tw), tn), ts), _mm_mul_ps(four, tc)), invD2V);
+        const __m128 laplacian =
+            _mm_mul_ps(_mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_add_ps(te, tw), tn), ts), _mm_mul_ps(four, tc)), invD2V);
         _mm_storeu_ps(&coarseLift_[base + i], _mm_mul_ps(_mm_mul_ps(minusDepthKappa, limit), laplacian));
         const __m128 bendX = _mm_andnot_ps(sign, _mm_sub_ps(_mm_add_ps(te, tw), _mm_mul_ps(two, tc)));
         const __m128 bendY = _mm_andnot_ps(sign, _mm_sub_ps(_mm_add_ps(tn, ts), _mm_mul_ps(two, tc)));

@@ -70,9 +70,9 @@ class WindField {
   // Coarse grid of the buoyancy-driven flow.
   int factor_ = 1, cnx_ = 0, cny_ = 0;
   Field coarseT_, scratch_, coarseU_, coarseV_, coarseLift_;
-  std::vector<int32_t> x0_, x1_, y0_, y1_;  // per fine column / row: coarse neighbours
-  std::vector<float> wx_, wy_;              // and the weight of the second
-  std::vector<float> padded_;               // a coarse row with its periodic neighbours (update)
+  std::vector<int32_t> x0_, x1_, y0_, y1_;    // per fine column / row: coarse neighbours
+  std::vector<float> wx_, wy_;                // and the weight of the second
+  std::vector<float> padded_;                 // a coarse row with its periodic neighbours (update)
   std::vector<float> rowU_, rowV_, rowLift_;  // a fine row's coarse values (update)
 };
 

@@ -1,5 +1,5 @@
-// bench_aerial_perspective [--repeats N] [--rounds N [--cheap-clouds]] [--set /path=value]... [--heatmap OUT.png] [SCENE.json ...]
-// The clouds' aerial perspective, error against time (docs/atmosphere.md, "Aerial-perspective
+// bench_aerial_perspective [--repeats N] [--rounds N [--cheap-clouds]] [--set /path=value]... [--heatmap OUT.png]
+// [SCENE.json ...] The clouds' aerial perspective, error against time (docs/atmosphere.md, "Aerial-perspective
 // volume"): each scene (default scenes/cumulus.json) is rendered with the air in front of the clouds
 // from the volume (several sizes), from the per-pixel march (8, 16, 64 steps) and without it; every
 // frame is compared with the per-pixel march of 256 steps (and the 64-step one) by the relative RMSE
@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "eval/micro/bench_support.h"
 #include "core/error.h"
 #include "core/image_metrics.h"
 #include "core/scene.h"
+#include "eval/micro/bench_support.h"
 #include "gpu/context.h"
 #include "sky/sky_renderer.h"
 
@@ -89,12 +89,18 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes, overrides;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
-      if (a == "--repeats" && i + 1 < argc) repeats = std::stoi(argv[++i]);
-      else if (a == "--set" && i + 1 < argc) overrides.push_back(argv[++i]);
-      else if (a == "--heatmap" && i + 1 < argc) heatmap = argv[++i];
-      else if (a == "--rounds" && i + 1 < argc) rounds = std::stoi(argv[++i]);
-      else if (a == "--cheap-clouds") cheapClouds = true;
-      else scenes.push_back(a);
+      if (a == "--repeats" && i + 1 < argc)
+        repeats = std::stoi(argv[++i]);
+      else if (a == "--set" && i + 1 < argc)
+        overrides.push_back(argv[++i]);
+      else if (a == "--heatmap" && i + 1 < argc)
+        heatmap = argv[++i];
+      else if (a == "--rounds" && i + 1 < argc)
+        rounds = std::stoi(argv[++i]);
+      else if (a == "--cheap-clouds")
+        cheapClouds = true;
+      else
+        scenes.push_back(a);
     }
     if (scenes.empty()) scenes.push_back("scenes/cumulus.json");
     gpu::ContextOptions options;
@@ -106,7 +112,8 @@ int main(int argc, char** argv) {
       const Scene scene = Scene::load(scenes.front(), overrides);
       std::vector<Variant> timed;
       for (const Variant& v : variants())
-        if (v.name == "off" || v.name == "march 8" || v.name == "volume 32x32x32 (default)" || v.name == "volume 64x64x32")
+        if (v.name == "off" || v.name == "march 8" || v.name == "volume 32x32x32 (default)" ||
+            v.name == "volume 64x64x32")
           timed.push_back(v);
       std::vector<std::vector<double>> ms(timed.size()), volumeMs(timed.size());
       for (int round = -1; round < rounds; ++round)
@@ -151,22 +158,26 @@ int main(int argc, char** argv) {
         }
         return r;
       };
-      const RenderResult reference = run([](SkyRenderOptions& o) {
-        o.clouds.aerialPerspective = AerialPerspective::March;
-        o.clouds.aerialPerspectiveSteps = 256;
-      }, nullptr);
-      const RenderResult fine = run([](SkyRenderOptions& o) {
-        o.clouds.aerialPerspective = AerialPerspective::March;
-        o.clouds.aerialPerspectiveSteps = 64;
-      }, nullptr);
+      const RenderResult reference = run(
+          [](SkyRenderOptions& o) {
+            o.clouds.aerialPerspective = AerialPerspective::March;
+            o.clouds.aerialPerspectiveSteps = 256;
+          },
+          nullptr);
+      const RenderResult fine = run(
+          [](SkyRenderOptions& o) {
+            o.clouds.aerialPerspective = AerialPerspective::March;
+            o.clouds.aerialPerspectiveSteps = 64;
+          },
+          nullptr);
       std::vector<float> cloudMask(reference.clouds.pixelCount());
       size_t cloudPixels = 0;
       for (size_t i = 0; i < cloudMask.size(); ++i) {
         cloudMask[i] = reference.clouds.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
         cloudPixels += cloudMask[i] > 0.0f;
       }
-      std::printf("\n%s (%dx%d, %zu cloud pixels; reference: the per-pixel air march, 256 steps)\n", scene.source().c_str(),
-                  reference.image.width, reference.image.height, cloudPixels);
+      std::printf("\n%s (%dx%d, %zu cloud pixels; reference: the per-pixel air march, 256 steps)\n",
+                  scene.source().c_str(), reference.image.width, reference.image.height, cloudPixels);
       std::printf("  %-32s %12s %12s %12s %s\n", "aerial perspective", "rel RMSE", "vs march 64", "max rel err",
                   repeats > 0 ? "  clouds ms  volume ms" : "");
       for (const Variant& v : variants()) {
@@ -181,8 +192,8 @@ int main(int argc, char** argv) {
           writeErrorHeatmapPng(heatmap, r.image, reference.image, 0.01, cloudMask);
         char time[48] = "";
         if (repeats > 0) std::snprintf(time, sizeof(time), "%11.1f %10.2f", ms[0], ms[1]);
-        std::printf("  %-32s %12.3e %12.3e %12.3e %s\n", v.name.c_str(), m.luminance.relativeRmse, f.luminance.relativeRmse,
-                    maxRel, time);
+        std::printf("  %-32s %12.3e %12.3e %12.3e %s\n", v.name.c_str(), m.luminance.relativeRmse,
+                    f.luminance.relativeRmse, maxRel, time);
       }
     }
     return kExitOk;

@@ -5,7 +5,7 @@
 
 namespace firmament::bench {
 
-using ::firmament::median;  // core/statistics.h
+using ::firmament::median;              // core/statistics.h
 using ::firmament::runReportingErrors;  // core/error.h
 
 }  // namespace firmament::bench

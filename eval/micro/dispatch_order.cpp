@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/micro/bench_support.h"
 #include "core/error.h"
+#include "eval/micro/bench_support.h"
 #include "gpu/command.h"
 #include "gpu/context.h"
 #include "gpu/dispatch.h"
@@ -44,14 +44,15 @@ int main(int argc, char** argv) {
     ContextOptions options;
     options.device = std::getenv("FIRMAMENT_DEVICE") ? std::getenv("FIRMAMENT_DEVICE") : "";
     Context gpu(options);
-    ComputePipeline kernel(gpu, {.shader = "gpu/uneven_work_bench", .bindings = {BindingType::StorageImage},
-                                 .pushConstantSize = sizeof(Push)});
-    Image target(gpu, {.width = width, .height = height, .format = Format::RGBA16F, .sampled = false,
-                       .name = "bench target"});
+    ComputePipeline kernel(
+        gpu,
+        {.shader = "gpu/uneven_work_bench", .bindings = {BindingType::StorageImage}, .pushConstantSize = sizeof(Push)});
+    Image target(
+        gpu, {.width = width, .height = height, .format = Format::RGBA16F, .sampled = false, .name = "bench target"});
     std::printf("device: %s\n", gpu.description().c_str());
     const char* threads = std::getenv("LP_NUM_THREADS");
-    std::printf("image %ux%u, %u iterations/pixel in the top half, %u in the bottom; median of %d%s%s\n", width,
-                height, heavy, light, repeats, threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
+    std::printf("image %ux%u, %u iterations/pixel in the top half, %u in the bottom; median of %d%s%s\n", width, height,
+                heavy, light, repeats, threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
 
     struct Case {
       const char* name;
@@ -59,10 +60,11 @@ int main(int argc, char** argv) {
       uint32_t heavy, light;
       std::vector<double> ms;
     };
-    std::vector<Case> cases = {{"uneven, row order", DispatchOrder::RowMajor, heavy, light, {}},
-                               {"uneven, interleaved", DispatchOrder::Interleaved, heavy, light, {}},
-                               {"uniform, row order", DispatchOrder::RowMajor, (heavy + light) / 2, (heavy + light) / 2, {}},
-                               {"uniform, interleaved", DispatchOrder::Interleaved, (heavy + light) / 2, (heavy + light) / 2, {}}};
+    std::vector<Case> cases = {
+        {"uneven, row order", DispatchOrder::RowMajor, heavy, light, {}},
+        {"uneven, interleaved", DispatchOrder::Interleaved, heavy, light, {}},
+        {"uniform, row order", DispatchOrder::RowMajor, (heavy + light) / 2, (heavy + light) / 2, {}},
+        {"uniform, interleaved", DispatchOrder::Interleaved, (heavy + light) / 2, (heavy + light) / 2, {}}};
     std::vector<std::unique_ptr<CommandList>> lists;
     for (Case& c : cases) {
       Push push{tileDispatch(gpu, width, height, c.order), c.heavy, c.light};

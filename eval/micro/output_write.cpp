@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/micro/bench_support.h"
 #include "core/error.h"
+#include "eval/micro/bench_support.h"
 #include "gpu/buffer.h"
 #include "gpu/command.h"
 #include "gpu/context.h"
@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     ComputePipeline kernel(gpu, {.shader = "gpu/output_write_bench",
                                  .bindings = {BindingType::StorageImage, BindingType::StorageBuffer},
                                  .pushConstantSize = sizeof(Push)});
-    Image image(gpu, {.width = width, .height = height, .format = Format::RGBA32F, .sampled = false,
-                      .name = "bench image"});
+    Image image(gpu,
+                {.width = width, .height = height, .format = Format::RGBA32F, .sampled = false, .name = "bench image"});
     Buffer buffer(gpu, VkDeviceSize(width) * height * 16, BufferUsage::Storage, MemoryLocation::Device, "bench buffer");
     std::printf("device: %s\nframe %ux%u RGBA32F, median of %d\n", gpu.description().c_str(), width, height, repeats);
 

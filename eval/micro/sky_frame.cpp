@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "eval/micro/bench_support.h"
 #include "core/error.h"
-#include "gpu/context.h"
 #include "core/scene.h"
+#include "eval/micro/bench_support.h"
+#include "gpu/context.h"
 #include "sky/sky_renderer.h"
 
 using namespace firmament;

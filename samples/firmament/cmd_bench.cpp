@@ -9,11 +9,11 @@
 
 #include "core/error.h"
 #include "core/log.h"
-#include "gpu/context.h"
-#include "samples/firmament/command.h"
 #include "eval/atmosphere_bench.h"
 #include "eval/cloud_bench.h"
 #include "eval/cloud_calibration.h"
+#include "gpu/context.h"
+#include "samples/firmament/command.h"
 
 namespace firmament::cli {
 namespace {
@@ -39,7 +39,9 @@ int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
     std::vector<BenchScenario> kept;
     for (const auto& s : config.scenarios)
       if (s.name == *only) kept.push_back(s);
-    if (kept.empty()) throw InputError("--scenario " + *only + ": no such scenario (noon, sunset, twilight, altitude_10km, limb_100km)");
+    if (kept.empty())
+      throw InputError("--scenario " + *only +
+                       ": no such scenario (noon, sunset, twilight, altitude_10km, limb_100km)");
     config.scenarios = kept;
   }
   if (auto spp = args.get("reference-spp")) {
@@ -91,7 +93,9 @@ int calibrateClouds(const Args& args, const std::filesystem::path& out) {
   config.images = args.has("images");
   config.lowSunOnly = args.has("low-sun");
   if (config.lowSunOnly && (args.has("reflection-only") || args.has("evaluate-defaults")))
-    throw InputError("--low-sun: not with --reflection-only or --evaluate-defaults (it fits mu_0 alone, the rest at the shipped fit)");
+    throw InputError(
+        "--low-sun: not with --reflection-only or --evaluate-defaults (it fits mu_0 alone, the rest at the shipped "
+        "fit)");
   config.reflection = args.has("reflection") || args.has("reflection-only") || config.lowSunOnly;
   config.reflectionOnly = args.has("reflection-only");
   if (config.reflection) config.maxEvaluations = 150;  // six dimensions instead of four
@@ -128,7 +132,8 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
     // WxH: the frame timing's image size.
     int w = 0, h = 0;
     char x = 0, tail = 0;
-    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 || h > 8192)
+    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 ||
+        h > 8192)
       throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. 1920x1080");
     config.timingWidth = w;
     config.timingHeight = h;
@@ -199,31 +204,47 @@ const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
-    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate [--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] [--reflection|--reflection-only|--low-sun]] [--device D]",
+    "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate "
+    "[--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] "
+    "[--reflection|--reflection-only|--low-sun]] [--device D]",
     {
         {"out", "DIR", "output folder (created); reference images are cached in DIR/references"},
         {"quick", "", "smaller images, fewer knob values, noisier references: under 2 minutes on 2 cores"},
-        {"scenario", "NAME", "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
-                               "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
-                               "above_clouds, cumulus_low_sun, cumulus_low_sun_behind)"},
+        {"scenario", "NAME",
+         "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
+         "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
+         "above_clouds, cumulus_low_sun, cumulus_low_sun_behind)"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
         {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
-        {"evaluate-defaults", "", "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
+        {"evaluate-defaults", "",
+         "with --calibrate: no fit, the shipped per-type defaults' errors on the calibration scenes"},
         {"reflection", "", "with --calibrate: also fit the reflected light's r and a_r (cloudReflectedSource)"},
         {"reflection-only", "", "with --calibrate: fit r and a_r alone, the octaves' constants at the shipped fit"},
-        {"low-sun", "", "with --calibrate: fit the octaves' low-sun scale's mu_0 alone (a sweep, then golden sections), the rest at the shipped fit"},
-        {"group", "G", "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
-        {"phase", "P", "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
-        {"images", "", "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images (with --calibrate: each scene's per-pixel CSV at the fit)"},
+        {"low-sun", "",
+         "with --calibrate: fit the octaves' low-sun scale's mu_0 alone (a sweep, then golden sections), the rest at "
+         "the shipped fit"},
+        {"group", "G",
+         "with --calibrate: only this group (cumulus, stratocumulus, stratus, cumulonimbus, cirrus, all)"},
+        {"phase", "P",
+         "with --calibrate: the phase model to fit for, dual_henyey_greenstein (default) or approximate_mie"},
+        {"images", "",
+         "clouds only: the reference's and the default's images, a heat map and per-pixel CSV in DIR/images (with "
+         "--calibrate: each scene's per-pixel CSV at the fit)"},
         {"timing-only", "", "clouds only: the frame timing alone (DIR/clouds_timing.*), no references or error rows"},
-        {"error-setting", "TEXT", "clouds, not with --timing-only: only the error rows whose \"knob value\" contains TEXT (alternatives separated by |) and the default row; no timing sweep"},
-        {"timing-setting", "TEXT", "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), and the defaults' still and 1/16 sequence"},
-        {"timing-size", "WxH", "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
-        {"calibrate", "", "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
-                          "scenes (clouds_calibration.csv/.md; docs/clouds/README.md)"},
+        {"error-setting", "TEXT",
+         "clouds, not with --timing-only: only the error rows whose \"knob value\" contains TEXT (alternatives "
+         "separated by |) and the default row; no timing sweep"},
+        {"timing-setting", "TEXT",
+         "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), "
+         "and the defaults' still and 1/16 sequence"},
+        {"timing-size", "WxH",
+         "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
+        {"calibrate", "",
+         "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
+         "scenes (clouds_calibration.csv/.md; docs/clouds/README.md)"},
         deviceOption(),
     },
     1,

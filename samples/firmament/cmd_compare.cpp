@@ -41,8 +41,8 @@ void printRow(const char* name, const ErrorStats& s) {
 void printMetrics(const std::string& testPath, const std::string& referencePath, const ImageMetrics& m) {
   std::printf("test:      %s\nreference: %s\n", testPath.c_str(), referencePath.c_str());
   std::printf("size:      %d x %d, %zu pixels compared\n\n", m.width, m.height, m.comparedPixels);
-  std::printf("  %-10s %12s %12s %12s %12s %12s %12s\n", "", "RMSE", "rel. RMSE", "max |err|", "bias",
-              "rel. bias", "mean ref.");
+  std::printf("  %-10s %12s %12s %12s %12s %12s %12s\n", "", "RMSE", "rel. RMSE", "max |err|", "bias", "rel. bias",
+              "mean ref.");
   printRow("luminance", m.luminance);
   printRow("R", m.rgb[0]);
   printRow("G", m.rgb[1]);
@@ -79,8 +79,7 @@ int runCompare(const Args& args) {
 
   if (auto heatmap = args.get("heatmap")) {
     writeErrorHeatmapPng(*heatmap, test, reference, scale);
-    std::printf("heat map:  %s (relative luminance error, 0 .. %s)\n", heatmap->c_str(),
-                formatPercent(scale).c_str());
+    std::printf("heat map:  %s (relative luminance error, 0 .. %s)\n", heatmap->c_str(), formatPercent(scale).c_str());
   }
   if (auto json = args.get("json")) {
     nlohmann::ordered_json document = nlohmann::ordered_json::parse(metricsToJson(metrics));

@@ -36,9 +36,10 @@ std::string format(const char* pattern, double v) {
 
 // --region WEST,SOUTH,EAST,NORTH: four finite numbers (m), WEST < EAST, SOUTH < NORTH.
 void parseRegion(const std::string& text, CloudVolumeRegion& region) {
-  const std::string allowed = "; allowed: WEST,SOUTH,EAST,NORTH in metres east and north of the camera's ground "
-                              "point, WEST < EAST, SOUTH < NORTH, each within " +
-                              format("%.0f", kCloudVolumeMaxExtent_m) + " m (e.g. -10000,-10000,10000,10000)";
+  const std::string allowed =
+      "; allowed: WEST,SOUTH,EAST,NORTH in metres east and north of the camera's ground "
+      "point, WEST < EAST, SOUTH < NORTH, each within " +
+      format("%.0f", kCloudVolumeMaxExtent_m) + " m (e.g. -10000,-10000,10000,10000)";
   std::vector<double> values;
   std::stringstream stream(text);
   std::string item;
@@ -50,11 +51,15 @@ void parseRegion(const std::string& text, CloudVolumeRegion& region) {
     values.push_back(v);
   }
   if (values.size() != 4 || (!text.empty() && text.back() == ','))
-    throw InputError("option --region: '" + text + "' has " + std::to_string(values.size()) + " value(s), not 4" + allowed);
+    throw InputError("option --region: '" + text + "' has " + std::to_string(values.size()) + " value(s), not 4" +
+                     allowed);
   for (double v : values)
-    if (std::abs(v) > kCloudVolumeMaxExtent_m) throw InputError("option --region: '" + text + "' is too large" + allowed);
-  if (!(values[0] < values[2])) throw InputError("option --region: WEST must be less than EAST in '" + text + "'" + allowed);
-  if (!(values[1] < values[3])) throw InputError("option --region: SOUTH must be less than NORTH in '" + text + "'" + allowed);
+    if (std::abs(v) > kCloudVolumeMaxExtent_m)
+      throw InputError("option --region: '" + text + "' is too large" + allowed);
+  if (!(values[0] < values[2]))
+    throw InputError("option --region: WEST must be less than EAST in '" + text + "'" + allowed);
+  if (!(values[1] < values[3]))
+    throw InputError("option --region: SOUTH must be less than NORTH in '" + text + "'" + allowed);
   region.west_m = values[0], region.south_m = values[1], region.east_m = values[2], region.north_m = values[3];
 }
 
@@ -71,7 +76,8 @@ int runExportVdb(const Args& args) {
   // Read the numbers before the scene, so that a bad option fails fast.
   CloudVolumeRegion asked;
   if (auto region = args.get("region")) parseRegion(*region, asked);
-  const std::optional<double> bottom = args.has("bottom") ? std::optional<double>(args.number("bottom", 0.0)) : std::nullopt;
+  const std::optional<double> bottom =
+      args.has("bottom") ? std::optional<double>(args.number("bottom", 0.0)) : std::nullopt;
   const std::optional<double> top = args.has("top") ? std::optional<double>(args.number("top", 0.0)) : std::nullopt;
   for (const auto& [name, value] : {std::pair{"bottom", bottom}, std::pair{"top", top}})
     if (value && std::abs(*value) > kCloudVolumeMaxExtent_m)
@@ -85,20 +91,23 @@ int runExportVdb(const Args& args) {
   const SceneView view = makeSceneView(scene);
   const double ground = sceneGroundRadius(scene, view);
   // The layers (no GPU yet): the region and its checks come before the noise bake.
-  const std::vector<shared::CloudLayer> layers =
-      sceneHasCloudLayers(scene) ? sharedCloudLayers(CloudSettings::fromScene(scene), ground) : std::vector<shared::CloudLayer>{};
+  const std::vector<shared::CloudLayer> layers = sceneHasCloudLayers(scene)
+                                                     ? sharedCloudLayers(CloudSettings::fromScene(scene), ground)
+                                                     : std::vector<shared::CloudLayer>{};
 
   // The region: the heights the options leave out fitted to the layers over the horizontal box.
   CloudVolumeRegion region = defaultCloudVolumeRegion(layers, ground, kDefaultHalfWidth_m, voxel);
   if (args.has("region")) {
-    region.west_m = asked.west_m, region.south_m = asked.south_m, region.east_m = asked.east_m, region.north_m = asked.north_m;
+    region.west_m = asked.west_m, region.south_m = asked.south_m, region.east_m = asked.east_m,
+    region.north_m = asked.north_m;
     fitCloudVolumeHeights(region, layers, ground);
   }
   if (bottom) region.bottom_m = *bottom;
   if (top) region.top_m = *top;
   if (!(region.bottom_m < region.top_m))
     throw InputError("options --bottom/--top: the height range " + format("%g", region.bottom_m) + " to " +
-                     format("%g", region.top_m) + " m is empty; allowed: bottom < top (defaults: the layers' lowest "
+                     format("%g", region.top_m) +
+                     " m is empty; allowed: bottom < top (defaults: the layers' lowest "
                      "base to their highest top over the region)");
   const uint64_t voxels = cloudVoxelBox(region).count();
   if (voxels > kCloudVolumeMaxVoxels)
@@ -121,15 +130,17 @@ int runExportVdb(const Args& args) {
   const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
+  if (ec)
+    throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
 
   CloudVdbOptions options;
   options.region = region;
   options.threads = threads;
   options.metadata = {{"scene", scenePath}, {"scene_hash", scene.hash()}};
   options.metadata.push_back({"location", "latitude_deg " + format("%.9g", scene.number("/location/latitude_deg")) +
-                                              " longitude_deg " + format("%.9g", scene.number("/location/longitude_deg")) +
-                                              " height_m " + format("%.9g", scene.number("/location/height_m"))});
+                                              " longitude_deg " +
+                                              format("%.9g", scene.number("/location/longitude_deg")) + " height_m " +
+                                              format("%.9g", scene.number("/location/height_m"))});
   options.metadata.push_back({"utc", scene.string("/time/utc")});
   {
     char line[320];
@@ -146,17 +157,16 @@ int runExportVdb(const Args& args) {
   }
   char line[640];
   if (summary.activeVoxels > 0) {
-    std::snprintf(line, sizeof(line),
-                  "wrote %s: grid 'density' (sigma_t, m^-1, 550 nm), %llu active voxels of %llu (%.2f %%), voxel %g "
-                  "m, active bounds x %.0f..%.0f y %.0f..%.0f z %.0f..%.0f m (local ENU), max sigma_t %.4g m^-1; "
-                  "%.2f s sampling + %.2f s writing on %d thread(s), %.1f MiB",
-                  out.string().c_str(), (unsigned long long)summary.activeVoxels,
-                  (unsigned long long)summary.sampledVoxels,
-                  100.0 * double(summary.activeVoxels) / double(std::max<uint64_t>(summary.sampledVoxels, 1)),
-                  region.voxelSize_m, summary.activeMin.x, summary.activeMax.x, summary.activeMin.y,
-                  summary.activeMax.y, summary.activeMin.z, summary.activeMax.z, summary.maxExtinction,
-                  summary.samplingSeconds, summary.writingSeconds, summary.threads,
-                  double(summary.fileBytes) / (1024.0 * 1024.0));
+    std::snprintf(
+        line, sizeof(line),
+        "wrote %s: grid 'density' (sigma_t, m^-1, 550 nm), %llu active voxels of %llu (%.2f %%), voxel %g "
+        "m, active bounds x %.0f..%.0f y %.0f..%.0f z %.0f..%.0f m (local ENU), max sigma_t %.4g m^-1; "
+        "%.2f s sampling + %.2f s writing on %d thread(s), %.1f MiB",
+        out.string().c_str(), (unsigned long long)summary.activeVoxels, (unsigned long long)summary.sampledVoxels,
+        100.0 * double(summary.activeVoxels) / double(std::max<uint64_t>(summary.sampledVoxels, 1)), region.voxelSize_m,
+        summary.activeMin.x, summary.activeMax.x, summary.activeMin.y, summary.activeMax.y, summary.activeMin.z,
+        summary.activeMax.z, summary.maxExtinction, summary.samplingSeconds, summary.writingSeconds, summary.threads,
+        double(summary.fileBytes) / (1024.0 * 1024.0));
   } else {
     std::snprintf(line, sizeof(line),
                   "wrote %s: grid 'density' (sigma_t, m^-1, 550 nm) with 0 active voxels (no cloud in the region); "

@@ -11,13 +11,13 @@
 
 #include "atmosphere/reference_renderer.h"
 #include "clouds/reference_clouds.h"
-#include "gpu/context.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "core/tonemap.h"
+#include "gpu/context.h"
 #include "samples/firmament/command.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/scene_view.h"
@@ -56,10 +56,12 @@ int runReference(const Args& args) {
   const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
+  if (ec)
+    throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
   for (const char* section : {"terrain", "weather"})
     if (scene.hasSection(section))
-      logWarning(std::string("reference: the '") + section + "' section is ignored (the reference renders the clear sky)");
+      logWarning(std::string("reference: the '") + section +
+                 "' section is ignored (the reference renders the clear sky)");
 
   const SceneView view = makeSceneView(scene);
   const ReferenceRenderer renderer(view.atmosphere, view.sunDirection, quality);
@@ -89,11 +91,13 @@ int runReference(const Args& args) {
     const CloudMedium medium = sceneCloudMedium(scene, view, context);
     double middle = 0.0;
     for (const auto& l : clouds.layers) middle += 0.5 * (l.bottom_m + l.top_m) / double(clouds.layers.size());
-    const CloudEnvironment environment = cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
+    const CloudEnvironment environment =
+        cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
     CloudReferenceSettings cloudSettings;
     cloudSettings.samplesPerPixel = args.integer("cloud-spp", cloudSettings.samplesPerPixel, 1, 1 << 20);
     cloudSettings.seed = quality.seed;
-    const CloudPathTracer tracer(medium, clouds.lighting, view.atmosphere, view.sunDirection, environment, cloudSettings);
+    const CloudPathTracer tracer(medium, clouds.lighting, view.atmosphere, view.sunDirection, environment,
+                                 cloudSettings);
     CloudReferenceImage cloudImage;
     {
       Progress progress("clouds", uint64_t(view.camera.width) * uint64_t(view.camera.height));
@@ -109,8 +113,9 @@ int runReference(const Args& args) {
                   {"seconds", cloudImage.seconds},
                   {"scattering_events", cloudImage.events},
                   {"capped_paths", cloudImage.capped},
-                  {"environment", "constant sky E_sky/pi from the clear-sky reference at the layers' mid-height; "
-                                  "constant ground below; no air scattering among the clouds"}};
+                  {"environment",
+                   "constant sky E_sky/pi from the clear-sky reference at the layers' mid-height; "
+                   "constant ground below; no air scattering among the clouds"}};
     result.seconds += cloudImage.seconds;
   }
 
@@ -149,8 +154,8 @@ int runReference(const Args& args) {
   j["device"] = "cpu reference";
   j["width"] = image.width;
   j["height"] = image.height;
-  j["sun"] = {{"zenith_deg", view.sunZenith / kDegree}, {"azimuth_deg", view.sunAzimuth / kDegree},
-              {"source", view.sunSource}};
+  j["sun"] = {
+      {"zenith_deg", view.sunZenith / kDegree}, {"azimuth_deg", view.sunAzimuth / kDegree}, {"source", view.sunSource}};
   j["reference"] = {{"samples_per_pixel", quality.samplesPerPixel},
                     {"wavelengths", quality.wavelengthCount},
                     {"wavelength_range_nm", {renderer.wavelengths().front(), renderer.wavelengths().back()}},
@@ -193,7 +198,8 @@ const CommandRegistration registration{Command{
     "reference SCENE [-o OUT.exr] [--width W --height H] [--spp N] [--wavelengths N] [--set /PATH=VALUE]... "
     "[--threads N] [--seed S]",
     {
-        {"output", "OUT.exr", "output EXR (default out/<scene>_reference.exr); .png and .json go beside it", false, 'o'},
+        {"output", "OUT.exr", "output EXR (default out/<scene>_reference.exr); .png and .json go beside it", false,
+         'o'},
         {"width", "W", "image width (same as --set /camera/width=W)"},
         {"height", "H", "image height"},
         {"spp", "N", "Monte Carlo paths per pixel for orders >= 2 (default 256; 0: orders 0 and 1 only)"},

@@ -55,8 +55,8 @@ int runRender(const Args& args) {
     int c = 0, r = 0, n = 0;
     char x1 = 0, x2 = 0;
     char tail = 0;
-    if (std::sscanf(size->c_str(), "%d%c%d%c%d%c", &c, &x1, &r, &x2, &n, &tail) != 5 || x1 != 'x' || x2 != 'x' || c < 2 ||
-        r < 2 || n < 2 || c > 1024 || r > 1024 || n > 1024)
+    if (std::sscanf(size->c_str(), "%d%c%d%c%d%c", &c, &x1, &r, &x2, &n, &tail) != 5 || x1 != 'x' || x2 != 'x' ||
+        c < 2 || r < 2 || n < 2 || c > 1024 || r > 1024 || n > 1024)
       throw InputError("--aerial-volume " + *size + ": allowed: CxRxN with each of C, R, N in 2..1024, e.g. 32x32x32");
     options.aerialPerspective.columns = c;
     options.aerialPerspective.rows = r;
@@ -79,7 +79,8 @@ int runRender(const Args& args) {
   std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
+  if (ec)
+    throw InputError("-o " + out.string() + ": cannot create the folder " + folder.string() + ": " + ec.message());
 
   // A sequence: frame i moves the camera and the clouds' clock by i times the rates; each frame
   // continues the previous one (temporal reprojection, /clouds/temporal_update) and is written as
@@ -92,8 +93,10 @@ int runRender(const Args& args) {
   const double climbRate = args.number("climb-rate", 0.0);
   for (double rate : {yawRate, pitchRate, climbRate})
     if (!std::isfinite(rate)) throw InputError("--yaw-rate, --pitch-rate, --climb-rate: allowed: finite numbers");
-  if (frames == 1 && (args.has("yaw-rate") || args.has("pitch-rate") || args.has("climb-rate") || args.has("frame-interval")))
-    throw InputError("--yaw-rate, --pitch-rate, --climb-rate and --frame-interval describe a sequence: give --frames N (N > 1)");
+  if (frames == 1 &&
+      (args.has("yaw-rate") || args.has("pitch-rate") || args.has("climb-rate") || args.has("frame-interval")))
+    throw InputError(
+        "--yaw-rate, --pitch-rate, --climb-rate and --frame-interval describe a sequence: give --frames N (N > 1)");
   auto frameScene = [&](int i) {
     if (i == 0) return scene;
     const double t = double(i) * interval;
@@ -105,11 +108,14 @@ int runRender(const Args& args) {
       throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " + std::to_string(pitch) +
                        " deg; allowed: -90 to 90");
     o.push_back("/camera/pitch_deg=" + std::to_string(pitch));
-    o.push_back("/camera/height_above_ground_m=" + std::to_string(scene.number("/camera/height_above_ground_m") + climbRate * t));
+    o.push_back("/camera/height_above_ground_m=" +
+                std::to_string(scene.number("/camera/height_above_ground_m") + climbRate * t));
     if (scene.hasSection("clouds")) o.push_back("/clouds/time_s=" + std::to_string(scene.number("/clouds/time_s") + t));
     // The sun follows the clock when the scene takes it from time and location (a time-lapse).
-    if (!scene.hasSection("sun")) o.push_back("/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc(scene.string("/time/utc")), t)));
-    return args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o) : Scene::load(scenePath, o);
+    if (!scene.hasSection("sun"))
+      o.push_back("/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc(scene.string("/time/utc")), t)));
+    return args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o)
+                                    : Scene::load(scenePath, o);
   };
   auto framePath = [&](int i) {
     if (frames == 1) return out;
@@ -165,41 +171,46 @@ int runRender(const Args& args) {
   return kExitOk;
 }
 
-const CommandRegistration reg{{"render",
-                               "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
-                               "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
-                               "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
-                               "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--frames N [--frame-interval S] "
-                               "[--yaw-rate DEG/S] [--pitch-rate DEG/S] [--climb-rate M/S]] [--explain] [--device D]",
-                               {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it",
-                                 false, 'o'},
-                                {"width", "W", "image width (same as --set /camera/width=W)"},
-                                {"height", "H", "image height"},
-                                setOption(),
-                                {"explain", "", "print the passes this scene needs (and those it leaves out); "
-                                                "with -o also render"},
-                                {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
-                                {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
-                                {"spectral-samples", "N", "wavelengths: auto (default: 3, or 12 with the sun within 15 deg of the horizon or below), 3, or 6..48 integrated to luminance"},
-                                {"multiple-scattering", "fms|tables",
-                                 "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
-                                 "4D tables of N orders"},
-                                {"orders", "N", "scattering orders of the 4D tables (default 4)"},
-                                {"aerial-volume", "CxRxN",
-                                 "aerial-perspective volume read by the clouds (/clouds/aerial_perspective volume): froxel "
-                                 "columns x rows x depth slices (default 32x32x32)"},
-                                {"aerial-volume-depth", "M",
-                                 "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
-                                {"frames", "N", "render a sequence of N frames (OUT_0000.exr ...), each continuing the last "
-                                                "(clouds: temporal reprojection, /clouds/temporal_update)"},
-                                {"frame-interval", "S", "seconds between frames: the clouds' clock and, without a sun section, /time/utc (the sun) advance by it (default 1/30)"},
-                                {"yaw-rate", "DEG/S", "camera turn rate in a sequence (clockwise from above)"},
-                                {"pitch-rate", "DEG/S", "camera pitch rate in a sequence"},
-                                {"climb-rate", "M/S", "camera climb rate in a sequence"},
-                                deviceOption()},
-                               0,
-                               1,
-                               runRender}};
+const CommandRegistration reg{
+    {"render",
+     "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
+     "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
+     "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
+     "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--frames N [--frame-interval S] "
+     "[--yaw-rate DEG/S] [--pitch-rate DEG/S] [--climb-rate M/S]] [--explain] [--device D]",
+     {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it", false, 'o'},
+      {"width", "W", "image width (same as --set /camera/width=W)"},
+      {"height", "H", "image height"},
+      setOption(),
+      {"explain", "",
+       "print the passes this scene needs (and those it leaves out); "
+       "with -o also render"},
+      {"view-steps", "N", "march steps per view ray (quality knob, default 32)"},
+      {"sky", "lut|march", "sky-view table read per pixel (default) or a march per pixel"},
+      {"spectral-samples", "N",
+       "wavelengths: auto (default: 3, or 12 with the sun within 15 deg of the horizon or below), 3, or 6..48 "
+       "integrated to luminance"},
+      {"multiple-scattering", "fms|tables",
+       "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
+       "4D tables of N orders"},
+      {"orders", "N", "scattering orders of the 4D tables (default 4)"},
+      {"aerial-volume", "CxRxN",
+       "aerial-perspective volume read by the clouds (/clouds/aerial_perspective volume): froxel "
+       "columns x rows x depth slices (default 32x32x32)"},
+      {"aerial-volume-depth", "M", "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
+      {"frames", "N",
+       "render a sequence of N frames (OUT_0000.exr ...), each continuing the last "
+       "(clouds: temporal reprojection, /clouds/temporal_update)"},
+      {"frame-interval", "S",
+       "seconds between frames: the clouds' clock and, without a sun section, /time/utc (the sun) advance by it "
+       "(default 1/30)"},
+      {"yaw-rate", "DEG/S", "camera turn rate in a sequence (clockwise from above)"},
+      {"pitch-rate", "DEG/S", "camera pitch rate in a sequence"},
+      {"climb-rate", "M/S", "camera climb rate in a sequence"},
+      deviceOption()},
+     0,
+     1,
+     runRender}};
 
 }  // namespace
 }  // namespace firmament::cli

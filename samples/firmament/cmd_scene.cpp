@@ -20,10 +20,15 @@ int runSceneDoc(const Args&) {
   return 0;
 }
 
-const CommandRegistration check{{"check", "validate a scene file and print it with defaults filled in",
-                                 "check SCENE [--set /PATH=VALUE]...", {setOption()}, 1, 1, runCheck}};
-const CommandRegistration sceneDoc{{"scene-doc", "print the scene-format reference (docs/scene.md) in Markdown",
-                                    "scene-doc", {}, 0, 0, runSceneDoc}};
+const CommandRegistration check{{"check",
+                                 "validate a scene file and print it with defaults filled in",
+                                 "check SCENE [--set /PATH=VALUE]...",
+                                 {setOption()},
+                                 1,
+                                 1,
+                                 runCheck}};
+const CommandRegistration sceneDoc{
+    {"scene-doc", "print the scene-format reference (docs/scene.md) in Markdown", "scene-doc", {}, 0, 0, runSceneDoc}};
 
 }  // namespace
 }  // namespace firmament::cli

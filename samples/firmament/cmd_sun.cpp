@@ -59,7 +59,8 @@ int runSun(const Args& args) {
 
   astro::ObservingConditions air;
   air.pressureHpa = optionalNumber(args, "pressure", air.pressureHpa, 0.0, 2000.0, "mbar");
-  air.temperatureCelsius = optionalNumber(args, "temperature", air.temperatureCelsius, -100.0, 100.0, "degrees Celsius");
+  air.temperatureCelsius =
+      optionalNumber(args, "temperature", air.temperatureCelsius, -100.0, 100.0, "degrees Celsius");
   std::string refractionName = args.getOr("refraction", "spa");
   air.refraction = refractionModel(refractionName);
   std::optional<double> deltaT;

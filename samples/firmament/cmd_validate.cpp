@@ -8,9 +8,9 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "eval/kider_validation.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
-#include "eval/kider_validation.h"
 
 namespace firmament::cli {
 namespace {
@@ -42,8 +42,8 @@ int runValidate(const Args& args) {
   }
   settings.instrumentFwhmNm = args.number("instrument-fwhm", settings.instrumentFwhmNm);
   if (!(settings.instrumentFwhmNm > 0.0 && settings.instrumentFwhmNm <= settings.kMaxInstrumentFwhmNm))
-    throw InputError("--instrument-fwhm " + *args.get("instrument-fwhm") + ": expected a width in nm, > 0 and <= " +
-                     std::to_string(int(settings.kMaxInstrumentFwhmNm)));
+    throw InputError("--instrument-fwhm " + *args.get("instrument-fwhm") +
+                     ": expected a width in nm, > 0 and <= " + std::to_string(int(settings.kMaxInstrumentFwhmNm)));
   if (args.has("no-refit")) settings.azimuthRefit = KiderValidationSettings::AzimuthRefit::none;
   settings.gpu = !args.has("no-gpu");
 
@@ -69,7 +69,8 @@ int runValidate(const Args& args) {
 const CommandRegistration registration{Command{
     "validate",
     "render the measured directions of real captured skies and report the error (docs/validation.md)",
-    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--refit published|log-rings|none] [--solar-spectrum instrument|band-means] [--instrument-fwhm NM] [--utc-offset H] [--lat D --lon D]",
+    "validate kider DATA_DIR --out DIR [--spp N] [--no-gpu] [--refit published|log-rings|none] [--solar-spectrum "
+    "instrument|band-means] [--instrument-fwhm NM] [--utc-offset H] [--lat D --lon D]",
     {
         {"out", "DIR", "output folder (created): results.csv, per_direction.csv, per_wavelength.csv, report.md"},
         {"spp", "N", "reference Monte Carlo paths per direction (default 4096)"},

@@ -57,9 +57,9 @@ int runWeather(const Args& args) {
   if (!scene.hasSection("weather"))
     throw InputError(scenePath + ": the scene has no \"weather\" section (nothing to simulate)");
   WeatherConfig config = configFromJson(scene.at("/weather"));
-  auto location = astro::GeodeticLocation::fromDegrees(scene.number("/location/latitude_deg"),
-                                                       scene.number("/location/longitude_deg"),
-                                                       scene.number("/location/height_m"));
+  auto location =
+      astro::GeodeticLocation::fromDegrees(scene.number("/location/latitude_deg"),
+                                           scene.number("/location/longitude_deg"), scene.number("/location/height_m"));
   double latitude = location.latitude, longitude = location.longitude;
   config.surfacePressure_Pa = surfacePressureFromHeight(scene.number("/location/height_m"));
   std::string utc = scene.string("/time/utc");
@@ -132,7 +132,8 @@ int runWeather(const Args& args) {
   writeText(dir / "stats.svg", renderSvg(plot));
   WaterBudget b = model.waterBudget();
   logInfo("weather: wrote " + std::to_string(frame) + " maps, stats.csv and stats.svg to " + dir.string() +
-          "; water imbalance " + std::to_string(std::fabs(b.imbalance_kg()) / std::max(b.initial_kg, 1.0)) + " relative");
+          "; water imbalance " + std::to_string(std::fabs(b.imbalance_kg()) / std::max(b.initial_kg, 1.0)) +
+          " relative");
   return kExitOk;
 }
 

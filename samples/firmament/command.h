@@ -13,11 +13,11 @@ namespace firmament::cli {
 // Parsed arguments: options ("--name value" or "--name=value"; repeatable ones keep every value),
 // switches ("--name") and positionals, checked against what the subcommand declares.
 struct OptionSpec {
-  std::string name;     // without dashes, e.g. "width"
-  std::string value;    // metavariable, e.g. "W"; empty for a switch
+  std::string name;   // without dashes, e.g. "width"
+  std::string value;  // metavariable, e.g. "W"; empty for a switch
   std::string help;
   bool repeatable = false;
-  char shortName = 0;   // e.g. 'o' for -o
+  char shortName = 0;  // e.g. 'o' for -o
 };
 
 class Args {

@@ -36,8 +36,9 @@ void printMainHelp() {
       "Firmament: a physically based sky on Vulkan compute (lavapipe when there is no GPU).\n\n"
       "commands:\n");
   for (const auto& [name, c] : registry()) std::printf("  %-12s %s\n", name.c_str(), c.summary.c_str());
-  std::printf("\n'firmament <command> --help' describes a command. Exit codes: 0 ok, 2 bad input, 3 runtime "
-              "or device failure.\n");
+  std::printf(
+      "\n'firmament <command> --help' describes a command. Exit codes: 0 ok, 2 bad input, 3 runtime "
+      "or device failure.\n");
 }
 
 const OptionSpec* findOption(const Command& c, const std::string& name, char shortName) {
@@ -50,7 +51,8 @@ Args parse(const Command& c, int argc, char** argv, int first) {
   Args args;
   for (int i = first; i < argc; ++i) {
     std::string a = argv[i];
-    if (a.size() > 1 && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
+    if (a.size() > 1 && a[0] == '-' &&
+        !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
       std::string name, value;
       bool hasValue = false;
       const OptionSpec* spec = nullptr;
@@ -66,7 +68,8 @@ Args parse(const Command& c, int argc, char** argv, int first) {
         spec = findOption(c, "", a[1]);
       }
       if (!spec)
-        throw InputError("firmament " + c.name + ": unknown option '" + a + "' (see 'firmament " + c.name + " --help')");
+        throw InputError("firmament " + c.name + ": unknown option '" + a + "' (see 'firmament " + c.name +
+                         " --help')");
       if (spec->value.empty()) {
         if (hasValue) throw InputError("firmament " + c.name + ": option --" + spec->name + " takes no value");
         args.add(spec->name, "");
@@ -87,9 +90,9 @@ Args parse(const Command& c, int argc, char** argv, int first) {
   int n = int(args.positionals.size());
   if (n < c.minPositionals || n > c.maxPositionals)
     throw InputError("firmament " + c.name + ": expected " +
-                     (c.minPositionals == c.maxPositionals ? std::to_string(c.minPositionals)
-                                                           : std::to_string(c.minPositionals) + " to " +
-                                                                 std::to_string(c.maxPositionals)) +
+                     (c.minPositionals == c.maxPositionals
+                          ? std::to_string(c.minPositionals)
+                          : std::to_string(c.minPositionals) + " to " + std::to_string(c.maxPositionals)) +
                      " argument(s), got " + std::to_string(n) + "; usage: firmament " + c.usage);
   return args;
 }
@@ -111,8 +114,8 @@ void refuseOverwritingInput(const std::filesystem::path& output, const std::file
     const std::filesystem::path written = std::filesystem::path(output).replace_extension(extension);
     std::error_code error;  // equivalent() fails (false) where either does not exist yet
     if (written.filename() == input.filename() && std::filesystem::equivalent(written, input, error))
-      throw InputError("-o " + output.string() + ": would overwrite the input " + input.string() + " with " + written.string() +
-                       " (written are OUT.exr, OUT.png and OUT.json); name another output");
+      throw InputError("-o " + output.string() + ": would overwrite the input " + input.string() + " with " +
+                       written.string() + " (written are OUT.exr, OUT.png and OUT.json); name another output");
   }
 }
 
@@ -148,8 +151,8 @@ int Args::integer(const std::string& name, int fallback, int minimum, int maximu
   char* end = nullptr;
   long d = std::strtol(v->c_str(), &end, 10);
   if (end == v->c_str() || *end != '\0' || d < minimum || d > maximum)
-    throw InputError("option --" + name + ": '" + *v + "' is not an integer in [" + std::to_string(minimum) +
-                     ", " + std::to_string(maximum) + "]");
+    throw InputError("option --" + name + ": '" + *v + "' is not an integer in [" + std::to_string(minimum) + ", " +
+                     std::to_string(maximum) + "]");
   return int(d);
 }
 

@@ -72,9 +72,9 @@ TEST(Geodetic, EnuConversionsInvert) {
 TEST(Geodetic, EnuDirectionConvention) {
   constexpr double pi = std::numbers::pi;
   expectNear(enuDirection(0.0, 1.0), {0, 0, 1}, 1e-15);
-  expectNear(enuDirection(pi / 2, 0.0), {0, 1, 0}, 1e-15);       // north
-  expectNear(enuDirection(pi / 2, pi / 2), {1, 0, 0}, 1e-15);    // east: azimuth clockwise from north
-  expectNear(enuDirection(pi / 2, pi), {0, -1, 0}, 1e-15);       // south
+  expectNear(enuDirection(pi / 2, 0.0), {0, 1, 0}, 1e-15);        // north
+  expectNear(enuDirection(pi / 2, pi / 2), {1, 0, 0}, 1e-15);     // east: azimuth clockwise from north
+  expectNear(enuDirection(pi / 2, pi), {0, -1, 0}, 1e-15);        // south
   expectNear(enuDirection(pi / 2, 1.5 * pi), {-1, 0, 0}, 1e-15);  // west
 }
 

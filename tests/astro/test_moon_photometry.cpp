@@ -139,8 +139,8 @@ TEST(MoonPhotometry, DiscLimbTerminatorAndEarthshine) {
   const glm::dvec3 sunBehindObserver(0.0, 0.0, -1.0);
   const double c = 1.0;
   auto at = [&](double x, double y, const glm::dvec3& sun, double earthshine) {
-    return shared::moonDiscRadiance(glm::normalize(glm::dvec3(x * std::tan(rho), y * std::tan(rho), 1.0)), moonDir,
-                                    sun, rho, c, earthshine, 1.0);
+    return shared::moonDiscRadiance(glm::normalize(glm::dvec3(x * std::tan(rho), y * std::tan(rho), 1.0)), moonDir, sun,
+                                    rho, c, earthshine, 1.0);
   };
   EXPECT_NEAR(at(0.0, 0.0, sunBehindObserver, 0.0), 0.5, 1e-9);
   EXPECT_NEAR(at(0.95, 0.0, sunBehindObserver, 0.0), 0.5, 1e-9);
@@ -157,8 +157,8 @@ TEST(MoonPhotometry, DiscLimbTerminatorAndEarthshine) {
   // The closed form of the Lommel-Seeliger disc integral at its ends.
   EXPECT_NEAR(shared::lommelSeeligerDiscPhase(0.0), 1.0, 1e-9);
   EXPECT_NEAR(shared::lommelSeeligerDiscPhase(std::numbers::pi), 0.0, 1e-9);
-  EXPECT_NEAR(shared::lommelSeeligerDiscPhase(std::numbers::pi / 2), 1.0 - std::sqrt(0.5) * std::log(1.0 + std::sqrt(2.0)),
-              1e-12);
+  EXPECT_NEAR(shared::lommelSeeligerDiscPhase(std::numbers::pi / 2),
+              1.0 - std::sqrt(0.5) * std::log(1.0 + std::sqrt(2.0)), 1e-12);
 }
 
 }  // namespace

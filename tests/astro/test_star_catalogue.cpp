@@ -39,10 +39,10 @@ glm::dvec3 erfaObserved(double ra, double dec, double pmRaCosDecMasYr, double pm
                         double radialVelocityKms, const AstroTime& t, const GeodeticLocation& site, double phpa) {
   constexpr double kMas = kArcsecond / 1000.0;
   double aob = 0, zob = 0, hob = 0, dob = 0, rob = 0, eo = 0;
-  const int status = eraAtco13(ra, dec, pmRaCosDecMasYr * kMas / std::cos(dec), pmDecMasYr * kMas,
-                               parallaxMas / 1000.0, radialVelocityKms, t.utcJulian.dayStart, t.utcJulian.dayFraction,
-                               0.0, site.longitude, site.latitude, site.height, 0.0, 0.0, phpa, 15.0, 0.0, 0.55, &aob,
-                               &zob, &hob, &dob, &rob, &eo);
+  const int status =
+      eraAtco13(ra, dec, pmRaCosDecMasYr * kMas / std::cos(dec), pmDecMasYr * kMas, parallaxMas / 1000.0,
+                radialVelocityKms, t.utcJulian.dayStart, t.utcJulian.dayFraction, 0.0, site.longitude, site.latitude,
+                site.height, 0.0, 0.0, phpa, 15.0, 0.0, 0.55, &aob, &zob, &hob, &dob, &rob, &eo);
   EXPECT_GE(status, 0);
   return enuDirection(zob, aob);
 }
@@ -91,8 +91,8 @@ TEST(StarCatalogue, CountBrighterThanSixthMagnitudeMatchesTheFile) {
     if (s.illuminanceLux > starIlluminanceLux(6.0)) ++brighter;
     if (s.directionEnu.z > 0.0) ++aboveHorizon;
   }
-  std::printf("stars brighter than V 6: %d (file: %d), %d of %d above the horizon\n", brighter, fileCount,
-              aboveHorizon, fileTotal);
+  std::printf("stars brighter than V 6: %d (file: %d), %d of %d above the horizon\n", brighter, fileCount, aboveHorizon,
+              fileTotal);
   EXPECT_EQ(brighter, fileCount);  // 5023
   EXPECT_EQ(fileCount, 5023);
 }
@@ -120,9 +120,9 @@ TEST(StarCatalogue, ApparentPlacesMatchErfaAtco13OfTheSamePositions) {
   for (const ApparentStar& s : refracted) {
     if (s.directionEnu.z < std::sin(10.0 * kDegree)) continue;
     const CatalogueStar& c = catalogue().stars[size_t(s.catalogueIndex)];
-    worstRefracted = std::max(worstRefracted, separationArcsec(s.directionEnu, erfaObserved(c.rightAscension,
-                                                                                            c.declination, 0, 0, 0,
-                                                                                            0, t, site, 770.0)));
+    worstRefracted = std::max(
+        worstRefracted,
+        separationArcsec(s.directionEnu, erfaObserved(c.rightAscension, c.declination, 0, 0, 0, 0, t, site, 770.0)));
   }
   std::printf("against eraAtco13: worst %.2e\" geometric, %.2e\" with refraction\n", worst, worstRefracted);
   EXPECT_LT(worst, 1e-3);           // measured ~1e-9"
@@ -162,8 +162,8 @@ TEST(StarCatalogue, NamedStarsAreWithinAnArcminuteOfTheirHipparcosPlaces) {
   const double years = (t.tt.value() - 2451545.0) / 365.25;
   for (const Named& n : named) {
     const ApparentStar& s = stars[indexOfHr(n.hr)];
-    const glm::dvec3 truth = erfaObserved(n.raHours * 15.0 * kDegree, n.decDeg * kDegree, n.pmRa, n.pmDec,
-                                          n.parallax, n.rv, t, site, 0.0);
+    const glm::dvec3 truth =
+        erfaObserved(n.raHours * 15.0 * kDegree, n.decDeg * kDegree, n.pmRa, n.pmDec, n.parallax, n.rv, t, site, 0.0);
     const double error = separationArcsec(s.directionEnu, truth);
     const double properMotion = std::hypot(n.pmRa, n.pmDec) / 1000.0 * years;
     std::printf("%-10s error %5.1f\" (proper motion since J2000 %5.1f\")\n", n.name, error, properMotion);

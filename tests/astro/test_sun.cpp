@@ -45,7 +45,8 @@ TEST(Sun, ErfaRefractionModelIsCloseToSpaAtModerateZenith) {
   TopocentricPosition withSpa = sunPosition(spa.time, spa.place, spa.air);
   TopocentricPosition withErfa = sunPosition(spa.time, spa.place, erfaAir);
   std::printf("refraction at zenith 50.1 deg: SPA %.6f deg, ERFA %.6f deg\n",
-              (withSpa.geometricZenith - withSpa.zenith) / kDegree, (withErfa.geometricZenith - withErfa.zenith) / kDegree);
+              (withSpa.geometricZenith - withSpa.zenith) / kDegree,
+              (withErfa.geometricZenith - withErfa.zenith) / kDegree);
   EXPECT_NEAR(withSpa.geometricZenith, withErfa.geometricZenith, 1e-12);
   EXPECT_NEAR(withSpa.zenith / kDegree, withErfa.zenith / kDegree, 0.002);
 }
@@ -66,9 +67,9 @@ TEST(Sun, AzimuthIsClockwiseFromNorth) {
   TopocentricPosition morning = sunPosition(makeAstroTime("2021-06-21T07:00:00Z"), place);
   TopocentricPosition noon = sunPosition(makeAstroTime("2021-06-21T12:00:00Z"), place);
   TopocentricPosition evening = sunPosition(makeAstroTime("2021-06-21T17:00:00Z"), place);
-  EXPECT_GT(morning.azimuth / kDegree, 45.0);  // east of north...
-  EXPECT_LT(morning.azimuth / kDegree, 135.0);  // ...in the eastern quadrant
-  EXPECT_NEAR(noon.azimuth / kDegree, 180.0, 3.0);  // due south (equation of time: ~ -1.7 min)
+  EXPECT_GT(morning.azimuth / kDegree, 45.0);             // east of north...
+  EXPECT_LT(morning.azimuth / kDegree, 135.0);            // ...in the eastern quadrant
+  EXPECT_NEAR(noon.azimuth / kDegree, 180.0, 3.0);        // due south (equation of time: ~ -1.7 min)
   EXPECT_NEAR(noon.zenith / kDegree, 48.0 - 23.44, 0.2);  // latitude minus solstice declination
   EXPECT_GT(evening.azimuth / kDegree, 225.0);
   EXPECT_LT(evening.azimuth / kDegree, 315.0);

@@ -22,7 +22,9 @@ namespace {
 
 class AtmosphereSharedFunctionsTest : public test::GpuTest {};
 
-double relativeError(double gpu, double cpu, double floor) { return std::abs(gpu - cpu) / std::max(std::abs(cpu), floor); }
+double relativeError(double gpu, double cpu, double floor) {
+  return std::abs(gpu - cpu) / std::max(std::abs(cpu), floor);
+}
 
 TEST_F(AtmosphereSharedFunctionsTest, GpuFloatAgreesWithCpuDouble) {
   gpu::Context& context = this->context();
@@ -41,17 +43,19 @@ TEST_F(AtmosphereSharedFunctionsTest, GpuFloatAgreesWithCpuDouble) {
   for (int i = 0; i < 2048; ++i) {
     double h = (i % 4 == 0) ? unit(random) * 100.0 : unit(random) * (top - bottom);
     double mu = 2.0 * unit(random) - 1.0;
-    if (i % 8 == 1) mu = -std::sqrt(1.0 - std::pow(bottom / (bottom + h), 2.0)) + (unit(random) - 0.5) * 2e-5;  // grazing
-    inputs.insert(inputs.end(), {float(bottom + h), float(mu), float(2.0 * unit(random) - 1.0), float(2.0 * unit(random) - 1.0)});
+    if (i % 8 == 1)
+      mu = -std::sqrt(1.0 - std::pow(bottom / (bottom + h), 2.0)) + (unit(random) - 0.5) * 2e-5;  // grazing
+    inputs.insert(inputs.end(),
+                  {float(bottom + h), float(mu), float(2.0 * unit(random) - 1.0), float(2.0 * unit(random) - 1.0)});
   }
   const uint32_t count = uint32_t(inputs.size() / 4);
   gpu::Buffer in(context, inputs.size() * sizeof(float), gpu::BufferUsage::Storage);
   in.upload(inputs);
   gpu::Buffer out(context, size_t(count) * 16 * sizeof(float), gpu::BufferUsage::Storage);
-  gpu::ComputePipeline pipeline(context, {"gpu/atmosphere_functions_test",
-                                          {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
-                                           gpu::BindingType::StorageBuffer},
-                                          sizeof(uint32_t)});
+  gpu::ComputePipeline pipeline(
+      context, {"gpu/atmosphere_functions_test",
+                {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
+                sizeof(uint32_t)});
   gpu::CommandList list(context);
   list.bind(pipeline, {blockBuffer, in, out});
   list.pushConstants(count);
@@ -69,7 +73,8 @@ TEST_F(AtmosphereSharedFunctionsTest, GpuFloatAgreesWithCpuDouble) {
     EXPECT_LT(relativeError(g[4], shared::cornetteShanksPhase(cpu.mie_phase_g, nu), 1e-6), 1e-4);
     EXPECT_LT(relativeError(g[15], shared::henyeyGreensteinPhase(0.7, nu), 1e-6), 1e-4);
     glm::dvec3 depth = shared::opticalDepthToTop(cpu, r, mu, 64);
-    for (int c = 0; c < 3; ++c) EXPECT_LT(relativeError(g[5 + c], depth[c], 1e-6), 2e-3) << "depth r=" << r << " mu=" << mu;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(relativeError(g[5 + c], depth[c], 1e-6), 2e-3) << "depth r=" << r << " mu=" << mu;
     glm::dvec2 uv = shared::transmittanceUvFromRMu(cpu, r, mu, glm::ivec2(256, 64));
     EXPECT_NEAR(g[8], uv.x, 2e-3) << "u r=" << r << " mu=" << mu;
     EXPECT_NEAR(g[9], uv.y, 1e-4);

@@ -60,7 +60,8 @@ TEST(ReferenceRadiance, SunAtZenithSingleScatteringInConstantMediumIsExact) {
   const ReferenceRadiance r = renderer.radiance({0.0, 0.0, cameraRadius}, {0.0, 0.0, 1.0}, 0);
   const double height = p.top_radius - cameraRadius;
   for (int i = 0; i < 3; ++i) {
-    const double expected = p.solar_irradiance[i] * shared::rayleighPhase(1.0) * beta[i] * height * std::exp(-beta[i] * height);
+    const double expected =
+        p.solar_irradiance[i] * shared::rayleighPhase(1.0) * beta[i] * height * std::exp(-beta[i] * height);
     EXPECT_NEAR(r.singleScattering[size_t(i)], expected, 1e-9 * expected) << i;
   }
 }
@@ -193,10 +194,11 @@ TEST(ReferenceRadiance, NonAbsorbingAtmosphereOverWhiteGroundConservesEnergy) {
     const double mean = sum[i] / batches;
     const double standardError = std::sqrt((sumSquares[i] / batches - mean * mean) / (batches - 1));
     EXPECT_LT(standardError, 0.01) << i;
-    std::printf("energy at %g nm: scattered %.5f + direct %.5f = %.5f (SE %.5f)\n", wavelengths[size_t(i)], mean, direct[i], mean + direct[i], standardError);
+    std::printf("energy at %g nm: scattered %.5f + direct %.5f = %.5f (SE %.5f)\n", wavelengths[size_t(i)], mean,
+                direct[i], mean + direct[i], standardError);
     EXPECT_NEAR(mean, 1.0 - direct[i], 4.0 * standardError)
-        << "wavelength " << wavelengths[size_t(i)] << " nm: scattered " << mean << " + direct " << direct[i]
-        << " (SE " << standardError << ")";
+        << "wavelength " << wavelengths[size_t(i)] << " nm: scattered " << mean << " + direct " << direct[i] << " (SE "
+        << standardError << ")";
   }
 }
 
@@ -222,8 +224,8 @@ TEST(ReferenceRadiance, FiniteAndNonNegativeEverywhere) {
     const ReferenceRenderer renderer(SpectralMedium::fromSettings(settings, wavelengths), sun, q);
     for (double height : {-100.0, 0.0, 1e4, 1e5, 1e6, 1e8}) {
       const double r = rg + height;
-      std::vector<double> viewZeniths = {0.0, 45.0 * kDegree, 0.5 * kPi - 1e-5, 0.5 * kPi, 0.5 * kPi + 1e-5,
-                                         135.0 * kDegree, kPi};
+      std::vector<double> viewZeniths = {
+          0.0, 45.0 * kDegree, 0.5 * kPi - 1e-5, 0.5 * kPi, 0.5 * kPi + 1e-5, 135.0 * kDegree, kPi};
       // The ground's and the top's tangent directions from this height (view zenith = pi - asin(R / r)).
       for (double radius : {rg, rt})
         if (r > radius)

@@ -57,7 +57,8 @@ TEST(Cli, BadScenesExitTwoWithAClearMessage) {
   const std::vector<Case> cases = {
       {"unknown_key.json", R"({"camera": {"fov": 60}})", {"unknown_key.json", "/camera/fov", "unknown key"}},
       {"wrong_type.json", R"({"camera": {"width": "wide"}})", {"wrong_type.json", "/camera/width", "integer"}},
-      {"out_of_range.json", R"({"clouds": {"layers": [{"bottom_m": -5}]}})",
+      {"out_of_range.json",
+       R"({"clouds": {"layers": [{"bottom_m": -5}]}})",
        {"out_of_range.json", "/clouds/layers/0/bottom_m", "[0, 20000]"}},
       {"malformed.json", "{\"camera\": {", {"malformed.json", "malformed JSON", "line 1"}},
       {"empty.json", "", {"empty.json", "empty"}},
@@ -140,8 +141,10 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
 TEST(Cli, BenchCloudTimingTakesItsImageSize) {
   auto dir = test::scratchDir("cli_bench_timing_size");
   // Four rows (the defaults' still and 1/16 sequence, and view_steps 48's): every row takes the size.
-  CommandRun r = firmament("bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting \"view_steps 48\" --out " +
-                           dir.string());
+  CommandRun r = firmament(
+      "bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting \"view_steps 48\" "
+      "--out " +
+      dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream csv(dir / "clouds_timing.csv");
   std::string line;
@@ -168,16 +171,21 @@ std::vector<std::string> csvRows(const std::filesystem::path& file) {
 // and 1/16 sequence.
 TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
   auto dir = test::scratchDir("cli_bench_timing_setting");
-  CommandRun r = firmament("bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting "
-                           "\"reflected_light off|quality low (\" --out " + dir.string());
+  CommandRun r = firmament(
+      "bench clouds --timing-only --scenario cirrus --timing-size 40x24 --repeats 1 --timing-setting "
+      "\"reflected_light off|quality low (\" --out " +
+      dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::vector<std::string> settings;
   for (const std::string& line : csvRows(dir / "clouds_timing.csv")) {
     const size_t open = line.find(",\"") + 2, close = line.find('"', open);
     settings.push_back(line.substr(open, close - open));
   }
-  const std::vector<std::string> expected = {"default", "reflected_light off", "reflected_light off, temporal_update 16 (sequence)",
-                                             "quality low (32v/4l/3o)", "quality low (32v/4l/3o), temporal_update 16 (sequence)",
+  const std::vector<std::string> expected = {"default",
+                                             "reflected_light off",
+                                             "reflected_light off, temporal_update 16 (sequence)",
+                                             "quality low (32v/4l/3o)",
+                                             "quality low (32v/4l/3o), temporal_update 16 (sequence)",
                                              "temporal_update 16 (sequence)"};
   EXPECT_EQ(settings, expected);
 }
@@ -186,13 +194,16 @@ TEST(Cli, BenchCloudTimingSettingPicksItsRows) {
 // default row; no timing sweep follows.
 TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
   auto dir = test::scratchDir("cli_bench_error_setting");
-  CommandRun r = firmament("bench clouds --quick --scenario cumulus_noon --reference-spp 2 --repeats 1 --error-setting "
-                           "\"ms_model no diffusion floor|view_steps 256\" --out " + dir.string());
+  CommandRun r = firmament(
+      "bench clouds --quick --scenario cumulus_noon --reference-spp 2 --repeats 1 --error-setting "
+      "\"ms_model no diffusion floor|view_steps 256\" --out " +
+      dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::vector<std::string> rows;
   for (const std::string& line : csvRows(dir / "clouds_results.csv"))
     rows.push_back(line.substr(0, line.find('"', line.find('"') + 1) + 1));  // knob,"value"
-  const std::vector<std::string> expected = {"default,\"64v/6l/3o\"", "ms_model,\"no diffusion floor\"", "view_steps,\"256\""};
+  const std::vector<std::string> expected = {"default,\"64v/6l/3o\"", "ms_model,\"no diffusion floor\"",
+                                             "view_steps,\"256\""};
   EXPECT_EQ(rows, expected);
   EXPECT_FALSE(std::filesystem::exists(dir / "clouds_timing.csv"));
 }
@@ -201,8 +212,10 @@ TEST(Cli, BenchCloudErrorSettingPicksItsRows) {
 // same --out reads them (and says so) and gives the same errors; a damaged cache file is rendered again.
 TEST(Cli, BenchCloudReusesItsReferences) {
   auto dir = test::scratchDir("cli_bench_reference_cache");
-  const std::string command = "bench clouds --quick --scenario cumulus_noon --reference-spp 4 --repeats 1 --error-setting "
-                              "\"view_steps 256|1 octave vs order 1\" --out " + dir.string();
+  const std::string command =
+      "bench clouds --quick --scenario cumulus_noon --reference-spp 4 --repeats 1 --error-setting "
+      "\"view_steps 256|1 octave vs order 1\" --out " +
+      dir.string();
   auto errors = [&] {
     std::string all;
     for (const std::string& line : csvRows(dir / "clouds_results.csv")) {
@@ -218,7 +231,8 @@ TEST(Cli, BenchCloudReusesItsReferences) {
   EXPECT_EQ(first.output.find("paths/pixel from"), std::string::npos) << first.output;
   const std::string firstErrors = errors();
   int files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir / "references")) files += entry.path().extension() == ".exr";
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "references"))
+    files += entry.path().extension() == ".exr";
   EXPECT_EQ(files, 4);  // image and luminance, all orders and the first
 
   CommandRun second = firmament(command);
@@ -227,7 +241,8 @@ TEST(Cli, BenchCloudReusesItsReferences) {
   EXPECT_EQ(errors(), firstErrors);
 
   // Damaged: every file of the cache truncated; the run renders the reference again and overwrites them.
-  for (const auto& entry : std::filesystem::directory_iterator(dir / "references")) std::filesystem::resize_file(entry.path(), 10);
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "references"))
+    std::filesystem::resize_file(entry.path(), 10);
   CommandRun third = firmament(command);
   ASSERT_EQ(third.exitCode, 0) << third.output;
   EXPECT_EQ(third.output.find("paths/pixel from"), std::string::npos) << third.output;
@@ -264,7 +279,8 @@ TEST(Cli, RenderWritesExrPngAndStats) {
 TEST(Cli, RenderFramesWritesASequence) {
   auto dir = test::scratchDir("cli_frames");
   const std::string scene = writeScene(dir, "clouds.json", R"({"camera": {"width": 32, "height": 18, "pitch_deg": 30},
-      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "wind_m_s": 10}})").string();
+      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "wind_m_s": 10}})")
+                                .string();
   CommandRun r = firmament("render " + scene + " --frames 3 --yaw-rate 6 -o " + (dir / "seq.exr").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (int i = 0; i < 3; ++i) {
@@ -272,13 +288,15 @@ TEST(Cli, RenderFramesWritesASequence) {
     ASSERT_TRUE(std::filesystem::exists(dir / (stem + ".exr"))) << stem;
     std::ifstream stats(dir / (stem + ".json"));
     const std::string text((std::istreambuf_iterator<char>(stats)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find(i == 0 ? "\"reprojected\": false" : "\"reprojected\": true"), std::string::npos) << stem << text;
+    EXPECT_NE(text.find(i == 0 ? "\"reprojected\": false" : "\"reprojected\": true"), std::string::npos)
+        << stem << text;
     Image image = readExr(dir / (stem + ".exr"));
     for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "seq.exr"));
   // Without a sun section the sun follows the clock: a 10-minute time-lapse moves it (~1.7 deg here).
-  CommandRun lapse = firmament("render " + scene + " --frames 2 --frame-interval 600 -o " + (dir / "lapse.exr").string());
+  CommandRun lapse =
+      firmament("render " + scene + " --frames 2 --frame-interval 600 -o " + (dir / "lapse.exr").string());
   ASSERT_EQ(lapse.exitCode, 0) << lapse.output;
   double zenith[2] = {0.0, 0.0};
   for (int i = 0; i < 2; ++i) {
@@ -287,7 +305,8 @@ TEST(Cli, RenderFramesWritesASequence) {
   }
   EXPECT_GT(std::abs(zenith[1] - zenith[0]), 0.5) << zenith[0] << " " << zenith[1];
   EXPECT_LT(std::abs(zenith[1] - zenith[0]), 5.0) << zenith[0] << " " << zenith[1];
-  for (const std::string& bad : {std::string("--frames 0"), std::string("--yaw-rate 5"), std::string("--frames 40 --pitch-rate 200")}) {
+  for (const std::string& bad :
+       {std::string("--frames 0"), std::string("--yaw-rate 5"), std::string("--frames 40 --pitch-rate 200")}) {
     CommandRun b = firmament("render " + scene + " " + bad + " -o " + (dir / "bad.exr").string());
     EXPECT_EQ(b.exitCode, 2) << bad << ": " << b.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr")) << bad;
@@ -301,7 +320,8 @@ TEST(Cli, RenderFramesWritesASequence) {
 TEST(Cli, RenderReadsTheCloudNoiseTheLastRunBaked) {
   auto dir = test::scratchDir("cli_noise_cache");
   const std::string scene = writeScene(dir, "clouds.json", R"({"camera": {"width": 24, "height": 14, "pitch_deg": 30},
-      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "seed": 4242}})").string();
+      "clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.6}], "seed": 4242}})")
+                                .string();
   const char* saved = std::getenv("FIRMAMENT_CACHE_DIR");
   const std::string previous = saved ? saved : "";
   setenv("FIRMAMENT_CACHE_DIR", (dir / "cache").c_str(), 1);
@@ -312,11 +332,15 @@ TEST(Cli, RenderReadsTheCloudNoiseTheLastRunBaked) {
     std::ifstream stats(dir / ("run" + std::to_string(i) + ".json"));
     source[i] = nlohmann::json::parse(stats).at("clouds").at("noise").get<std::string>();
   }
-  if (saved) setenv("FIRMAMENT_CACHE_DIR", previous.c_str(), 1); else unsetenv("FIRMAMENT_CACHE_DIR");
+  if (saved)
+    setenv("FIRMAMENT_CACHE_DIR", previous.c_str(), 1);
+  else
+    unsetenv("FIRMAMENT_CACHE_DIR");
   EXPECT_EQ(source[0], "baked");
   EXPECT_EQ(source[1], "disk cache");
   int files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir / "cache" / "noise")) files += entry.is_regular_file();
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "cache" / "noise"))
+    files += entry.is_regular_file();
   EXPECT_EQ(files, 1);
   EXPECT_EQ(readExr(dir / "run0.exr").pixels, readExr(dir / "run1.exr").pixels);
 }

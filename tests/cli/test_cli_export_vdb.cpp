@@ -62,9 +62,9 @@ TEST(CliExportVdb, SceneWithoutCloudsWritesAnEmptyGrid) {
 
 TEST(CliExportVdb, SmallExportReportsItsVoxels) {
   const auto dir = test::scratchDir("cli_export_vdb_small");
-  const CommandRun run = firmament("export-vdb " + (test::sourceDir() / "scenes" / "cumulus.json").string() + " -o " +
-                                   (dir / "sub" / "small.vdb").string() +
-                                   " --voxel-size 250 --region -3000,-3000,3000,3000 --threads 2");
+  const CommandRun run =
+      firmament("export-vdb " + (test::sourceDir() / "scenes" / "cumulus.json").string() + " -o " +
+                (dir / "sub" / "small.vdb").string() + " --voxel-size 250 --region -3000,-3000,3000,3000 --threads 2");
   EXPECT_EQ(run.exitCode, 0) << run.output;
   for (const char* f : {"small.vdb", "grid 'density'", "active voxels of", "max sigma_t", "thread(s)"})
     EXPECT_NE(run.output.find(f), std::string::npos) << "no '" << f << "' in\n" << run.output;

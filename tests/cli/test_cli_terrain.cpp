@@ -59,7 +59,8 @@ TEST(CliTerrain, GdalSceneOnARealDemReportsItsDataShare) {
   const fs::path dir = test::scratchDir("cli_terrain_gdal");
   // Olinda, Brazil: 7.99° S, 34.85° W lies on the raster.
   writeText(dir / "scene.json", R"({"location": {"latitude_deg": -8.0, "longitude_deg": -34.86, "height_m": 20},
-    "terrain": {"kind": "gdal", "file": ")" + dem.string() + R"(", "extent_m": 20000, "resolution": 101}})");
+    "terrain": {"kind": "gdal", "file": ")" +
+                                    dem.string() + R"(", "extent_m": 20000, "resolution": 101}})");
   const CommandRun run = firmament("terrain " + (dir / "scene.json").string() + " -o " + (dir / "out").string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const nlohmann::json report = readJson(dir / "out" / "terrain.json");

@@ -34,8 +34,8 @@ const std::string kSmallGrid = " --set /weather/grid/cells_x=32 --set /weather/g
 TEST(CliWeather, ShortRunWritesMapsPreviewsAndStats) {
   auto dir = test::scratchDir("cli_weather");
   auto scene = test::sourceDir() / "scenes" / "fair-weather.json";
-  CommandRun r = firmament("weather " + scene.string() + " --hours 1 --interval-min 30" + kSmallGrid + " --out " +
-                           dir.string());
+  CommandRun r =
+      firmament("weather " + scene.string() + " --hours 1 --interval-min 30" + kSmallGrid + " --out " + dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
 
   // Frames at 0, 30 and 60 min: weather and wind maps (EXR, 32 × 32 RGBA) and a preview (PNG).

@@ -26,11 +26,13 @@ inline SkyRenderOptions smallCloudOptions() {
 }
 
 // A cumulus layer 1500-4000 m over a camera 2 m above the ground, sun 40 degrees from the zenith.
-inline std::string cloudSceneText(const std::string& layer = R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 4000, "coverage": 0.7})",
-                                  const std::string& extra = "") {
+inline std::string cloudSceneText(
+    const std::string& layer = R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 4000, "coverage": 0.7})",
+    const std::string& extra = "") {
   return std::string(R"({"location": {"height_m": 500}, "sun": {"zenith_deg": 40, "azimuth_deg": 180},
     "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 50, "fov_deg": 80, "width": 64, "height": 36},
-    "clouds": {"layers": [)") + layer + "]" + extra + "}}";
+    "clouds": {"layers": [)") +
+         layer + "]" + extra + "}}";
 }
 
 inline Scene cloudScene(const std::vector<std::string>& overrides = {}, const std::string& text = cloudSceneText()) {

@@ -51,8 +51,9 @@ void traceSlabPhotons(double tau, int bins, int photons, uint64_t seed, Deflect 
 // J = (pi / N) sum(track length) / (4 pi dtau).
 std::vector<double> slabMeanRadianceMonteCarlo(double tau, int bins, int photons, uint64_t seed) {
   std::vector<double> length(bins, 0.0);
-  traceSlabPhotons(tau, bins, photons, seed, [](double, auto& draw) { return 2.0 * draw() - 1.0; },
-                   [&](int i, double l, double) { length[i] += l; });
+  traceSlabPhotons(
+      tau, bins, photons, seed, [](double, auto& draw) { return 2.0 * draw() - 1.0; },
+      [&](int i, double l, double) { length[i] += l; });
   for (double& l : length) l /= 4.0 * photons * (tau / bins);
   return length;
 }
@@ -92,8 +93,9 @@ std::vector<double> slabSourceMonteCarlo(double tau, double g, bool down, int bi
     const double sinMu = std::sqrt(std::max(0.0, 1.0 - mu * mu)), sinT = std::sqrt(std::max(0.0, 1.0 - t * t));
     return std::clamp(mu * t + sinMu * sinT * std::cos(phi), -1.0, 1.0);
   };
-  traceSlabPhotons(tau, bins, photons, seed, deflect,
-                   [&](int i, double l, double mu) { source[i] += l * shared::henyeyGreensteinPhase(g, down ? mu : -mu); });
+  traceSlabPhotons(tau, bins, photons, seed, deflect, [&](int i, double l, double mu) {
+    source[i] += l * shared::henyeyGreensteinPhase(g, down ? mu : -mu);
+  });
   for (double& l : source) l *= pi / photons / (tau / bins);
   return source;
 }
@@ -114,7 +116,8 @@ TEST(CloudAmbient, FlowTowardsTheCameraAgreesWithMonteCarlo) {
         std::printf("g %.1f tau %5.1f %s  S Monte Carlo / flow / J alone:", g, tau, lookingUp ? "up  " : "down");
         for (int i = 0; i < bins; ++i) {
           const double depth = tau * (i + 0.5) / bins, s = 1.0 - g;
-          const double flow = 1.0 - cloudAmbientViewGroundWeight(s * depth, s * (tau - depth), g, lookingUp ? 1.0 : -1.0);
+          const double flow =
+              1.0 - cloudAmbientViewGroundWeight(s * depth, s * (tau - depth), g, lookingUp ? 1.0 : -1.0);
           const double alone = 1.0 - cloudAmbientGroundWeight(s * depth, s * (tau - depth));
           std::printf(" %.3f/%.3f/%.3f", mc[i], flow, alone);
           flowError += std::abs(flow - mc[i]);
@@ -126,7 +129,8 @@ TEST(CloudAmbient, FlowTowardsTheCameraAgreesWithMonteCarlo) {
       }
   flowError /= n;
   meanError /= n;
-  std::printf("mean |error|: with the flow %.3f, J alone %.3f; the flow's worst bin %.3f\n", flowError, meanError, worst);
+  std::printf("mean |error|: with the flow %.3f, J alone %.3f; the flow's worst bin %.3f\n", flowError, meanError,
+              worst);
   EXPECT_LT(flowError, 0.25 * meanError);
   EXPECT_LT(flowError, 0.04);
   EXPECT_LT(worst, 0.12);
@@ -147,10 +151,10 @@ TEST(CloudAmbient, SlabWeightsKeepAUniformFieldAndTurnWithTheDepth) {
       EXPECT_NEAR((1.0 - w) * light + w * light, light, 1e-12);
     }
   }
-  EXPECT_NEAR(cloudAmbientGroundWeight(0.0, 0.0), 0.5, 1e-12);     // thin: the unobstructed field's mean
-  EXPECT_NEAR(cloudAmbientGroundWeight(5.0, 5.0), 0.5, 1e-12);     // the middle, by symmetry
-  EXPECT_LT(cloudAmbientGroundWeight(0.0, 1e4), 1e-3);             // the top of a thick deck sees the sky
-  EXPECT_GT(cloudAmbientGroundWeight(1e4, 0.0), 1.0 - 1e-3);       // its base the ground
+  EXPECT_NEAR(cloudAmbientGroundWeight(0.0, 0.0), 0.5, 1e-12);  // thin: the unobstructed field's mean
+  EXPECT_NEAR(cloudAmbientGroundWeight(5.0, 5.0), 0.5, 1e-12);  // the middle, by symmetry
+  EXPECT_LT(cloudAmbientGroundWeight(0.0, 1e4), 1e-3);          // the top of a thick deck sees the sky
+  EXPECT_GT(cloudAmbientGroundWeight(1e4, 0.0), 1.0 - 1e-3);    // its base the ground
   EXPECT_EQ(cloudAmbientGroundWeight(-1.0, 2.0), cloudAmbientGroundWeight(0.0, 2.0));  // "not known" depths read as 0
   // The flow: in [0, 1], none without a forward lobe or from a horizontal view, less of the ground
   // looking up (mu_view > 0), more looking down, fading in a thick slab's interior.

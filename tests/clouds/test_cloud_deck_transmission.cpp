@@ -59,8 +59,9 @@ TEST(CloudDeckTransmission, MatchesTheSlabMonteCarlo) {
       const double direct = std::exp(-tau / mu0);
       const double model = shared::cloudSlabTransmission(tau / mu0, mu0, g) - direct;
       const double eddington = std::min(shared::cloudEddingtonTransmission(mu0, tau, g), 1.0) - direct;
-      std::printf("depth %4.1f mu0 %.3f: Monte Carlo %.4f +- %.4f, Eddington / MC %.3f, cloudSlabTransmission / MC %.3f\n", tau, mu0,
-                  mc.mean, mc.standardError, eddington / mc.mean, model / mc.mean);
+      std::printf(
+          "depth %4.1f mu0 %.3f: Monte Carlo %.4f +- %.4f, Eddington / MC %.3f, cloudSlabTransmission / MC %.3f\n", tau,
+          mu0, mc.mean, mc.standardError, eddington / mc.mean, model / mc.mean);
       EXPECT_NEAR(model / mc.mean, 1.0, mu0 < 0.5 ? 0.05 : 0.06) << tau << " " << mu0;
       // The check can fail: the uncorrected form misses a low sun by more than the tolerance.
       if (mu0 < 0.1) {
@@ -96,12 +97,12 @@ TEST(CloudDeckTransmission, OctaveThroughOthersOnlyAddsTheDecksDiffuseLight) {
     for (double s : {0.1, 0.445, 0.9})
       for (double tauOwn : {0.0, 0.5, 5.0}) {
         // Without another layer on the way: the octave's own attenuation, exactly.
-        EXPECT_EQ(shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, 0.0, shared::cloudDeckDiffuseLight(0.0, 0.6, 0.47), 0.5,
-                                                                scatteredOnly),
+        EXPECT_EQ(shared::cloudOctaveTransmittanceThroughOthers(
+                      s, tauOwn, 0.0, shared::cloudDeckDiffuseLight(0.0, 0.6, 0.47), 0.5, scatteredOnly),
                   shared::cloudOctaveTransmittance(s, tauOwn, scatteredOnly));
         for (double tauOther : {0.1, 2.0, 30.0, 1e4}) {
-          const double t = shared::cloudOctaveTransmittanceThroughOthers(s, tauOwn, tauOther, shared::cloudDeckDiffuseLight(tauOther, 0.6, 0.47),
-                                                                         0.5, scatteredOnly);
+          const double t = shared::cloudOctaveTransmittanceThroughOthers(
+              s, tauOwn, tauOther, shared::cloudDeckDiffuseLight(tauOther, 0.6, 0.47), 0.5, scatteredOnly);
           // Never below the octave through both (the deck only adds), never above 1, never negative.
           EXPECT_GE(t, shared::cloudOctaveTransmittance(s, tauOwn + tauOther, scatteredOnly) - 1e-15);
           EXPECT_LE(t, 1.0);
@@ -117,7 +118,8 @@ TEST(CloudDeckTransmission, OctaveThroughOthersOnlyAddsTheDecksDiffuseLight) {
   // The octaves' shares sum to 1: together they carry 2 mu0 T, the light a sample scatters from the
   // deck's base radiance T mu0 E / pi over the upper hemisphere, (1/4pi) 2pi T mu0 E / pi.
   double sum = 0.0;
-  for (double part : {0.6, 0.4}) sum += shared::cloudOctaveTransmittanceThroughOthers(1.0, 0.0, tauOther, deck, part, false);
+  for (double part : {0.6, 0.4})
+    sum += shared::cloudOctaveTransmittanceThroughOthers(1.0, 0.0, tauOther, deck, part, false);
   EXPECT_NEAR(sum, 2.0 * mu0 * shared::cloudSlabTransmission(tauOther, mu0, g), 1e-12);
 }
 

@@ -33,9 +33,12 @@ TEST(CloudDiffusionFloor, ConservesTheNetFluxThroughTheSlab) {
   for (double mu0 : {0.2, 0.5, 0.9})
     for (double tauTotal : {2.0, 10.0, 40.0}) {
       const double g = 0.8;
-      auto net = [&](double tau) { return 4.0 * kPi / 3.0 * moments(mu0, tau, tauTotal, g).i1 + mu0 * std::exp(-tau / mu0); };
+      auto net = [&](double tau) {
+        return 4.0 * kPi / 3.0 * moments(mu0, tau, tauTotal, g).i1 + mu0 * std::exp(-tau / mu0);
+      };
       const double reference = net(0.5 * tauTotal);
-      for (double f : {0.25, 0.75, 1.0}) EXPECT_NEAR(net(f * tauTotal), reference, 1e-9) << mu0 << " " << tauTotal << " " << f;
+      for (double f : {0.25, 0.75, 1.0})
+        EXPECT_NEAR(net(f * tauTotal), reference, 1e-9) << mu0 << " " << tauTotal << " " << f;
       // Transmitted: between 0 and the incident flux mu0 E (no energy gain).
       EXPECT_GT(reference, 0.0);
       EXPECT_LT(reference, mu0);
@@ -50,7 +53,8 @@ TEST(CloudDiffusionFloor, MeetsTheBoundaryConditions) {
   EXPECT_GT(base.i0, 0.0);
   // Linear in depth inside (diffusion): equal steps, equal drops, the drop (1 - g) I1 (up to the direct
   // beam's source, e^(-8 / 0.6) ~ 2e-6 of it at these depths).
-  const double a = moments(mu0, 8.0, tauTotal, g).i0, b = moments(mu0, 10.0, tauTotal, g).i0, c = moments(mu0, 12.0, tauTotal, g).i0;
+  const double a = moments(mu0, 8.0, tauTotal, g).i0, b = moments(mu0, 10.0, tauTotal, g).i0,
+               c = moments(mu0, 12.0, tauTotal, g).i0;
   EXPECT_NEAR(a - b, b - c, 1e-6);
   EXPECT_NEAR(a - b, 2.0 * (1.0 - g) * moments(mu0, 10.0, tauTotal, g).i1, 1e-6);
 }

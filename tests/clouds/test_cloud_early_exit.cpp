@@ -43,11 +43,14 @@ TEST_F(CloudEarlyExit, RemainderGivesTheLightOfAMarchWithoutExit) {
   o.clouds.earlyExitRemainder = false;
   const RenderResult dropped = test::cloudRenderer().render(s, o);
 
-  const double lNone = meanCloudLuminance(none), lAdded = meanCloudLuminance(added), lDropped = meanCloudLuminance(dropped);
-  std::printf("deck from below, mean cloud luminance: no exit %.3f, exit with the rest %.3f (%+.2f %%), rest dropped %.3f (%+.2f %%); "
-              "view samples/pixel %.1f, %.1f\n",
-              lNone, lAdded, 100.0 * (lAdded / lNone - 1.0), lDropped, 100.0 * (lDropped / lNone - 1.0), none.cloudSamples.viewPerPixel,
-              added.cloudSamples.viewPerPixel);
+  const double lNone = meanCloudLuminance(none), lAdded = meanCloudLuminance(added),
+               lDropped = meanCloudLuminance(dropped);
+  std::printf(
+      "deck from below, mean cloud luminance: no exit %.3f, exit with the rest %.3f (%+.2f %%), rest dropped %.3f "
+      "(%+.2f %%); "
+      "view samples/pixel %.1f, %.1f\n",
+      lNone, lAdded, 100.0 * (lAdded / lNone - 1.0), lDropped, 100.0 * (lDropped / lNone - 1.0),
+      none.cloudSamples.viewPerPixel, added.cloudSamples.viewPerPixel);
   ASSERT_GT(lNone, 0.0);
   EXPECT_NEAR(lAdded / lNone, 1.0, 0.004);
   EXPECT_LT(std::abs(lAdded - lNone), std::abs(lDropped - lNone));

@@ -59,7 +59,8 @@ class HFunction {
 TEST(CloudEscape, SolvedHFunctionMatchesChandrasekharsTable) {
   const HFunction h;
   // Chandrasekhar (1960), Table for the isotropic conservative H function.
-  const std::array<std::pair<double, double>, 5> table = {{{0.1, 1.2474}, {0.3, 1.6425}, {0.5, 2.0128}, {0.8, 2.5527}, {1.0, 2.9078}}};
+  const std::array<std::pair<double, double>, 5> table = {
+      {{0.1, 1.2474}, {0.3, 1.6425}, {0.5, 2.0128}, {0.8, 2.5527}, {1.0, 2.9078}}};
   for (const auto& [mu, value] : table) EXPECT_NEAR(h(mu), value, 2e-4) << mu;
   EXPECT_NEAR(h.firstMoment(), 2.0 / std::sqrt(3.0), 1e-9);
 }
@@ -75,8 +76,8 @@ TEST(CloudEscape, FunctionIsTheHFunctionsToOnePercent) {
     worstEddington = std::max(worstEddington, std::abs((0.5 + 0.75 * mu) / exact - 1.0));
     moment += 2.0 * shared::cloudEscapeFunction(mu) * mu / n;
   }
-  std::printf("escape function: worst relative error %.4f (the Eddington factor's: %.4f); 2 int K mu dmu = %.5f\n", worst,
-              worstEddington, moment);
+  std::printf("escape function: worst relative error %.4f (the Eddington factor's: %.4f); 2 int K mu dmu = %.5f\n",
+              worst, worstEddington, moment);
   EXPECT_LT(worst, 0.01);
   EXPECT_GT(worstEddington, 0.1);  // what it replaces: 15 % at the horizon
   EXPECT_NEAR(moment, 1.0, 2e-3);  // normalised like the exact one

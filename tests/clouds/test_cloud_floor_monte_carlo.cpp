@@ -32,8 +32,8 @@ TEST(CloudFloorAgainstMonteCarlo, HoldsInsideAThickSlab) {
         const SlabEstimate mc = slab.source(depth * thickness, slabDirection(muDown), 20000);
         const double truth = mc.mean, se = mc.standardError;
         const double floor = slabFloorSource(mu0, depth * thickness, thickness, muDown);
-        std::printf("inside mu0 %.2f depth %.2f muDown %+.0f: floor / Monte Carlo %.3f (standard error %.3f)\n", mu0, depth, muDown,
-                    floor / truth, se / truth);
+        std::printf("inside mu0 %.2f depth %.2f muDown %+.0f: floor / Monte Carlo %.3f (standard error %.3f)\n", mu0,
+                    depth, muDown, floor / truth, se / truth);
         EXPECT_LT(se, 0.035 * truth);
         EXPECT_NEAR(floor / truth, 1.0, 0.07) << "mu0 " << mu0 << " depth " << depth << " muDown " << muDown;
       }
@@ -50,9 +50,10 @@ TEST(CloudFloorAgainstMonteCarlo, BaseLimbDarkeningCorrectsGrazingExits) {
     const SlabEstimate mc = slab.baseRadiance(slabDirection(muDown), 80000);
     const double truth = mc.mean, se = mc.standardError;
     EXPECT_LT(se, 0.025 * truth);
-    const double plain = slabFloorBaseRadiance(mu0, thickness, muDown, false), limb = slabFloorBaseRadiance(mu0, thickness, muDown, true);
-    std::printf("base muDown %.2f: floor / Monte Carlo %.3f, with the limb darkening %.3f (standard error %.3f)\n", muDown, plain / truth,
-                limb / truth, se / truth);
+    const double plain = slabFloorBaseRadiance(mu0, thickness, muDown, false),
+                 limb = slabFloorBaseRadiance(mu0, thickness, muDown, true);
+    std::printf("base muDown %.2f: floor / Monte Carlo %.3f, with the limb darkening %.3f (standard error %.3f)\n",
+                muDown, plain / truth, limb / truth, se / truth);
     EXPECT_NEAR(limb / truth, 1.0, 0.07) << "muDown " << muDown;
     if (muDown >= 0.5) {
       EXPECT_NEAR(plain / truth, 1.0, 0.05) << "muDown " << muDown;
@@ -74,9 +75,12 @@ TEST(CloudFloorAgainstMonteCarlo, LowSunFactorCorrectsTheGrazingEntry) {
     const SlabEstimate mc = slab.photonsThroughBase(300000, 1).flux;
     const double truth = mc.mean, se = mc.standardError;
     EXPECT_LT(se, 0.01 * truth);
-    const double plain = slabFloorBaseFlux(thickness, mu0) / truth, corrected = plain * shared::cloudFloorLowSunFactor(mu0);
-    std::printf("mu0 %.3f: the floor's flux out of the base / Monte Carlo %.3f, with the low-sun factor %.3f (standard error %.3f)\n", mu0,
-                plain, corrected, se / truth);
+    const double plain = slabFloorBaseFlux(thickness, mu0) / truth,
+                 corrected = plain * shared::cloudFloorLowSunFactor(mu0);
+    std::printf(
+        "mu0 %.3f: the floor's flux out of the base / Monte Carlo %.3f, with the low-sun factor %.3f (standard error "
+        "%.3f)\n",
+        mu0, plain, corrected, se / truth);
     EXPECT_NEAR(corrected, 1.0, 0.03) << "mu0 " << mu0;
     if (mu0 < 0.1) {
       EXPECT_GT(plain, 1.06) << "mu0 " << mu0;  // what the factor corrects
@@ -128,9 +132,9 @@ TEST(CloudFloorAgainstMonteCarlo, FiniteCloudLosesLightThroughItsSides) {
   EXPECT_DOUBLE_EQ(axisSource(1e9, 1.0, 5).mean, slabSource.mean);
   const SlabEstimate narrow = axisSource(0.5 * thickness, 1.0, 6), square = axisSource(thickness, 1.0, 7),
                      wide = axisSource(4.0 * thickness, 1.0, 8);
-  std::printf("axis source / slab's: R/H 0.5 %.3f, 1 %.3f, 4 %.3f (standard errors %.3f %.3f %.3f)\n", narrow.mean / slabSource.mean,
-              square.mean / slabSource.mean, wide.mean / slabSource.mean, narrow.standardError / narrow.mean,
-              square.standardError / square.mean, wide.standardError / wide.mean);
+  std::printf("axis source / slab's: R/H 0.5 %.3f, 1 %.3f, 4 %.3f (standard errors %.3f %.3f %.3f)\n",
+              narrow.mean / slabSource.mean, square.mean / slabSource.mean, wide.mean / slabSource.mean,
+              narrow.standardError / narrow.mean, square.standardError / square.mean, wide.standardError / wide.mean);
   EXPECT_LT(narrow.mean, 0.5 * slabSource.mean);
   EXPECT_GT(narrow.mean, 0.2 * slabSource.mean);
   EXPECT_LT(square.mean, 0.9 * slabSource.mean);
@@ -138,8 +142,10 @@ TEST(CloudFloorAgainstMonteCarlo, FiniteCloudLosesLightThroughItsSides) {
   EXPECT_NEAR(wide.mean / slabSource.mean, 1.0, 0.08);
   // A low sun enters through the sunlit side (x < 0): more light there than on the shadowed side.
   SlabMonteCarlo lowSun(thickness, 0.64, 9, thickness);
-  const SlabEstimate lit = lowSun.source(SlabPoint{-0.75 * thickness, 0.0, 0.5 * thickness}, slabDirection(0.0, 90.0), paths);
-  const SlabEstimate shaded = lowSun.source(SlabPoint{0.75 * thickness, 0.0, 0.5 * thickness}, slabDirection(0.0, 90.0), paths);
+  const SlabEstimate lit =
+      lowSun.source(SlabPoint{-0.75 * thickness, 0.0, 0.5 * thickness}, slabDirection(0.0, 90.0), paths);
+  const SlabEstimate shaded =
+      lowSun.source(SlabPoint{0.75 * thickness, 0.0, 0.5 * thickness}, slabDirection(0.0, 90.0), paths);
   std::printf("R/H 1, mu0 0.64, x/R -0.75 vs +0.75: %.4f vs %.4f\n", lit.mean, shaded.mean);
   EXPECT_GT(lit.mean, 2.0 * shaded.mean);
 }

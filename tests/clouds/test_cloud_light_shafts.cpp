@@ -31,8 +31,10 @@ Scene shaftScene(const std::string& coverage) {
 TEST(CloudLightShaftsPlan, ListedOnlyWithTheShadowMapAndTheVolume) {
   EXPECT_FALSE(planRender(test::cloudScene()).has("sky/cloud_light_shafts"));  // the shadow map is off by default
   EXPECT_TRUE(planRender(test::cloudScene({"/clouds/shadow_map=true"})).has("sky/cloud_light_shafts"));
-  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/shadow_map=true", "/clouds/light_shafts=false"})).has("sky/cloud_light_shafts"));
-  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/shadow_map=true", "/clouds/aerial_perspective=march"})).has("sky/cloud_light_shafts"));
+  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/shadow_map=true", "/clouds/light_shafts=false"}))
+                   .has("sky/cloud_light_shafts"));
+  EXPECT_FALSE(planRender(test::cloudScene({"/clouds/shadow_map=true", "/clouds/aerial_perspective=march"}))
+                   .has("sky/cloud_light_shafts"));
 }
 
 // No cloud, no shadow: with coverage 0 the shafts change nothing, bit for bit; the pass ran.

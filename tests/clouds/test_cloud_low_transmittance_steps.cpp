@@ -17,16 +17,17 @@ namespace {
 using shared::cloudLowTransmittanceStepFactor;
 
 TEST(CloudLowTransmittanceStepFactor, OneAboveTheStartThenTheRatioUpToTheCap) {
-  for (double t : {1.0, 0.5, 0.3, 0.1, 1e-3, 0.0}) EXPECT_EQ(cloudLowTransmittanceStepFactor(t, 0.0, 8.0), 1.0) << "off at T " << t;
+  for (double t : {1.0, 0.5, 0.3, 0.1, 1e-3, 0.0})
+    EXPECT_EQ(cloudLowTransmittanceStepFactor(t, 0.0, 8.0), 1.0) << "off at T " << t;
   EXPECT_EQ(cloudLowTransmittanceStepFactor(0.5, 0.3, 8.0), 1.0);
   EXPECT_EQ(cloudLowTransmittanceStepFactor(0.3, 0.3, 8.0), 1.0);  // continuous at T1
   EXPECT_NEAR(cloudLowTransmittanceStepFactor(0.3 * (1.0 - 1e-9), 0.3, 8.0), 1.0, 1e-8);
   EXPECT_NEAR(cloudLowTransmittanceStepFactor(0.1, 0.3, 8.0), 3.0, 1e-12);
   EXPECT_EQ(cloudLowTransmittanceStepFactor(0.3 / 8.0, 0.3, 8.0), 8.0);  // continuous at the cap
   EXPECT_EQ(cloudLowTransmittanceStepFactor(1e-3, 0.3, 8.0), 8.0);
-  EXPECT_EQ(cloudLowTransmittanceStepFactor(0.0, 0.3, 8.0), 8.0);     // T = 0: finite, the cap
-  EXPECT_EQ(cloudLowTransmittanceStepFactor(0.01, 0.3, 0.5), 1.0);    // a cap below 1 means 1
-  for (double t = 1.0; t > 1e-4; t *= 0.9) {  // never shorter, never past the cap, finite
+  EXPECT_EQ(cloudLowTransmittanceStepFactor(0.0, 0.3, 8.0), 8.0);   // T = 0: finite, the cap
+  EXPECT_EQ(cloudLowTransmittanceStepFactor(0.01, 0.3, 0.5), 1.0);  // a cap below 1 means 1
+  for (double t = 1.0; t > 1e-4; t *= 0.9) {                        // never shorter, never past the cap, finite
     const double f = cloudLowTransmittanceStepFactor(t, 1.0, 8.0);
     ASSERT_TRUE(std::isfinite(f));
     ASSERT_GE(f, 1.0);
@@ -37,9 +38,9 @@ TEST(CloudLowTransmittanceStepFactor, OneAboveTheStartThenTheRatioUpToTheCap) {
 class CloudLowTransmittanceSteps : public test::GpuTest {};
 
 struct MarchError {
-  double relRmse;     // relative RMS luminance error against the converged march
-  double bias;        // relative mean luminance error
-  double samples;     // density evaluations (view + light) per pixel
+  double relRmse;  // relative RMS luminance error against the converged march
+  double bias;     // relative mean luminance error
+  double samples;  // density evaluations (view + light) per pixel
 };
 
 // A cumulonimbus tower 1000-8000 m at full extinction seen from below: the view transmittance falls
@@ -69,17 +70,19 @@ TEST_F(CloudLowTransmittanceSteps, ErrorGrowsAndSamplesFallAsTheStepsGrowBehindD
     double sum2 = 0.0, ref2 = 0.0, sum = 0.0, ref = 0.0;
     for (size_t i = 0; i < r.clouds.pixelCount(); ++i) {
       const float* p = r.clouds.pixels.data() + 4 * i;
-      EXPECT_TRUE(std::isfinite(p[0]) && std::isfinite(p[3]) && p[0] >= 0.0f && p[3] >= 0.0f && p[3] <= 1.0f) << "pixel " << i;
+      EXPECT_TRUE(std::isfinite(p[0]) && std::isfinite(p[3]) && p[0] >= 0.0f && p[3] >= 0.0f && p[3] <= 1.0f)
+          << "pixel " << i;
       const double y = luminanceRec709(p), t = luminanceRec709(truth.clouds.pixels.data() + 4 * i);
       sum2 += (y - t) * (y - t), ref2 += t * t, sum += y, ref += t;
     }
     const MarchError e{std::sqrt(sum2 / std::max(ref2, 1e-30)), sum / std::max(ref, 1e-30) - 1.0,
                        r.cloudSamples.viewPerPixel + r.cloudSamples.lightPerPixel};
-    std::printf("%4d steps, T1 %.1f, K %.0f: rel RMSE vs 1024 steps %.4f, bias %+.4f, samples/pixel %.1f\n", steps, start, most, e.relRmse,
-                e.bias, e.samples);
+    std::printf("%4d steps, T1 %.1f, K %.0f: rel RMSE vs 1024 steps %.4f, bias %+.4f, samples/pixel %.1f\n", steps,
+                start, most, e.relRmse, e.bias, e.samples);
     return e;
   };
-  const MarchError off = errorOf(64, 0.0, 1.0), mild = errorOf(64, 0.1, 4.0), middle = errorOf(64, 0.3, 4.0), far = errorOf(64, 1.0, 8.0);
+  const MarchError off = errorOf(64, 0.0, 1.0), mild = errorOf(64, 0.1, 4.0), middle = errorOf(64, 0.3, 4.0),
+                   far = errorOf(64, 1.0, 8.0);
   errorOf(48, 0.0, 1.0);  // printed for the comparison above
   errorOf(32, 0.0, 1.0);
   EXPECT_LT(mild.samples, 0.95 * off.samples);

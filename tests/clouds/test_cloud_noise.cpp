@@ -11,8 +11,8 @@
 #include "atmosphere/reference_random.h"
 #include "clouds/blue_noise.h"
 #include "clouds/cloud_noise.h"
-#include "gpu/command.h"
 #include "common/cloud_noise.glsl"
+#include "gpu/command.h"
 #include "tests/support/gpu_test.h"
 
 namespace firmament {
@@ -65,7 +65,8 @@ TEST_F(CloudNoiseTest, GpuBakeEqualsSharedFunctionsOnTheCpu) {
     const int x = int(random.uniform() * 32), y = int(random.uniform() * 32), z = int(random.uniform() * 32);
     const glm::dvec4 cpu = shared::cloudShapeNoise((glm::dvec3(x, y, z) + 0.5) / 32.0, 11u);
     const glm::dvec4 gpu = g.shape.texel(x, y, z);
-    for (int c = 0; c < 4; ++c) worst = std::max(worst, int(std::lround(std::abs(std::round(cpu[c] * 255.0) - gpu[c] * 255.0))));
+    for (int c = 0; c < 4; ++c)
+      worst = std::max(worst, int(std::lround(std::abs(std::round(cpu[c] * 255.0) - gpu[c] * 255.0))));
     const int dx = x % 16, dy = y % 16, dz = z % 16;
     const glm::dvec4 cpuDetail = shared::cloudDetailNoise((glm::dvec3(dx, dy, dz) + 0.5) / 16.0, 11u);
     const glm::dvec4 gpuDetail = g.detail.texel(dx, dy, dz);
@@ -82,12 +83,15 @@ TEST_F(CloudNoiseTest, Tileable) {
   reference::Random random(9, 0);
   for (int k = 0; k < 200; ++k) {
     const glm::dvec3 p(random.uniform(), random.uniform(), random.uniform());
-    for (const glm::dvec3& shift : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 1, -1)}) {
+    for (const glm::dvec3& shift :
+         {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 1, -1)}) {
       ASSERT_LT(glm::length(shared::cloudShapeNoise(p, 3u) - shared::cloudShapeNoise(p + shift, 3u)), 1e-12);
       ASSERT_LT(glm::length(shared::cloudDetailNoise(p, 3u) - shared::cloudDetailNoise(p + shift, 3u)), 1e-12);
     }
     const glm::dvec2 q(p.x, p.y);
-    ASSERT_LT(glm::length(shared::cloudCurlNoise(q, 3u, 1e-3) - shared::cloudCurlNoise(q + glm::dvec2(1.0, -1.0), 3u, 1e-3)), 1e-9);
+    ASSERT_LT(
+        glm::length(shared::cloudCurlNoise(q, 3u, 1e-3) - shared::cloudCurlNoise(q + glm::dvec2(1.0, -1.0), 3u, 1e-3)),
+        1e-9);
   }
   Baked g = bake(3);
   for (int axis = 0; axis < 3; ++axis) {
@@ -102,8 +106,8 @@ TEST_F(CloudNoiseTest, Tileable) {
         seam += glm::length(at(n - 1) - at(0));
         interior += glm::length(at(n / 2 - 1) - at(n / 2));
       }
-    std::printf("axis %d: mean step across the seam %.4f, between interior neighbours %.4f\n", axis,
-                seam / (n * n), interior / (n * n));
+    std::printf("axis %d: mean step across the seam %.4f, between interior neighbours %.4f\n", axis, seam / (n * n),
+                interior / (n * n));
     EXPECT_LT(seam, 1.5 * interior) << axis;
   }
 }
@@ -135,8 +139,8 @@ TEST_F(CloudNoiseTest, MipLevelsAreBoxAverages) {
               }
               worst = std::max(worst, std::abs(coarser[((size_t(z) * n + y) * n + x) * 4 + c] - mean));
             }
-      std::printf("%s level %u: largest |texel - mean of its 8| %.5f (1/255 = %.5f)\n", image->desc().name.c_str(), level,
-                  worst, 1.0 / 255.0);
+      std::printf("%s level %u: largest |texel - mean of its 8| %.5f (1/255 = %.5f)\n", image->desc().name.c_str(),
+                  level, worst, 1.0 / 255.0);
       EXPECT_LE(worst, 0.5 / 255.0 + 1e-4) << image->desc().name << " level " << level;
     }
   }

@@ -48,18 +48,20 @@ TEST_F(CloudOctaves, MoreOctavesAddLittleLight) {
   // 8 octaves against 3, without the weights' scale (measured): 1.71x and 7.54x; with it 1.07x and 2.36x.
   // What is left is the octave model's: octave i's extinction a^i goes to 0 (a^7 = 0.003 for cumulus),
   // so the high octaves reach the inside of a thick cloud unattenuated (docs/clouds.md, "Octave count").
-  const std::string stratocumulus =
-      test::cloudSceneText(R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2000, "coverage": 0.7, "extinction_scale": 0.3})");
+  const std::string stratocumulus = test::cloudSceneText(
+      R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2000, "coverage": 0.7, "extinction_scale": 0.3})");
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.ambient = false;
   struct Case {
     std::string name, text;
     std::vector<std::string> overrides;
   };
-  for (const Case& c : {Case{"stratocumulus, sun 85 deg", stratocumulus,
-                             {"/sun/zenith_deg=85", "/sun/azimuth_deg=270", "/camera/yaw_deg=270", "/camera/pitch_deg=25",
-                              "/camera/fov_deg=70", "/camera/width=48", "/camera/height=27"}},
-                        Case{"cumulus, sun 40 deg", test::cloudSceneText(), {"/camera/width=48", "/camera/height=27"}}}) {
+  for (const Case& c :
+       {Case{"stratocumulus, sun 85 deg",
+             stratocumulus,
+             {"/sun/zenith_deg=85", "/sun/azimuth_deg=270", "/camera/yaw_deg=270", "/camera/pitch_deg=25",
+              "/camera/fov_deg=70", "/camera/width=48", "/camera/height=27"}},
+        Case{"cumulus, sun 40 deg", test::cloudSceneText(), {"/camera/width=48", "/camera/height=27"}}}) {
     const std::string& name = c.name;
     const std::string& text = c.text;
     const std::vector<std::string>& overrides = c.overrides;
@@ -68,7 +70,8 @@ TEST_F(CloudOctaves, MoreOctavesAddLittleLight) {
     eight.push_back("/clouds/lighting/ms_octaves=8");
     const double l3 = meanCloudLuminance(test::cloudRenderer().render(test::cloudScene(three, text), o).clouds);
     const double l8 = meanCloudLuminance(test::cloudRenderer().render(test::cloudScene(eight, text), o).clouds);
-    std::printf("%s: mean cloud luminance, 3 octaves %.1f, 8 octaves %.1f cd/m^2 (ratio %.3f)\n", name.c_str(), l3, l8, l8 / l3);
+    std::printf("%s: mean cloud luminance, 3 octaves %.1f, 8 octaves %.1f cd/m^2 (ratio %.3f)\n", name.c_str(), l3, l8,
+                l8 / l3);
     ASSERT_GT(l3, 0.0) << name;
     // The same weight spread over more extinction scales: the light moves towards the scales that reach
     // deeper, so it grows, but far less than an octave's worth per octave.

@@ -92,12 +92,14 @@ TEST(CloudPhase, PathTracerSamplesThePhaseExactly) {
 // The scene: "approximate_mie" fills the lobes from the droplet diameter; unknown names and diameters
 // outside the fit's 5-50 um are refused.
 TEST(CloudPhase, SceneSelectsTheModel) {
-  const std::string text = R"({"clouds": {"layers": [{"kind": "cumulus"}], "lighting": {"phase": "approximate_mie", "droplet_diameter_um": 30}}})";
+  const std::string text =
+      R"({"clouds": {"layers": [{"kind": "cumulus"}], "lighting": {"phase": "approximate_mie", "droplet_diameter_um": 30}}})";
   const CloudSettings s = CloudSettings::fromScene(Scene::parse(text, "<phase>"));
   EXPECT_EQ(s.lighting.phase, CloudPhaseModel::ApproximateMie);
   EXPECT_DOUBLE_EQ(s.lighting.gForward, shared::cloudApproximateMie(30.0).x);
   EXPECT_DOUBLE_EQ(s.lighting.alpha, shared::cloudApproximateMie(30.0).w);
-  const CloudSettings dual = CloudSettings::fromScene(Scene::parse(R"({"clouds": {"layers": [{"kind": "cumulus"}]}})", "<phase>"));
+  const CloudSettings dual =
+      CloudSettings::fromScene(Scene::parse(R"({"clouds": {"layers": [{"kind": "cumulus"}]}})", "<phase>"));
   EXPECT_EQ(dual.lighting.phase, CloudPhaseModel::DualHenyeyGreenstein);
   EXPECT_EQ(dual.lighting.alpha, 0.0);
   EXPECT_THROW(Scene::parse(R"({"clouds": {"lighting": {"phase": "mie"}}})", "<phase>"), InputError);

@@ -30,8 +30,8 @@ CloudMedium cloudMediumFor(gpu::Context& context, const Scene& scene, const Clou
   noise.update(settings.seed, options.cloudNoise, commands);
   commands.submitAndWait();
   const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
-  return CloudMedium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(), noise.downloadCurl(),
-                     cloudWeatherMapForScene(scene), ground);
+  return CloudMedium(sharedCloudLayers(settings, ground), noise.downloadShape(), noise.downloadDetail(),
+                     noise.downloadCurl(), cloudWeatherMapForScene(scene), ground);
 }
 
 // A thinner cumulus (extinction x 0.2: sigma_t <= 0.02 m^-1) keeps the paths short enough for a test.
@@ -91,10 +91,11 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
   const double relRmse = std::sqrt(sum2 / ref2);
   const double meanSe = std::sqrt(se2) / cloudPixels;
   const CloudReferenceError e = compareWithCloudReference(gpu.clouds, ref);
-  std::printf("cloud pixels %d: rel RMSE of luminance %.3f (reference noise %.3f, noise-corrected %.3f); mean GPU "
-              "%.1f, path tracer %.1f +- %.1f cd/m^2 (bias %+.3f; %.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
-              cloudPixels, relRmse, e.noiseFloor, e.noiseCorrected, gpuSum / cloudPixels, refSum / cloudPixels, meanSe,
-              e.meanBias, ref.seconds, ref.events, tDiff);
+  std::printf(
+      "cloud pixels %d: rel RMSE of luminance %.3f (reference noise %.3f, noise-corrected %.3f); mean GPU "
+      "%.1f, path tracer %.1f +- %.1f cd/m^2 (bias %+.3f; %.2f s, %lld events); max |T_gpu - T_ref| %.3f\n",
+      cloudPixels, relRmse, e.noiseFloor, e.noiseCorrected, gpuSum / cloudPixels, refSum / cloudPixels, meanSe,
+      e.meanBias, ref.seconds, ref.events, tDiff);
   // Transmittance is the same integral in both (the march's quadrature vs unbiased ratio tracking).
   EXPECT_LT(tDiff, 0.08);  // 48 ratio-tracking estimates per pixel: noise ~0.02
   // Albedo 1, no large energy gain: with the calibrated per-type octaves (docs/clouds.md, "Calibration")
@@ -111,11 +112,12 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
 // (measured +92 %; looking up 60 deg, 2.9x, session 26) with the single scattering right. Cumulus's
 // low-sun scale (cloudOctaveLowSunScale, mu_0 fitted on the calibration's low-sun scenes, not on this
 // one) must bring it within the bounds of the noon case above (measured -2.5 %; -10 % in session 27, before the
-// reflected light's low-sun depth scale; the reference's SE of the mean 3 %), while the model without it stays far too bright (the check can fail).
+// reflected light's low-sun depth scale; the reference's SE of the mean 3 %), while the model without it stays far too
+// bright (the check can fail).
 TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
-  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                        "/camera/pitch_deg=20", "/clouds/layers/0/top_m=2500", "/sun/zenith_deg=80",
-                                        "/sun/azimuth_deg=90"});
+  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24",
+                                        "/camera/height=14", "/camera/pitch_deg=20", "/clouds/layers/0/top_m=2500",
+                                        "/sun/zenith_deg=80", "/sun/azimuth_deg=90"});
   SkyRenderOptions o = fineMarchOptions();
   const RenderResult shipped = test::cloudRenderer().render(scene, o);
   o.clouds.reflectedLowSunDepth = false;
@@ -135,9 +137,12 @@ TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
   const CloudReferenceError e27 = compareWithCloudReference(session27.clouds, ref);
   ASSERT_GT(e.pixels, 20);
   const double meanSe = relativeStandardErrorOfMean(ref, e);
-  std::printf("sun 80 deg, %d cloud pixels: the shipped model bias %+.3f (rel RMSE %.3f noise-corrected), with the reflected "
-              "light's a_r whatever the sun %+.3f (%.3f), without the low-sun scale %+.3f (%.3f); reference SE of the mean %.3f\n",
-              e.pixels, e.meanBias, e.noiseCorrected, e27.meanBias, e27.noiseCorrected, eOff.meanBias, eOff.noiseCorrected, meanSe);
+  std::printf(
+      "sun 80 deg, %d cloud pixels: the shipped model bias %+.3f (rel RMSE %.3f noise-corrected), with the reflected "
+      "light's a_r whatever the sun %+.3f (%.3f), without the low-sun scale %+.3f (%.3f); reference SE of the mean "
+      "%.3f\n",
+      e.pixels, e.meanBias, e.noiseCorrected, e27.meanBias, e27.noiseCorrected, eOff.meanBias, eOff.noiseCorrected,
+      meanSe);
   EXPECT_LT(e.meanBias, 0.25 + 3.0 * meanSe);
   EXPECT_GT(e.meanBias, -0.15 - 3.0 * meanSe);
   EXPECT_GT(eOff.meanBias, 0.8);
@@ -150,7 +155,8 @@ TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
 // to compare (each one GPU render); the gains are per pixel.
 struct AmbientGain {
   std::vector<double> gpu;  // per variant
-  std::vector<CloudReferenceError> error;  // per variant: its image (sunlight and ambient) against the path tracer with both
+  std::vector<CloudReferenceError>
+      error;  // per variant: its image (sunlight and ambient) against the path tracer with both
   // Per variant: the per-pixel gain's relative RMSE, noise-corrected (the references' variance taken out).
   std::vector<double> gainRmse;
   double reference = 0.0, standardError = 0.0, gpuSunlight = 0.0, referenceSunlight = 0.0;
@@ -178,8 +184,10 @@ AmbientGain ambientGain(gpu::Context& context, const Scene& scene, SkyRenderOpti
   rs.samplesPerPixel = samplesPerPixel;
   const double ground = view.cameraRadius - scene.number("/camera/height_above_ground_m");
   const double middle = 0.5 * (settings.layers[0].bottom_m + settings.layers[0].top_m);
-  const CloudEnvironment environment = cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
-  const CloudPathTracer sunTracer(medium, settings.lighting, view.atmosphere, view.sunDirection, CloudEnvironment{}, rs);
+  const CloudEnvironment environment =
+      cloudEnvironmentFromReference(view.atmosphere, view.sunDirection, ground + middle);
+  const CloudPathTracer sunTracer(medium, settings.lighting, view.atmosphere, view.sunDirection, CloudEnvironment{},
+                                  rs);
   const CloudPathTracer skyTracer(medium, settings.lighting, view.atmosphere, view.sunDirection, environment, rs);
   const glm::dvec3 camera(0.0, 0.0, view.cameraRadius);
   const CloudReferenceImage refSun = renderCloudReference(sunTracer, camera, view.camera, 0);
@@ -215,7 +223,8 @@ AmbientGain ambientGain(gpu::Context& context, const Scene& scene, SkyRenderOpti
     ++g.pixels;
   }
   g.gainStandardError = std::sqrt(gainVariance);
-  for (double s2 : squared) g.gainRmse.push_back(reference2 > 0.0 ? std::sqrt(std::max(s2 - gainVariance, 0.0) / reference2) : 0.0);
+  for (double s2 : squared)
+    g.gainRmse.push_back(reference2 > 0.0 ? std::sqrt(std::max(s2 - gainVariance, 0.0) / reference2) : 0.0);
   g.standardError = std::sqrt(se2);  // of the summed gain (the two references' noise is independent)
   if (g.pixels > 0) {
     for (double& v : g.gpu) v /= g.pixels;
@@ -227,17 +236,20 @@ AmbientGain ambientGain(gpu::Context& context, const Scene& scene, SkyRenderOpti
   }
   for (size_t v = 0; v < g.gpu.size(); ++v) {
     g.error.push_back(compareWithCloudReference(on[v].clouds, refSky));
-    std::printf("cloud pixels %d: variant %zu of the ambient adds %.1f cd/m^2 a pixel on the GPU, %.1f +- %.1f in the path "
-                "tracer (+- %.1f over the same paths; ratio %.3f, per pixel %.3f); sunlight alone %.1f and %.1f; with it, rel RMSE %.3f noise-corrected, bias %+.3f\n",
-                g.pixels, v, g.gpu[v], g.reference, g.standardError, g.gainStandardError, g.gpu[v] / g.reference, g.gainRmse[v], g.gpuSunlight, g.referenceSunlight,
-                g.error[v].noiseCorrected, g.error[v].meanBias);
+    std::printf(
+        "cloud pixels %d: variant %zu of the ambient adds %.1f cd/m^2 a pixel on the GPU, %.1f +- %.1f in the path "
+        "tracer (+- %.1f over the same paths; ratio %.3f, per pixel %.3f); sunlight alone %.1f and %.1f; with it, rel "
+        "RMSE %.3f noise-corrected, bias %+.3f\n",
+        g.pixels, v, g.gpu[v], g.reference, g.standardError, g.gainStandardError, g.gpu[v] / g.reference, g.gainRmse[v],
+        g.gpuSunlight, g.referenceSunlight, g.error[v].noiseCorrected, g.error[v].meanBias);
   }
   return g;
 }
 
 TEST_F(CloudReference, AmbientAgainstPathTracerWithSkyAndGround) {
-  const AmbientGain g = ambientGain(context(), thinCumulusScene(), fineMarchOptions(), 48,
-                                    {[](SkyRenderOptions&) {}, [](SkyRenderOptions& v) { v.clouds.ambientFlow = 0.0; }});
+  const AmbientGain g =
+      ambientGain(context(), thinCumulusScene(), fineMarchOptions(), 48,
+                  {[](SkyRenderOptions&) {}, [](SkyRenderOptions& v) { v.clouds.ambientFlow = 0.0; }});
   ASSERT_GT(g.pixels, 20);
   EXPECT_GT(g.reference, 10.0 * g.gainStandardError);  // the sky's light is resolved by the references
   // Measured 1651 against 1591 +- 8 a pixel (ratio 1.038, per-pixel error of the gain 0.047); the slab's
@@ -249,12 +261,14 @@ TEST_F(CloudReference, AmbientAgainstPathTracerWithSkyAndGround) {
 }
 
 // A cumulus under a deck (by default the stratocumulus of ALayerUnderADeckKeepsTheDecksDiffuseLight below).
-Scene cumulusUnderADeck(const std::string& deck = R"("kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6)") {
+Scene cumulusUnderADeck(
+    const std::string& deck = R"("kind": "stratocumulus", "bottom_m": 4000, "top_m": 4800, "coverage": 0.6)") {
   return Scene::parse(
       R"({"location": {"height_m": 300}, "sun": {"zenith_deg": 30, "azimuth_deg": 200},
           "camera": {"height_above_ground_m": 2, "yaw_deg": 40, "pitch_deg": 30, "fov_deg": 70, "width": 32, "height": 18},
           "clouds": {"seed": 7, "layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 2700, "coverage": 0.5, "extinction_scale": 0.3},
-                                           {)" + deck + R"(, "extinction_scale": 0.3}]}})",
+                                           {)" +
+          deck + R"(, "extinction_scale": 0.3}]}})",
       "<deck test>");
 }
 
@@ -264,13 +278,14 @@ Scene cumulusUnderADeck(const std::string& deck = R"("kind": "stratocumulus", "b
 // Measured (128 paths): the ambient adds 2532 against the path tracer's 2610 +- 3 a pixel (0.970;
 // its own slab 0.914), per-pixel relative error of the gain 0.051 (its own slab 0.096); the whole
 // image 0.144 / -7.8 % (0.157 / -9.2 %). Without the slab's flow (ambientFlow 0, session 26's first
-// build) the same comparison was 1.010 against 0.970, per pixel 0.040 against 0.051. Bounds: the mean within 5 % + 3 SE, and the per-pixel error
-// below its own slab's, which each layer alone fails.
+// build) the same comparison was 1.010 against 0.970, per pixel 0.040 against 0.051. Bounds: the mean within 5 % + 3
+// SE, and the per-pixel error below its own slab's, which each layer alone fails.
 TEST_F(CloudReference, AmbientUnderADeckAgainstPathTracer) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.aerialPerspective = AerialPerspective::Off;
-  const AmbientGain g = ambientGain(context(), cumulusUnderADeck(R"("kind": "stratus", "bottom_m": 4000, "top_m": 4600, "coverage": 1.0)"), o, 128,
-                                    {[](SkyRenderOptions&) {}, [](SkyRenderOptions& v) { v.clouds.ambientThroughOtherLayers = false; }});
+  const AmbientGain g = ambientGain(
+      context(), cumulusUnderADeck(R"("kind": "stratus", "bottom_m": 4000, "top_m": 4600, "coverage": 1.0)"), o, 128,
+      {[](SkyRenderOptions&) {}, [](SkyRenderOptions& v) { v.clouds.ambientThroughOtherLayers = false; }});
   ASSERT_GT(g.pixels, 100);
   EXPECT_GT(g.reference, 10.0 * g.gainStandardError);
   EXPECT_LE(std::abs(g.gpu[0] - g.reference), 0.05 * g.reference + 3.0 * g.gainStandardError);
@@ -317,18 +332,20 @@ SingleScatteringResult singleScattering(gpu::Context& context, const Scene& scen
   r.fixedLength = compareWithCloudReference(fixedLength.clouds, ref);
   r.ownLayerOnly = compareWithCloudReference(ownLayerOnly.clouds, ref);
   r.meanStandardError = relativeStandardErrorOfMean(ref, r.march);
-  std::printf("single scattering, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), mean %.1f vs %.1f "
-              "(bias %+.3f, reference SE of the mean %.3f); milestone 1's fixed-length light march: bias %+.3f; own layer "
-              "only: corrected %.3f, bias %+.3f\n",
-              r.march.pixels, r.march.relRmse, r.march.noiseFloor, r.march.noiseCorrected, r.march.meanTest,
-              r.march.meanReference, r.march.meanBias, r.meanStandardError, r.fixedLength.meanBias,
-              r.ownLayerOnly.noiseCorrected, r.ownLayerOnly.meanBias);
+  std::printf(
+      "single scattering, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), mean %.1f vs %.1f "
+      "(bias %+.3f, reference SE of the mean %.3f); milestone 1's fixed-length light march: bias %+.3f; own layer "
+      "only: corrected %.3f, bias %+.3f\n",
+      r.march.pixels, r.march.relRmse, r.march.noiseFloor, r.march.noiseCorrected, r.march.meanTest,
+      r.march.meanReference, r.march.meanBias, r.meanStandardError, r.fixedLength.meanBias,
+      r.ownLayerOnly.noiseCorrected, r.ownLayerOnly.meanBias);
   return r;
 }
 
 TEST_F(CloudReference, SingleScatteringAgreesWithFirstOrder) {
-  const Scene cumulus = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                          "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500", "/clouds/lighting/ms_octaves=1"});
+  const Scene cumulus =
+      test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
+                        "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500", "/clouds/lighting/ms_octaves=1"});
   const SingleScatteringResult noon = singleScattering(context(), cumulus, 64);
   ASSERT_GT(noon.march.pixels, 20);
   EXPECT_LT(std::abs(noon.march.meanBias), 0.03 + 3.0 * noon.meanStandardError);
@@ -355,8 +372,8 @@ TEST_F(CloudReference, SingleScatteringAgreesWithFirstOrder) {
 // (docs/clouds.md, "Lighting": light through other layers).
 TEST_F(CloudReference, ADeckAboveShadowsTheLayerBelow) {
   const Scene decks = test::cloudScene(
-      {"/clouds/layers/0/extinction_scale=0.2", "/clouds/layers/1/extinction_scale=0.1", "/camera/width=24", "/camera/height=14",
-       "/camera/pitch_deg=60", "/clouds/lighting/ms_octaves=1"},
+      {"/clouds/layers/0/extinction_scale=0.2", "/clouds/layers/1/extinction_scale=0.1", "/camera/width=24",
+       "/camera/height=14", "/camera/pitch_deg=60", "/clouds/lighting/ms_octaves=1"},
       test::cloudSceneText(R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 1800, "coverage": 0.45},
                               {"kind": "stratocumulus", "bottom_m": 2600, "top_m": 3400, "coverage": 0.6})"));
   const SingleScatteringResult r = singleScattering(context(), decks, 256);
@@ -391,8 +408,10 @@ TEST_F(CloudReference, ALayerUnderADeckKeepsTheDecksDiffuseLight) {
   for (size_t i = 0; i < ref.image.pixelCount(); ++i)
     if (ref.image.pixels[4 * i + 3] < 0.95) se2 += ref.luminanceStandardError[i] * ref.luminanceStandardError[i];
   const double meanSe = e.pixels > 0 ? std::sqrt(se2) / e.pixels / e.meanReference : 0.0;
-  std::printf("under a deck, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), bias %+.3f (reference SE of the mean %.3f; %.1f s)\n",
-              e.pixels, e.relRmse, e.noiseFloor, e.noiseCorrected, e.meanBias, meanSe, ref.seconds);
+  std::printf(
+      "under a deck, %d cloud pixels: rel RMSE %.3f (noise %.3f, corrected %.3f), bias %+.3f (reference SE of the mean "
+      "%.3f; %.1f s)\n",
+      e.pixels, e.relRmse, e.noiseFloor, e.noiseCorrected, e.meanBias, meanSe, ref.seconds);
   ASSERT_GT(e.pixels, 100);
   EXPECT_LT(std::abs(e.meanBias), 0.08 + 2.0 * meanSe);
 }
@@ -400,9 +419,9 @@ TEST_F(CloudReference, ALayerUnderADeckKeepsTheDecksDiffuseLight) {
 // The approximate Mie phase (HG + Draine, 20 um droplets) on both sides: the fast path's one octave
 // against the path tracer's first order, the same bounds as the dual-HG noon case.
 TEST_F(CloudReference, SingleScatteringWithTheApproximateMiePhase) {
-  const Scene cumulus = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                          "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500", "/clouds/lighting/ms_octaves=1",
-                                          "/clouds/lighting/phase=approximate_mie"});
+  const Scene cumulus = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24",
+                                          "/camera/height=14", "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500",
+                                          "/clouds/lighting/ms_octaves=1", "/clouds/lighting/phase=approximate_mie"});
   const SingleScatteringResult noon = singleScattering(context(), cumulus, 64);
   ASSERT_GT(noon.march.pixels, 20);
   EXPECT_LT(std::abs(noon.march.meanBias), 0.03 + 3.0 * noon.meanStandardError);
@@ -445,7 +464,8 @@ std::vector<DeltaScaledComparison> compareDeltaScaled(gpu::Context& context, con
   constexpr int kScaledPaths = 128, kFullPaths = 512;
   const CloudReferenceImage full = reference(2.0, kFullPaths, true);
   EXPECT_EQ(std::count(full.inAureole.begin(), full.inAureole.end(), 1), 0);  // unscaled: trusted everywhere
-  const double perPathNoiseFull = compareWithCloudReference(full.image, full).noiseFloor * std::sqrt(double(kFullPaths));
+  const double perPathNoiseFull =
+      compareWithCloudReference(full.image, full).noiseFloor * std::sqrt(double(kFullPaths));
   std::vector<DeltaScaledComparison> out;
   for (const bool exact : exactSingleScattering) {
     const CloudReferenceImage scaled = reference(0.95, kScaledPaths, exact);
@@ -470,10 +490,11 @@ std::vector<DeltaScaledComparison> compareDeltaScaled(gpu::Context& context, con
     }
     c.perPathNoiseScaled = compareWithCloudReference(scaled.image, scaled).noiseFloor * std::sqrt(double(kScaledPaths));
     c.perPathNoiseFull = perPathNoiseFull;
-    std::printf("g = 0.95 lobe, all orders, %d cloud pixels (%d in the aureole cone left out), exact first order %s: "
-                "delta-scaled mean %.2f, full %.2f, ratio - 1 = %+.4f (SE %.4f); noise per path %.2f vs %.2f\n",
-                c.pixels, c.aureolePixels, exact ? "on" : "off", c.scaledMean, c.fullMean, c.ratio(), c.standardError,
-                c.perPathNoiseScaled, c.perPathNoiseFull);
+    std::printf(
+        "g = 0.95 lobe, all orders, %d cloud pixels (%d in the aureole cone left out), exact first order %s: "
+        "delta-scaled mean %.2f, full %.2f, ratio - 1 = %+.4f (SE %.4f); noise per path %.2f vs %.2f\n",
+        c.pixels, c.aureolePixels, exact ? "on" : "off", c.scaledMean, c.fullMean, c.ratio(), c.standardError,
+        c.perPathNoiseScaled, c.perPathNoiseFull);
     out.push_back(c);
   }
   return out;
@@ -484,8 +505,8 @@ std::vector<DeltaScaledComparison> compareDeltaScaled(gpu::Context& context, con
 // (The approximate Mie's 20 um peak, g = 0.9946, is where the unscaled estimator fails: docs/clouds.md
 // "Reference".)
 TEST_F(CloudReference, DeltaScaledReferenceAgreesWithTheFullOne) {
-  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                        "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500"});
+  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24",
+                                        "/camera/height=14", "/camera/pitch_deg=60", "/clouds/layers/0/top_m=2500"});
   const DeltaScaledComparison c = compareDeltaScaled(context(), scene, {true}).at(0);
   ASSERT_GT(c.pixels, 20);
   EXPECT_EQ(c.aureolePixels, 0);
@@ -498,9 +519,9 @@ TEST_F(CloudReference, DeltaScaledReferenceAgreesWithTheFullOne) {
 // outside the cone too (-37 % outside 15 deg when measured); with TMS (the exact phase at the view
 // ray's first event) it agrees outside the cone.
 TEST_F(CloudReference, DeltaScaledReferenceKeepsTheForwardPeak) {
-  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24", "/camera/height=14",
-                                        "/camera/yaw_deg=180", "/camera/pitch_deg=50", "/camera/fov_deg=90",
-                                        "/clouds/layers/0/top_m=2500"});
+  const Scene scene = test::cloudScene({"/clouds/layers/0/extinction_scale=0.2", "/camera/width=24",
+                                        "/camera/height=14", "/camera/yaw_deg=180", "/camera/pitch_deg=50",
+                                        "/camera/fov_deg=90", "/clouds/layers/0/top_m=2500"});
   const std::vector<DeltaScaledComparison> c = compareDeltaScaled(context(), scene, {true, false});
   const DeltaScaledComparison& exact = c.at(0);
   const DeltaScaledComparison& scaledOnly = c.at(1);

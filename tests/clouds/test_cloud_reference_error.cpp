@@ -55,7 +55,8 @@ std::vector<double> ramp(int copies) {
 
 // The bias over the quarter of pixels with the lowest `by`, measured as sum(test) / sum(reference) - 1:
 // the splits the diagnostic does not use, to show what they would report.
-double darkQuarterBiasSplitBy(const std::vector<double>& by, const std::vector<double>& test, const std::vector<double>& reference) {
+double darkQuarterBiasSplitBy(const std::vector<double>& by, const std::vector<double>& test,
+                              const std::vector<double>& reference) {
   std::vector<size_t> order(by.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](size_t l, size_t r) { return by[l] < by[r]; });

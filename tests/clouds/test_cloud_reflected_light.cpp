@@ -73,7 +73,8 @@ TEST(CloudReflectedLight, LowSunDepthScaleLeavesHighSunsAndFallsAsTheSunLowers) 
     double previous = 1e300;
     for (double muS : {0.6, 0.358, 0.3, 0.2, 0.1, 0.01, 0.0}) {
       const double s = shared::cloudOctaveLowSunScale(muS, mu0);
-      const double v = s * shared::cloudReflectedSource(5.0, tauSun, 0.47, shared::cloudReflectedLowSunDepthScale(aR, s), -0.5);
+      const double v =
+          s * shared::cloudReflectedSource(5.0, tauSun, 0.47, shared::cloudReflectedLowSunDepthScale(aR, s), -0.5);
       EXPECT_TRUE(std::isfinite(v));
       EXPECT_GE(v, 0.0);
       EXPECT_LE(v, previous);

@@ -6,10 +6,10 @@
 #include <map>
 #include <vector>
 
+#include "clouds/cloud_pass.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image_metrics.h"
-#include "clouds/cloud_pass.h"
 #include "sky/render_plan.h"
 #include "tests/clouds/cloud_test_support.h"
 #include "tests/support/test_paths.h"
@@ -51,10 +51,12 @@ TEST(CloudPlan, CloudsListedOnlyWithLayers) {
 
 TEST_F(CloudRender, ZeroDensityOrCoverageLeavesTheSkyUnchanged) {
   SkyRenderOptions o = test::smallCloudOptions();
-  Scene clearScene = test::cloudScene({}, R"({"location": {"height_m": 500}, "sun": {"zenith_deg": 40, "azimuth_deg": 180},
+  Scene clearScene =
+      test::cloudScene({}, R"({"location": {"height_m": 500}, "sun": {"zenith_deg": 40, "azimuth_deg": 180},
     "camera": {"height_above_ground_m": 2, "yaw_deg": 0, "pitch_deg": 50, "fov_deg": 80, "width": 64, "height": 36}})");
   RenderResult clear = test::cloudRenderer().render(clearScene, o);
-  for (const char* zero : {"/clouds/layers/0/coverage=0", "/clouds/layers/0/extinction_scale=0", "/clouds/layers/0/density=0"}) {
+  for (const char* zero :
+       {"/clouds/layers/0/coverage=0", "/clouds/layers/0/extinction_scale=0", "/clouds/layers/0/density=0"}) {
     RenderResult r = test::cloudRenderer().render(test::cloudScene({zero}), o);
     EXPECT_EQ(maxAbsDifference(r.image, clear.image), 0.0) << zero;
     for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_EQ(r.clouds.pixels[4 * i + 3], 1.0f) << zero;
@@ -87,23 +89,23 @@ TEST_F(CloudRender, FiniteAndNonNegativeEverywhere) {
   useSmallMaps(o);
   const double ground = 500.0;
   for (AerialPerspective air : {AerialPerspective::Volume, AerialPerspective::March})
-  for (double height : {2.0, 1500.0, 2700.0, 4000.0, 6000.0}) {
-    o.clouds.aerialPerspective = air;
-    for (double sunZenith : {0.0, 90.0, 96.0}) {
-      for (double pitch : {60.0, 0.0, -30.0}) {
-        Scene s = test::cloudScene({"/camera/height_above_ground_m=" + std::to_string(height),
-                                    "/sun/zenith_deg=" + std::to_string(sunZenith),
-                                    "/camera/pitch_deg=" + std::to_string(pitch), "/camera/width=16",
-                                    "/camera/height=9", "/location/height_m=" + std::to_string(ground)});
-        RenderResult r = test::cloudRenderer().render(s, o);
-        const std::string what = std::string(aerialPerspectiveName(air)) + " height " + std::to_string(height) +
-                                 " sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
-        expectFiniteNonNegative(r.image, what);
-        expectFiniteNonNegative(r.clouds, what + " (clouds)");
-        for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_LE(r.clouds.pixels[4 * i + 3], 1.0f) << what;
+    for (double height : {2.0, 1500.0, 2700.0, 4000.0, 6000.0}) {
+      o.clouds.aerialPerspective = air;
+      for (double sunZenith : {0.0, 90.0, 96.0}) {
+        for (double pitch : {60.0, 0.0, -30.0}) {
+          Scene s = test::cloudScene({"/camera/height_above_ground_m=" + std::to_string(height),
+                                      "/sun/zenith_deg=" + std::to_string(sunZenith),
+                                      "/camera/pitch_deg=" + std::to_string(pitch), "/camera/width=16",
+                                      "/camera/height=9", "/location/height_m=" + std::to_string(ground)});
+          RenderResult r = test::cloudRenderer().render(s, o);
+          const std::string what = std::string(aerialPerspectiveName(air)) + " height " + std::to_string(height) +
+                                   " sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
+          expectFiniteNonNegative(r.image, what);
+          expectFiniteNonNegative(r.clouds, what + " (clouds)");
+          for (size_t i = 0; i < r.clouds.pixelCount(); ++i) ASSERT_LE(r.clouds.pixels[4 * i + 3], 1.0f) << what;
+        }
       }
     }
-  }
 }
 
 // The higher orders' build-up along the view (CloudMarchSettings::msBuildUpScale; the closed form is
@@ -140,8 +142,8 @@ TEST_F(CloudRender, BuildUpAlongTheViewOnlyDarkensWhereTheCloudBehindIsThin) {
         thinWithout += luminanceRec709(b);
       }
     }
-    std::printf("%s: %d opaque pixels unchanged; %d thin pixels, luminance with the build-up / without %.3f\n", pitch, opaque, thin,
-                thinWith / thinWithout);
+    std::printf("%s: %d opaque pixels unchanged; %d thin pixels, luminance with the build-up / without %.3f\n", pitch,
+                opaque, thin, thinWith / thinWithout);
     EXPECT_GT(thin, 20) << pitch;
     EXPECT_LT(thinWith, 0.99 * thinWithout) << pitch;  // measured 0.974 (up 50 deg) and 0.978 (up 10 deg)
     opaqueSeen += opaque;
@@ -150,9 +152,9 @@ TEST_F(CloudRender, BuildUpAlongTheViewOnlyDarkensWhereTheCloudBehindIsThin) {
 }
 
 // The octaves' low-sun scale (cloudOctaveLowSunScale; each layer's mu_0, here overridden for all by
-// CloudMarchSettings::octaveLowSunMu): sun 80 deg from the zenith (mu_s 0.174). With mu_0 below mu_s nothing changes (bit for bit); with mu_0 0.34 the
-// higher orders' light scales by 0.51, so every pixel gets no brighter and the image darker; one octave
-// (single scattering) is not touched. The transmittance never changes.
+// CloudMarchSettings::octaveLowSunMu): sun 80 deg from the zenith (mu_s 0.174). With mu_0 below mu_s nothing changes
+// (bit for bit); with mu_0 0.34 the higher orders' light scales by 0.51, so every pixel gets no brighter and the image
+// darker; one octave (single scattering) is not touched. The transmittance never changes.
 TEST_F(CloudRender, OctaveLowSunScaleOnlyDimsTheHigherOrdersBelowItsSun) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.ambient = false;
@@ -228,7 +230,8 @@ TEST_F(CloudRender, ReflectedLowSunDepthOnlyUnderALowSun) {
   o.clouds.ambient = false;
   const std::string cumulus = R"({"kind": "cumulus", "bottom_m": 2500, "top_m": 4000, "coverage": 0.6})";
   auto render = [&](double zenith, bool depth) {
-    const Scene scene = test::cloudScene({"/sun/zenith_deg=" + std::to_string(zenith), "/camera/pitch_deg=20"}, test::cloudSceneText(cumulus));
+    const Scene scene = test::cloudScene({"/sun/zenith_deg=" + std::to_string(zenith), "/camera/pitch_deg=20"},
+                                         test::cloudSceneText(cumulus));
     o.clouds.reflectedLowSunDepth = depth;
     return test::cloudRenderer().render(scene, o).clouds.pixels;
   };
@@ -259,7 +262,8 @@ TEST_F(CloudRender, ShadowedTopMovesLittleUnderAHighSunAndDarkensALowOne) {
   o.clouds.ambient = false;
   const std::string cumulus = R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3500, "coverage": 0.5})";
   auto render = [&](double zenith, bool shadowedTop) {
-    const Scene scene = test::cloudScene({"/sun/zenith_deg=" + std::to_string(zenith), "/camera/pitch_deg=20"}, test::cloudSceneText(cumulus));
+    const Scene scene = test::cloudScene({"/sun/zenith_deg=" + std::to_string(zenith), "/camera/pitch_deg=20"},
+                                         test::cloudSceneText(cumulus));
     o.clouds.topEntryShadow = shadowedTop;
     return test::cloudRenderer().render(scene, o).clouds;
   };
@@ -279,8 +283,9 @@ TEST_F(CloudRender, ShadowedTopMovesLittleUnderAHighSunAndDarkensALowOne) {
       sumOff += luminanceRec709(b);
       if (luminanceRec709(b) > 0.0) largestGain = std::max(largestGain, luminanceRec709(a) / luminanceRec709(b) - 1.0);
     }
-    std::printf("sun %.0f deg: the image's light with the shadowed top %.4f of that without, the largest pixel gain %.5f\n", zenith, sumOn / sumOff,
-                largestGain);
+    std::printf(
+        "sun %.0f deg: the image's light with the shadowed top %.4f of that without, the largest pixel gain %.5f\n",
+        zenith, sumOn / sumOff, largestGain);
     if (zenith < 45.0)
       EXPECT_GT(sumOn, 0.99 * sumOff);
     else
@@ -297,32 +302,33 @@ TEST_F(CloudRender, TwoLayersFiniteAndTheOtherLayerOnlyShadows) {
       R"({"kind": "cumulus", "bottom_m": 1500, "top_m": 3000, "coverage": 0.7}, {"kind": "cirrus", "bottom_m": 7000, "top_m": 9000, "coverage": 0.8, "extinction_scale": 10})");
   int darker = 0;
   for (int octaves : {3, 1})
-  for (double height : {2.0, 2000.0, 5000.0, 8000.0, 12000.0})
-    for (double sunZenith : {0.0, 89.0, 96.0})
-      for (double pitch : {60.0, 0.0, -30.0}) {
-        Scene s = test::cloudScene({"/camera/height_above_ground_m=" + std::to_string(height), "/sun/zenith_deg=" + std::to_string(sunZenith),
-                                    "/camera/pitch_deg=" + std::to_string(pitch), "/camera/width=16", "/camera/height=9",
-                                    "/clouds/lighting/ms_octaves=" + std::to_string(octaves)},
-                                   layers);
-        o.clouds.lightThroughOtherLayers = true;
-        const RenderResult both = test::cloudRenderer().render(s, o);
-        o.clouds.lightThroughOtherLayers = false;
-        const RenderResult own = test::cloudRenderer().render(s, o);
-        const std::string what = std::to_string(octaves) + " octaves, height " + std::to_string(height) + " sun " +
-                                 std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
-        expectFiniteNonNegative(both.image, what);
-        expectFiniteNonNegative(both.clouds, what + " (clouds)");
-        for (size_t i = 0; i < both.clouds.pixelCount(); ++i) {
-          ASSERT_LE(both.clouds.pixels[4 * i + 3], 1.0f) << what;
-          ASSERT_EQ(both.clouds.pixels[4 * i + 3], own.clouds.pixels[4 * i + 3]) << what;  // the view ray is the same
-          if (octaves > 1) continue;
-          for (int c = 0; c < 3; ++c) {
-            const float withOther = both.clouds.pixels[4 * i + c], ownOnly = own.clouds.pixels[4 * i + c];
-            ASSERT_LE(withOther, ownOnly * (1.0f + 1e-5f) + 1e-6f) << what << " pixel " << i;
-            darker += withOther < 0.99f * ownOnly;
+    for (double height : {2.0, 2000.0, 5000.0, 8000.0, 12000.0})
+      for (double sunZenith : {0.0, 89.0, 96.0})
+        for (double pitch : {60.0, 0.0, -30.0}) {
+          Scene s = test::cloudScene(
+              {"/camera/height_above_ground_m=" + std::to_string(height),
+               "/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
+               "/camera/width=16", "/camera/height=9", "/clouds/lighting/ms_octaves=" + std::to_string(octaves)},
+              layers);
+          o.clouds.lightThroughOtherLayers = true;
+          const RenderResult both = test::cloudRenderer().render(s, o);
+          o.clouds.lightThroughOtherLayers = false;
+          const RenderResult own = test::cloudRenderer().render(s, o);
+          const std::string what = std::to_string(octaves) + " octaves, height " + std::to_string(height) + " sun " +
+                                   std::to_string(sunZenith) + " pitch " + std::to_string(pitch);
+          expectFiniteNonNegative(both.image, what);
+          expectFiniteNonNegative(both.clouds, what + " (clouds)");
+          for (size_t i = 0; i < both.clouds.pixelCount(); ++i) {
+            ASSERT_LE(both.clouds.pixels[4 * i + 3], 1.0f) << what;
+            ASSERT_EQ(both.clouds.pixels[4 * i + 3], own.clouds.pixels[4 * i + 3]) << what;  // the view ray is the same
+            if (octaves > 1) continue;
+            for (int c = 0; c < 3; ++c) {
+              const float withOther = both.clouds.pixels[4 * i + c], ownOnly = own.clouds.pixels[4 * i + c];
+              ASSERT_LE(withOther, ownOnly * (1.0f + 1e-5f) + 1e-6f) << what << " pixel " << i;
+              darker += withOther < 0.99f * ownOnly;
+            }
           }
         }
-      }
   EXPECT_GT(darker, 0);  // the other layer does shadow somewhere (the check can fail)
 }
 
@@ -349,8 +355,10 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   const Scene single = test::cloudScene({"/camera/width=32", "/camera/height=18"});
   cases.push_back({"single layer", single, base, 3328u});
   // The octaves alone (no reflected light: feature 2048 off).
-  cases.push_back({"no reflected light", test::cloudScene({"/camera/width=32", "/camera/height=18", "/clouds/lighting/reflected_light=false"}),
-                   base, 1280u});
+  cases.push_back(
+      {"no reflected light",
+       test::cloudScene({"/camera/width=32", "/camera/height=18", "/clouds/lighting/reflected_light=false"}), base,
+       1280u});
   const Scene two = test::cloudScene({"/camera/width=32", "/camera/height=18"}, twoLayers);
   cases.push_back({"two layers", two, base, 3425u});
   SkyRenderOptions marched = base;
@@ -372,16 +380,22 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
   cases.push_back({"light falloff", single, falloff, 6408u});
   // The sun low: 1 degree above the horizon every sample's sun ray still climbs (the way behind from the
   // deep shadow map alone, bit 4096 left out); 0.5 degrees below it, some descend (bit 4096 in).
-  cases.push_back({"sun 1 deg above the horizon", test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=89", "/camera/pitch_deg=3"}),
-                   base, 3328u, 89.0});
-  cases.push_back({"sun 0.5 deg below the horizon", test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=90.5", "/camera/pitch_deg=3"}),
-                   base, 7424u, 90.5});
+  cases.push_back(
+      {"sun 1 deg above the horizon",
+       test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=89", "/camera/pitch_deg=3"}), base,
+       3328u, 89.0});
+  cases.push_back(
+      {"sun 0.5 deg below the horizon",
+       test::cloudScene({"/camera/width=32", "/camera/height=18", "/sun/zenith_deg=90.5", "/camera/pitch_deg=3"}), base,
+       7424u, 90.5});
   SkyRenderOptions cone = base;
   cone.clouds.lightCone = 0.15;
   cases.push_back({"light cone", single, cone, 3344u});
-  cases.push_back({"weather map", Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
-                                              {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=40", "/camera/height=23"}),
-                   base, 3332u});
+  cases.push_back(
+      {"weather map",
+       Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
+                   {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=40", "/camera/height=23"}),
+       base, 3332u});
   for (Case& c : cases) {
     CloudSettings settings = CloudSettings::fromScene(c.scene);
     c.options.clouds.apply(settings.march);
@@ -389,7 +403,9 @@ TEST_F(CloudRender, SpecializedMarchMatchesTheGeneralOne) {
     view.cameraPosition = glm::dvec3(0.0, 0.0, 6360e3 + 500.0 + 2.0);
     const double zenith = glm::radians(c.sunZenith_deg);
     view.sunDirection = glm::dvec3(std::sin(zenith), 0.0, std::cos(zenith));
-    EXPECT_EQ(cloudMarchFeatures(settings, c.features == 3332u, sunClearsEveryCloudSample(settings.march, view)), c.features) << c.name;
+    EXPECT_EQ(cloudMarchFeatures(settings, c.features == 3332u, sunClearsEveryCloudSample(settings.march, view)),
+              c.features)
+        << c.name;
     c.options.clouds.specializeMarch = true;
     const RenderResult specialized = test::cloudRenderer().render(c.scene, c.options);
     c.options.clouds.specializeMarch = false;
@@ -423,8 +439,9 @@ std::vector<std::pair<std::string, Scene>> mapTestViews(const std::string& layer
   for (double sunZenith : {35.0, 80.0})
     for (double pitch : {30.0, 5.0})
       views.emplace_back("sun " + std::to_string(sunZenith) + " pitch " + std::to_string(pitch),
-                         test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith), "/camera/pitch_deg=" + std::to_string(pitch),
-                                           "/camera/width=64", "/camera/height=36", "/clouds/lighting/reflected_light=false"},
+                         test::cloudScene({"/sun/zenith_deg=" + std::to_string(sunZenith),
+                                           "/camera/pitch_deg=" + std::to_string(pitch), "/camera/width=64",
+                                           "/camera/height=36", "/clouds/lighting/reflected_light=false"},
                                           layers));
   return views;
 }
@@ -447,25 +464,26 @@ TEST_F(CloudRender, ColumnMapMatchesTheVerticalMarches) {
   o.clouds.viewSteps = 32;
   o.clouds.deepShadowMap = false;  // the sun's light march whole, as when the numbers above were measured
   for (const auto& [what, s] : mapTestViews(test::cloudSceneText())) {
-      o.clouds.lightSteps = 64;
-      o.clouds.columnMap = false;
-      const RenderResult marchedFine = test::cloudRenderer().render(s, o);
-      o.clouds.columnMap = true;
-      o.clouds.columnMapSize = 1024;
-      o.clouds.columnMapLevels = 64;
-      const RenderResult mapFine = test::cloudRenderer().render(s, o);
-      o.clouds.lightSteps = 6;
-      o.clouds.columnMapSize = 256;
-      o.clouds.columnMapLevels = 8;
-      const RenderResult map = test::cloudRenderer().render(s, o);
-      expectFiniteNonNegative(map.image, what);
-      const double fine = relativeRmsLuminance(mapFine.image, marchedFine.image);
-      const double coarse = relativeRmsLuminance(map.image, mapFine.image);
-      std::printf("%s: fine map against fine march %.4f; the default map against the fine map %.4f\n", what.c_str(), fine, coarse);
-      EXPECT_LT(fine, 0.05) << what;
-      EXPECT_LT(coarse, 0.06) << what;
-      EXPECT_GT(map.cloudSamples.mapPerPixel, 0.0) << what;
-    }
+    o.clouds.lightSteps = 64;
+    o.clouds.columnMap = false;
+    const RenderResult marchedFine = test::cloudRenderer().render(s, o);
+    o.clouds.columnMap = true;
+    o.clouds.columnMapSize = 1024;
+    o.clouds.columnMapLevels = 64;
+    const RenderResult mapFine = test::cloudRenderer().render(s, o);
+    o.clouds.lightSteps = 6;
+    o.clouds.columnMapSize = 256;
+    o.clouds.columnMapLevels = 8;
+    const RenderResult map = test::cloudRenderer().render(s, o);
+    expectFiniteNonNegative(map.image, what);
+    const double fine = relativeRmsLuminance(mapFine.image, marchedFine.image);
+    const double coarse = relativeRmsLuminance(map.image, mapFine.image);
+    std::printf("%s: fine map against fine march %.4f; the default map against the fine map %.4f\n", what.c_str(), fine,
+                coarse);
+    EXPECT_LT(fine, 0.05) << what;
+    EXPECT_LT(coarse, 0.06) << what;
+    EXPECT_GT(map.cloudSamples.mapPerPixel, 0.0) << what;
+  }
 }
 
 // The other layers' light from their map (clouds/other_layer_map.glsl) against marching each lit
@@ -480,28 +498,30 @@ TEST_F(CloudRender, OtherLayerMapMatchesTheMarchedCrossings) {
   o.clouds.deepShadowMap = false;  // the own layer's light march whole, as when the numbers above were measured
   const std::string layers = mapTestTwoLayers();
   for (const auto& [what, s] : mapTestViews(layers)) {
-      o.clouds.otherLayerMap = false;
-      const RenderResult marched = test::cloudRenderer().render(s, o);
-      o.clouds.lightThroughOtherLayers = false;
-      const RenderResult own = test::cloudRenderer().render(s, o);
-      o.clouds.lightThroughOtherLayers = true;
-      o.clouds.otherLayerMap = true;
-      const double shadow = relativeRmsLuminance(own.image, marched.image);
-      EXPECT_GT(shadow, 0.1) << what;
-      std::map<int, double> error;
-      for (int size : {64, 256, 1024}) {
-        o.clouds.otherLayerMapSize = size;
-        const RenderResult map = test::cloudRenderer().render(s, o);
-        expectFiniteNonNegative(map.image, what);
-        error[size] = relativeRmsLuminance(map.image, marched.image);
-      }
-      o.clouds.otherLayerMapSize = 256;
-      std::printf("%s: the map against the marched crossings %.4f (64 texels), %.4f (256), %.4f (1024); the other layer's effect %.4f\n",
-                  what.c_str(), error[64], error[256], error[1024], shadow);
-      EXPECT_LT(error[256], 0.05) << what;
-      EXPECT_LT(error[1024], error[256]) << what;
-      EXPECT_LT(error[256], error[64]) << what;
+    o.clouds.otherLayerMap = false;
+    const RenderResult marched = test::cloudRenderer().render(s, o);
+    o.clouds.lightThroughOtherLayers = false;
+    const RenderResult own = test::cloudRenderer().render(s, o);
+    o.clouds.lightThroughOtherLayers = true;
+    o.clouds.otherLayerMap = true;
+    const double shadow = relativeRmsLuminance(own.image, marched.image);
+    EXPECT_GT(shadow, 0.1) << what;
+    std::map<int, double> error;
+    for (int size : {64, 256, 1024}) {
+      o.clouds.otherLayerMapSize = size;
+      const RenderResult map = test::cloudRenderer().render(s, o);
+      expectFiniteNonNegative(map.image, what);
+      error[size] = relativeRmsLuminance(map.image, marched.image);
     }
+    o.clouds.otherLayerMapSize = 256;
+    std::printf(
+        "%s: the map against the marched crossings %.4f (64 texels), %.4f (256), %.4f (1024); the other layer's effect "
+        "%.4f\n",
+        what.c_str(), error[64], error[256], error[1024], shadow);
+    EXPECT_LT(error[256], 0.05) << what;
+    EXPECT_LT(error[1024], error[256]) << what;
+    EXPECT_LT(error[256], error[64]) << what;
+  }
 }
 
 // The deep shadow map (clouds/deep_shadow_map.glsl) against marching every light step: one layer
@@ -538,8 +558,11 @@ TEST_F(CloudRender, DeepShadowMapMatchesTheLightMarch) {
       expectFiniteNonNegative(fine.clouds, name);
       const double error = relativeRmsLuminance(map.clouds, marched.clouds);
       const double fineError = relativeRmsLuminance(fine.clouds, marched.clouds);
-      std::printf("%s: the map against the march %.4f (256 texels, 16 levels), %.4f (512, 32); against the march with 4x light steps: march %.4f map %.4f fine map %.4f\n", name.c_str(), error, fineError,
-                  relativeRmsLuminance(marched.clouds, marchedFine.clouds), relativeRmsLuminance(map.clouds, marchedFine.clouds), relativeRmsLuminance(fine.clouds, marchedFine.clouds));
+      std::printf(
+          "%s: the map against the march %.4f (256 texels, 16 levels), %.4f (512, 32); against the march with 4x light "
+          "steps: march %.4f map %.4f fine map %.4f\n",
+          name.c_str(), error, fineError, relativeRmsLuminance(marched.clouds, marchedFine.clouds),
+          relativeRmsLuminance(map.clouds, marchedFine.clouds), relativeRmsLuminance(fine.clouds, marchedFine.clouds));
       EXPECT_LT(error, 0.05) << name;
       EXPECT_LT(fineError, 0.03) << name;
       EXPECT_LT(fineError, error) << name;
@@ -579,8 +602,9 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
 TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.jitter = false;
-  const Scene s = Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
-                              {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=80", "/camera/height=45"});
+  const Scene s =
+      Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
+                  {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=80", "/camera/height=45"});
   o.clouds.viewSteps = 1024;
   const Image truth = test::cloudRenderer().render(s, o).clouds;
   std::vector<double> errors;
@@ -588,7 +612,8 @@ TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
     o.clouds.viewSteps = steps;
     const Image img = test::cloudRenderer().render(s, o).clouds;
     errors.push_back(relativeRmsLuminance(img, truth));
-    std::printf("thunderstorm, view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps, errors.back());
+    std::printf("thunderstorm, view steps %4d: relative RMS luminance error vs 1024 steps %.4f\n", steps,
+                errors.back());
   }
   EXPECT_LT(errors[0], 0.12);
   EXPECT_LT(errors[1], 0.6 * errors[0]);
@@ -604,16 +629,18 @@ TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
 TEST_F(CloudRender, EmptySpaceSkippingKeepsThinFringes) {
   const std::string text = test::cloudSceneText(
       R"({"kind": "stratocumulus", "bottom_m": 1000, "top_m": 2000, "coverage": 0.7, "extinction_scale": 0.3})");
-  const Scene s = test::cloudScene({"/sun/zenith_deg=85", "/sun/azimuth_deg=270", "/camera/yaw_deg=270", "/camera/pitch_deg=25",
-                                    "/camera/fov_deg=70", "/camera/width=48", "/camera/height=27", "/clouds/lighting/ms_octaves=1"},
-                                   text);
+  const Scene s =
+      test::cloudScene({"/sun/zenith_deg=85", "/sun/azimuth_deg=270", "/camera/yaw_deg=270", "/camera/pitch_deg=25",
+                        "/camera/fov_deg=70", "/camera/width=48", "/camera/height=27", "/clouds/lighting/ms_octaves=1"},
+                       text);
   SkyRenderOptions o;  // the shipped noise sizes: the fringes are the 128^3 shape noise's
   o.clouds.ambient = false;
   o.clouds.aerialPerspective = AerialPerspective::Off;
   auto cloudLuminance = [&](const SkyRenderOptions& options) {
     const Image img = test::cloudRenderer().render(s, options).clouds;
     std::vector<double> y(img.pixelCount());
-    for (size_t i = 0; i < y.size(); ++i) y[i] = img.pixels[4 * i + 3] < 0.95f ? luminanceRec709(img.pixels.data() + 4 * i) : -1.0;
+    for (size_t i = 0; i < y.size(); ++i)
+      y[i] = img.pixels[4 * i + 3] < 0.95f ? luminanceRec709(img.pixels.data() + 4 * i) : -1.0;
     return y;
   };
   SkyRenderOptions noSkip = o;
@@ -709,8 +736,8 @@ TEST_F(CloudRender, GrowingStepsBeatUniformSteps) {
   const RenderResult growing = test::cloudRenderer().render(s, o);
   const double eGrowing = relativeRmsLuminance(growing.clouds, truth.clouds);
   const double eUniform = relativeRmsLuminance(uniform.clouds, truth.clouds);
-  std::printf("64 view steps: relative RMS error growing %.4f (%.1f samples/pixel), uniform %.4f (%.1f)\n",
-              eGrowing, growing.cloudSamples.viewPerPixel, eUniform, uniform.cloudSamples.viewPerPixel);
+  std::printf("64 view steps: relative RMS error growing %.4f (%.1f samples/pixel), uniform %.4f (%.1f)\n", eGrowing,
+              growing.cloudSamples.viewPerPixel, eUniform, uniform.cloudSamples.viewPerPixel);
   EXPECT_LT(eGrowing, 0.66 * eUniform);
   EXPECT_LT(growing.cloudSamples.viewPerPixel, 1.5 * uniform.cloudSamples.viewPerPixel);
   EXPECT_GT(uniform.cloudSamples.viewPerPixel, 0.0);
@@ -719,24 +746,27 @@ TEST_F(CloudRender, GrowingStepsBeatUniformSteps) {
 TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_a=0.8", "/clouds/lighting/ms_b=0.5"})),
                InputError);
-  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene(
-                   {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
-               InputError);
+  EXPECT_THROW(
+      CloudSettings::fromScene(test::cloudScene(
+          {}, test::cloudSceneText(R"({"bottom_m": 1000, "top_m": 3000}, {"bottom_m": 2000, "top_m": 5000})"))),
+      InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
   // ms_a alone is checked against the layer type's calibrated b for the scene's phase (cumulus with the
   // approximate Mie phase: b = 0.677 since session 24; every dual-HG type's b is 1 since session 9).
   const double cumulusMieB = cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).b;
   ASSERT_LT(cumulusMieB, 0.99);
   const std::string mie = "/clouds/lighting/phase=approximate_mie";
-  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB + 0.01)})),
-               InputError);
-  EXPECT_NO_THROW(CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB - 0.01)})));
+  EXPECT_THROW(
+      CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB + 0.01)})),
+      InputError);
+  EXPECT_NO_THROW(
+      CloudSettings::fromScene(test::cloudScene({mie, "/clouds/lighting/ms_a=" + std::to_string(cumulusMieB - 0.01)})));
 }
 
 // Octave parameters: the type's calibrated values per layer unless the scene gives them (then for all).
 TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
-  const std::string twoLayers =
-      test::cloudSceneText(R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1400}, {"kind": "cumulus", "bottom_m": 1500, "top_m": 3000})");
+  const std::string twoLayers = test::cloudSceneText(
+      R"({"kind": "stratocumulus", "bottom_m": 800, "top_m": 1400}, {"kind": "cumulus", "bottom_m": 1500, "top_m": 3000})");
   const CloudSettings typed = CloudSettings::fromScene(test::cloudScene({}, twoLayers));
   ASSERT_EQ(typed.layers.size(), 2u);
   const CloudMultipleScattering sc = cloudTypeMultipleScattering(shared::kCloudStratocumulus);
@@ -757,7 +787,8 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
       EXPECT_LE(m.d, 2.0) << kind;
     }
   // The approximate Mie phase takes its own fit.
-  const CloudSettings mie = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/phase=approximate_mie"}, twoLayers));
+  const CloudSettings mie =
+      CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/phase=approximate_mie"}, twoLayers));
   EXPECT_EQ(mie.layers[1].msA, cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).a);
   EXPECT_NE(mie.layers[1].msA, cu.a);
   const CloudSettings given = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_c=0.7"}, twoLayers));
@@ -770,10 +801,12 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_EQ(typed.layers[1].msLowSunMu, cu.lowSunMu);
   EXPECT_GT(cu.lowSunMu, 0.0);
   EXPECT_EQ(typed.layers[0].msLowSunMu, sc.lowSunMu);
-  const CloudSettings lowSunGiven = CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=0.2"}, twoLayers));
+  const CloudSettings lowSunGiven =
+      CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=0.2"}, twoLayers));
   EXPECT_EQ(lowSunGiven.layers[0].msLowSunMu, 0.2);
   EXPECT_EQ(lowSunGiven.layers[1].msLowSunMu, 0.2);
-  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=1.5"}, twoLayers)), InputError);
+  EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_low_sun_mu=1.5"}, twoLayers)),
+               InputError);
 }
 
 // The quality presets change the march's steps only. The octave parameters are fitted for 3 octaves: a

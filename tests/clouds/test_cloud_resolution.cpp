@@ -39,7 +39,8 @@ TEST(CloudResolutionPlan, ShadowMapPlannedOnlyWhenOn) {
 }
 
 TEST_F(CloudResolution, ShadowMapFromTheSceneRunsItsPass) {
-  const RenderResult r = test::cloudRenderer().render(test::cloudScene({"/clouds/shadow_map=true"}), test::smallCloudOptions());
+  const RenderResult r =
+      test::cloudRenderer().render(test::cloudScene({"/clouds/shadow_map=true"}), test::smallCloudOptions());
   bool baked = false;
   for (const auto& t : r.timings) baked = baked || t.label == "clouds/bake_shadow_map";
   EXPECT_TRUE(baked);
@@ -74,7 +75,8 @@ TEST_F(CloudResolution, ReducedAgreesWithFullResolution) {
     EXPECT_LT(m.luminance.relativeRmse, divisor == 2 ? 0.02 : 0.03) << divisor;
     EXPECT_LT(std::abs(m.luminance.relativeMeanBias), 0.01) << divisor;
     // The march's samples fall with the pixel count (per image pixel: about 1/d^2).
-    EXPECT_LT(reduced.cloudSamples.viewPerPixel, 1.5 * full.cloudSamples.viewPerPixel / double(divisor * divisor)) << divisor;
+    EXPECT_LT(reduced.cloudSamples.viewPerPixel, 1.5 * full.cloudSamples.viewPerPixel / double(divisor * divisor))
+        << divisor;
     for (size_t i = 0; i < reduced.clouds.pixelCount(); ++i) {
       const float t = reduced.clouds.pixels[4 * i + 3];
       ASSERT_TRUE(t >= 0.0f && t <= 1.0f) << i;

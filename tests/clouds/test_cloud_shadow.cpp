@@ -23,8 +23,9 @@ TEST(CloudShadowMath, OpticalDepthOfASlab) {
   EXPECT_EQ(shared::cloudShadowOpticalDepth(bsm, 50.0), 0.0);
   EXPECT_NEAR(shared::cloudShadowOpticalDepth(bsm, 350.0), 2.5, 1e-12);
   EXPECT_EQ(shared::cloudShadowOpticalDepth(bsm, 5000.0), 5.0);
-  const glm::dvec3 c = shared::cloudShadowCoordinate(glm::dvec3(10.0, 0.0, 5.0), glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0),
-                                                      glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0), 100.0, 20.0);
+  const glm::dvec3 c =
+      shared::cloudShadowCoordinate(glm::dvec3(10.0, 0.0, 5.0), glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0),
+                                    glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0), 100.0, 20.0);
   EXPECT_NEAR(c.x, 0.6, 1e-12);
   EXPECT_NEAR(c.y, 0.5, 1e-12);
   EXPECT_NEAR(c.z, 15.0, 1e-12);
@@ -37,7 +38,8 @@ TEST(CloudShadowMath, OpticalDepthOfASlab) {
 TEST_F(CloudShadow, AgreesWithTheLightMarchOnASlab) {
   const Scene s = test::cloudScene(
       {"/camera/pitch_deg=70", "/camera/fov_deg=60", "/camera/width=32", "/camera/height=18", "/sun/zenith_deg=30"},
-      test::cloudSceneText(R"({"kind": "stratus", "bottom_m": 1000, "top_m": 2000, "coverage": 1, "extinction_scale": 0.2})"));
+      test::cloudSceneText(
+          R"({"kind": "stratus", "bottom_m": 1000, "top_m": 2000, "coverage": 1, "extinction_scale": 0.2})"));
   SkyRenderOptions o = test::smallCloudOptions();
   o.cloudWeather = std::make_shared<CloudWeatherMap>(
       uniformCloudWeatherMap(glm::vec4(1.0f, 0.0f, 0.0f, float(shared::kCloudWeatherNoTop))));
@@ -53,7 +55,8 @@ TEST_F(CloudShadow, AgreesWithTheLightMarchOnASlab) {
   int pixels = 0;
   for (size_t i = 0; i < march.clouds.pixelCount(); ++i) {
     if (march.clouds.pixels[4 * i + 3] > 0.95f) continue;
-    const double a = luminanceRec709(march.clouds.pixels.data() + 4 * i), b = luminanceRec709(bsm.clouds.pixels.data() + 4 * i);
+    const double a = luminanceRec709(march.clouds.pixels.data() + 4 * i),
+                 b = luminanceRec709(bsm.clouds.pixels.data() + 4 * i);
     sum2 += (a - b) * (a - b);
     ref2 += a * a;
     meanMarch += a;
@@ -62,8 +65,11 @@ TEST_F(CloudShadow, AgreesWithTheLightMarchOnASlab) {
   }
   ASSERT_GT(pixels, 100);
   const double rel = std::sqrt(sum2 / ref2);
-  std::printf("Beer shadow map vs light march over %d cloud pixels: rel RMS %.3f, mean %.1f vs %.1f cd/m^2; light samples/pixel %.1f vs %.1f\n",
-              pixels, rel, meanBsm / pixels, meanMarch / pixels, bsm.cloudSamples.lightPerPixel, march.cloudSamples.lightPerPixel);
+  std::printf(
+      "Beer shadow map vs light march over %d cloud pixels: rel RMS %.3f, mean %.1f vs %.1f cd/m^2; light "
+      "samples/pixel %.1f vs %.1f\n",
+      pixels, rel, meanBsm / pixels, meanMarch / pixels, bsm.cloudSamples.lightPerPixel,
+      march.cloudSamples.lightPerPixel);
   EXPECT_LT(rel, 0.25);
   EXPECT_NEAR(meanBsm / meanMarch, 1.0, 0.15);
   EXPECT_LT(bsm.cloudSamples.lightPerPixel, march.cloudSamples.lightPerPixel);

@@ -33,9 +33,9 @@ shared::CameraParameters camera(int projection, double fovDeg, int width, int he
 TEST(CameraInverse, RoundTripsEveryProjection) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (const auto& c : {camera(shared::kProjectionPerspective, 75.0, 640, 360),
-                        camera(shared::kProjectionFisheye, 200.0, 512, 512),
-                        camera(shared::kProjectionEquirectangular, 360.0, 512, 256)}) {
+  for (const auto& c :
+       {camera(shared::kProjectionPerspective, 75.0, 640, 360), camera(shared::kProjectionFisheye, 200.0, 512, 512),
+        camera(shared::kProjectionEquirectangular, 360.0, 512, 256)}) {
     for (int i = 0; i < 2000; ++i) {
       const glm::dvec2 pixel(u(rng) * c.width, (0.002 + 0.996 * u(rng)) * c.height);
       bool valid = false;
@@ -78,8 +78,9 @@ SkyRenderOptions temporal(int update, bool continueSequence, bool clamp = true) 
 // A 160x90 view of the test cumulus, frame i of a sequence turning by yawStep per frame with the wind
 // moving the field by windStep metres per frame.
 Scene frameScene(int i, double yawStepDeg, double windStep_m) {
-  return test::cloudScene({"/camera/width=160", "/camera/height=90", "/camera/yaw_deg=" + std::to_string(yawStepDeg * i),
-                           "/clouds/wind_m_s=" + std::to_string(windStep_m), "/clouds/time_s=" + std::to_string(double(i))});
+  return test::cloudScene(
+      {"/camera/width=160", "/camera/height=90", "/camera/yaw_deg=" + std::to_string(yawStepDeg * i),
+       "/clouds/wind_m_s=" + std::to_string(windStep_m), "/clouds/time_s=" + std::to_string(double(i))});
 }
 
 struct SequenceError {
@@ -106,9 +107,10 @@ SequenceError runSequence(int update, int frames, double yawStepDeg, double wind
   const ImageMetrics m = compareImages(last.image, still.image);
   SequenceError e{m.luminance.relativeRmse, m.luminance.relativeMeanBias,
                   samples / double(frames - 1) / still.cloudSamples.viewPerPixel};
-  std::printf("1/%d, %d frames, %.2f deg and %.0f m per frame%s: rel RMSE %.3f %%, bias %+.3f %%, samples %.3f of a still's\n",
-              update, frames, yawStepDeg, windStep_m, clamp ? "" : " (no clamp)", 100.0 * e.relRmse, 100.0 * e.relBias,
-              e.samplesRatio);
+  std::printf(
+      "1/%d, %d frames, %.2f deg and %.0f m per frame%s: rel RMSE %.3f %%, bias %+.3f %%, samples %.3f of a still's\n",
+      update, frames, yawStepDeg, windStep_m, clamp ? "" : " (no clamp)", 100.0 * e.relRmse, 100.0 * e.relBias,
+      e.samplesRatio);
   return e;
 }
 
@@ -146,13 +148,15 @@ TEST_F(CloudTemporal, ClampRejectsHistoryThatNoLongerBelongs) {
   double error[2] = {0.0, 0.0};
   for (bool clamp : {false, true}) {
     for (int i = 0; i < 17; ++i) renderer.render(frameScene(i, 0.0, 0.0), temporal(16, i > 0, clamp));
-    const Scene lower = test::cloudScene({"/camera/width=160", "/camera/height=90", "/sun/zenith_deg=60", "/clouds/time_s=17"});
+    const Scene lower =
+        test::cloudScene({"/camera/width=160", "/camera/height=90", "/sun/zenith_deg=60", "/clouds/time_s=17"});
     const RenderResult r = renderer.render(lower, temporal(16, true, clamp));
     EXPECT_TRUE(r.cloudsReprojected);
     const RenderResult still = renderer.render(lower, temporal(16, false));
     error[clamp] = compareImages(r.image, still.image).luminance.relativeRmse;
   }
-  std::printf("sun 40 -> 60 deg: rel RMSE %.2f %% without the clamp, %.2f %% with it\n", 100.0 * error[0], 100.0 * error[1]);
+  std::printf("sun 40 -> 60 deg: rel RMSE %.2f %% without the clamp, %.2f %% with it\n", 100.0 * error[0],
+              100.0 * error[1]);
   EXPECT_LT(error[1], 0.5 * error[0]);
 }
 
@@ -170,11 +174,11 @@ TEST_F(CloudTemporal, OtherProjectionsStayNearTheirNoiseFloor) {
   for (const char* projection : {"fisheye", "equirectangular"}) {
     const bool fisheye = std::string(projection) == "fisheye";
     auto scene = [&](int i, double yawStep) {
-      return test::cloudScene({std::string("/camera/projection=") + projection, fisheye ? "/camera/width=96" : "/camera/width=128",
-                               fisheye ? "/camera/height=96" : "/camera/height=64", fisheye ? "/camera/fov_deg=180" : "/camera/fov_deg=360",
-                               fisheye ? "/camera/pitch_deg=90" : "/camera/pitch_deg=0",
-                               "/camera/yaw_deg=" + std::to_string(yawStep * i), "/clouds/wind_m_s=20",
-                               "/clouds/time_s=" + std::to_string(i / 30.0)});
+      return test::cloudScene(
+          {std::string("/camera/projection=") + projection, fisheye ? "/camera/width=96" : "/camera/width=128",
+           fisheye ? "/camera/height=96" : "/camera/height=64", fisheye ? "/camera/fov_deg=180" : "/camera/fov_deg=360",
+           fisheye ? "/camera/pitch_deg=90" : "/camera/pitch_deg=0", "/camera/yaw_deg=" + std::to_string(yawStep * i),
+           "/clouds/wind_m_s=20", "/clouds/time_s=" + std::to_string(i / 30.0)});
     };
     double error[2] = {0.0, 0.0}, bias[2] = {0.0, 0.0};
     for (int moving = 0; moving < 2; ++moving) {
@@ -190,8 +194,8 @@ TEST_F(CloudTemporal, OtherProjectionsStayNearTheirNoiseFloor) {
       error[moving] = m.luminance.relativeRmse;
       bias[moving] = m.luminance.relativeMeanBias;
     }
-    std::printf("%s, 1/16: still sequence %.2f %% (bias %+.2f %%), turning 0.5 deg per frame %.2f %% (bias %+.2f %%)\n", projection,
-                100.0 * error[0], 100.0 * bias[0], 100.0 * error[1], 100.0 * bias[1]);
+    std::printf("%s, 1/16: still sequence %.2f %% (bias %+.2f %%), turning 0.5 deg per frame %.2f %% (bias %+.2f %%)\n",
+                projection, 100.0 * error[0], 100.0 * bias[0], 100.0 * error[1], 100.0 * bias[1]);
     EXPECT_LT(error[1], 2.0 * error[0] + 0.01) << projection;
     EXPECT_LT(std::abs(bias[1]), std::abs(bias[0]) + 0.005) << projection;
     EXPECT_LT(std::abs(bias[1]), 0.02) << projection;
@@ -209,7 +213,8 @@ TEST_F(CloudTemporal, FallsBackToAFullMarch) {
   EXPECT_FALSE(renderer.render(denser, temporal(16, true)).cloudsReprojected);
   EXPECT_TRUE(renderer.render(denser, temporal(16, true)).cloudsReprojected);
   // Flying through the layer (1500-4000 m above the ground): every frame marched.
-  const Scene inside = test::cloudScene({"/camera/width=160", "/camera/height=90", "/camera/height_above_ground_m=2500"});
+  const Scene inside =
+      test::cloudScene({"/camera/width=160", "/camera/height=90", "/camera/height_above_ground_m=2500"});
   renderer.render(inside, temporal(16, false));
   EXPECT_FALSE(renderer.render(inside, temporal(16, true)).cloudsReprojected);
   // temporal_update 1: never.
@@ -240,9 +245,10 @@ TEST_F(CloudTemporal, ReducedResolutionMarchesEveryFrame) {
 TEST_F(CloudTemporal, AWeatherSceneSequenceKeepsItsHistory) {
   SkyRenderer& renderer = test::cloudRenderer();
   auto at = [](double t) {
-    return Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
-                       {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=160", "/camera/height=90",
-                        "/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc("2026-06-21T13:30:00Z"), t))});
+    return Scene::load(
+        test::sourceDir() / "scenes" / "thunderstorm.json",
+        {"/weather/grid/cells_x=64", "/weather/grid/cells_y=64", "/camera/width=160", "/camera/height=90",
+         "/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc("2026-06-21T13:30:00Z"), t))});
   };
   const RenderResult still = renderer.render(at(16 / 30.0), temporal(16, false));
   ImageMetrics error[2];

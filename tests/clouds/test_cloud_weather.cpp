@@ -23,7 +23,8 @@ class CloudWeather : public test::GpuTest {};
 // Coverage 1 inside a disc of `radius_m` around (east, north) = centre_m, 0 outside; cumulus type, no
 // top cap. 128^2 texels over the default 51.2 km region (400 m texels).
 CloudWeatherMap discMap(glm::dvec2 centre_m, double radius_m) {
-  CloudWeatherMap m = uniformCloudWeatherMap(glm::vec4(0.0f, 1.0f / 3.0f, 0.0f, float(shared::kCloudWeatherNoTop)), 128);
+  CloudWeatherMap m =
+      uniformCloudWeatherMap(glm::vec4(0.0f, 1.0f / 3.0f, 0.0f, float(shared::kCloudWeatherNoTop)), 128);
   for (int row = 0; row < m.map.height; ++row)
     for (int column = 0; column < m.map.width; ++column) {
       const double east = ((column + 0.5) / m.map.width - 0.5) * m.width_m;
@@ -108,9 +109,9 @@ TEST_F(CloudWeather, CloudOnlyOverTheCoveredDisc) {
 // point 10 km east at the same height lies 2-6 m further along x and ~8 m lower in z.
 TEST_F(CloudWeather, TheWindCarriesTheMapWithTheNoise) {
   SkyRenderOptions o = test::smallCloudOptions();
-  const std::vector<std::string> view = {"/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30",
-                                         "/camera/width=16", "/camera/height=16", "/clouds/wind_m_s=10",
-                                         "/clouds/wind_from_deg=270"};
+  const std::vector<std::string> view = {
+      "/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30",       "/camera/width=16",
+      "/camera/height=16",           "/clouds/wind_m_s=10",  "/clouds/wind_from_deg=270"};
   auto at = [&](double time_s) {
     std::vector<std::string> v = view;
     v.push_back("/clouds/time_s=" + std::to_string(time_s));
@@ -131,8 +132,8 @@ TEST_F(CloudWeather, TheWindCarriesTheMapWithTheNoise) {
   for (double north : {-1500.0, 0.0, 1500.0}) {
     const double then = verticalOpticalDepth(still, ground, 0.0, north);
     const double now = verticalOpticalDepth(moved, ground, 10000.0, north);
-    std::printf("column at north %+.0f m: optical depth %.4f overhead at 0 s, %.4f 10 km east at 1000 s\n", north,
-                then, now);
+    std::printf("column at north %+.0f m: optical depth %.4f overhead at 0 s, %.4f 10 km east at 1000 s\n", north, then,
+                now);
     ASSERT_GT(then, 1.0);
     worst = std::max(worst, std::abs(now / then - 1.0));
     EXPECT_EQ(verticalOpticalDepth(moved, ground, 0.0, north), 0.0) << north;
@@ -142,7 +143,8 @@ TEST_F(CloudWeather, TheWindCarriesTheMapWithTheNoise) {
 
 // The procedural map: deterministic per seed, with clear gaps and fully covered areas.
 TEST(CloudWeatherMapTest, ProceduralMapHasGapsAndCover) {
-  const CloudWeatherMap a = proceduralCloudWeatherMap(1), b = proceduralCloudWeatherMap(1), c = proceduralCloudWeatherMap(2);
+  const CloudWeatherMap a = proceduralCloudWeatherMap(1), b = proceduralCloudWeatherMap(1),
+                        c = proceduralCloudWeatherMap(2);
   EXPECT_EQ(a.map.pixels, b.map.pixels);
   EXPECT_NE(a.map.pixels, c.map.pixels);
   int clear = 0, full = 0;
@@ -165,8 +167,8 @@ TEST(CloudWeatherMapTest, ProceduralMapHasGapsAndCover) {
 // The thunderstorm scene (afternoon): its simulated map holds cumulonimbus (type > 0.9, top > 8 km),
 // the CPU medium has cloud above 8 km there, and the render is finite and non-negative.
 TEST_F(CloudWeather, ThunderstormSceneGrowsCumulonimbus) {
-  const Scene s = Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json",
-                              {"/camera/width=32", "/camera/height=18"});
+  const Scene s =
+      Scene::load(test::sourceDir() / "scenes" / "thunderstorm.json", {"/camera/width=32", "/camera/height=18"});
   SceneWeatherInfo info;
   const CloudWeatherMap map = cloudWeatherMapForScene(s, &info);
   std::printf("thunderstorm: %.1f h simulated in %.0f ms\n", info.simulated_s / 3600.0, info.milliseconds);
@@ -183,7 +185,8 @@ TEST_F(CloudWeather, ThunderstormSceneGrowsCumulonimbus) {
       const float* px = map.map.at(column, row);
       if (px[1] > 0.9f && px[0] > 0.5f && px[3] > highestTop) {
         highestTop = px[3];
-        tallest = {((column + 0.5) / map.map.width - 0.5) * map.width_m, (0.5 - (row + 0.5) / map.map.height) * map.height_m};
+        tallest = {((column + 0.5) / map.map.width - 0.5) * map.width_m,
+                   (0.5 - (row + 0.5) / map.map.height) * map.height_m};
       }
     }
   std::printf("tallest cumulonimbus column: top %.0f m at (%.0f, %.0f) m\n", highestTop, tallest.x, tallest.y);
@@ -224,7 +227,8 @@ TEST(SceneWeather, ATimeLapseContinuesTheSimulationBitForBit) {
   };
   auto largestChange = [](const CloudWeatherMap& a, const CloudWeatherMap& b) {
     double worst = 0.0;
-    for (size_t i = 0; i < a.map.pixels.size(); i += 4) worst = std::max(worst, double(std::abs(a.map.pixels[i] - b.map.pixels[i])));
+    for (size_t i = 0; i < a.map.pixels.size(); i += 4)
+      worst = std::max(worst, double(std::abs(a.map.pixels[i] - b.map.pixels[i])));
     return worst;
   };
   clearSceneWeatherCache();
@@ -268,17 +272,21 @@ TEST(CloudWeatherType, TheMapTypePicksTheHeightProfiles) {
     shared::CloudLayer l = layer;
     l.kind = kind;
     bool empty = true;
-    const shared::CloudLayer c = shared::cloudColumnLayer(l, glm::dvec4(1.0, type, 0.0, shared::kCloudWeatherNoTop), 6360000.0, empty);
+    const shared::CloudLayer c =
+        shared::cloudColumnLayer(l, glm::dvec4(1.0, type, 0.0, shared::kCloudWeatherNoTop), 6360000.0, empty);
     EXPECT_FALSE(empty);
     return c;
   };
   auto profiles = [&](int kind, double anvil) {
     return [=](double ph) {
-      return glm::dvec2(shared::cloudShapeProfile(kind, ph, layer.coverage, anvil), shared::cloudDensityProfile(kind, ph, anvil));
+      return glm::dvec2(shared::cloudShapeProfile(kind, ph, layer.coverage, anvil),
+                        shared::cloudDensityProfile(kind, ph, anvil));
     };
   };
   auto blended = [&](const shared::CloudLayer& c) {
-    return [=](double ph) { return glm::dvec2(shared::cloudLayerShapeProfile(c, ph), shared::cloudLayerDensityProfile(c, ph)); };
+    return [=](double ph) {
+      return glm::dvec2(shared::cloudLayerShapeProfile(c, ph), shared::cloudLayerDensityProfile(c, ph));
+    };
   };
   const auto stratus = profiles(shared::kCloudStratus, 0.0), stratocumulus = profiles(shared::kCloudStratocumulus, 0.0);
   const auto cumulus = profiles(shared::kCloudCumulus, 0.0), cirrus = profiles(shared::kCloudCirrus, 0.0);
@@ -300,7 +308,8 @@ TEST(CloudWeatherType, TheMapTypePicksTheHeightProfiles) {
     EXPECT_EQ(blended(column(shared::kCloudStratocumulus, 0.0))(ph), stratocumulus(ph)) << ph;
     EXPECT_EQ(blended(column(shared::kCloudCirrus, 0.0))(ph), cirrus(ph)) << ph;
     EXPECT_EQ(blended(column(shared::kCloudCirrus, 1.0))(ph), cirrus(ph)) << ph;
-    EXPECT_EQ(blended(column(shared::kCloudStratocumulus, shared::kCloudWeatherLayerType))(ph), stratocumulus(ph)) << ph;
+    EXPECT_EQ(blended(column(shared::kCloudStratocumulus, shared::kCloudWeatherLayerType))(ph), stratocumulus(ph))
+        << ph;
     EXPECT_EQ(blended(column(shared::kCloudCumulonimbus, shared::kCloudWeatherLayerType))(ph), cumulonimbus(ph)) << ph;
   }
   // The procedural map has no types.
@@ -315,17 +324,24 @@ TEST(CloudWeatherType, TheMapTypePicksTheHeightProfiles) {
 TEST_F(CloudWeather, TheMapTypeShapesTheGpuColumnsToo) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.jitter = false;
-  const std::vector<std::string> view = {"/camera/pitch_deg=90", "/camera/fov_deg=30", "/camera/width=16", "/camera/height=16"};
+  const std::vector<std::string> view = {"/camera/pitch_deg=90", "/camera/fov_deg=30", "/camera/width=16",
+                                         "/camera/height=16"};
   auto meanT = [&](const std::string& layer, float type) {
-    o.cloudWeather = std::make_shared<CloudWeatherMap>(uniformCloudWeatherMap(glm::vec4(1.0f, type, 0.0f, float(shared::kCloudWeatherNoTop))));
-    return meanTransmittance(test::cloudRenderer().render(test::cloudScene(view, test::cloudSceneText(layer)), o).clouds);
+    o.cloudWeather = std::make_shared<CloudWeatherMap>(
+        uniformCloudWeatherMap(glm::vec4(1.0f, type, 0.0f, float(shared::kCloudWeatherNoTop))));
+    return meanTransmittance(
+        test::cloudRenderer().render(test::cloudScene(view, test::cloudSceneText(layer)), o).clouds);
   };
-  const std::string cb = R"({"kind": "cumulonimbus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.02})";
-  const std::string st = R"({"kind": "stratus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.048})";
+  const std::string cb =
+      R"({"kind": "cumulonimbus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.02})";
+  const std::string st =
+      R"({"kind": "stratus", "bottom_m": 1500, "top_m": 2300, "coverage": 0.7, "extinction_scale": 0.048})";
   const double cbAsStratus = meanT(cb, 0.0f), stratus = meanT(st, float(shared::kCloudWeatherLayerType));
   const double cbAsCumulus = meanT(cb, 1.0f / 3.0f);
-  std::printf("mean T looking up: cumulonimbus layer, stratus type %.5f; stratus layer %.5f; cumulonimbus layer, cumulus type %.5f\n",
-              cbAsStratus, stratus, cbAsCumulus);
+  std::printf(
+      "mean T looking up: cumulonimbus layer, stratus type %.5f; stratus layer %.5f; cumulonimbus layer, cumulus type "
+      "%.5f\n",
+      cbAsStratus, stratus, cbAsCumulus);
   EXPECT_NEAR(cbAsStratus, stratus, 1e-4);
   EXPECT_GT(std::abs(cbAsCumulus - stratus), 0.02);
 }

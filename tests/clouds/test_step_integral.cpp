@@ -21,9 +21,9 @@ TEST(CloudStepIntegral, MatchesExpm1FromThinToOpaque) {
 }
 
 TEST(CloudStepIntegral, ExactLimits) {
-  EXPECT_EQ(shared::cloudStepIntegral(0.0, 7.0), 7.0);         // no medium: S dt
+  EXPECT_EQ(shared::cloudStepIntegral(0.0, 7.0), 7.0);  // no medium: S dt
   EXPECT_NEAR(shared::cloudStepIntegral(1e-10, 7.0), 7.0, 7.0 * 1e-9);
-  EXPECT_EQ(shared::cloudStepIntegral(1e4, 1.0), 1.0 / 1e4);   // opaque: S / sigma_t
+  EXPECT_EQ(shared::cloudStepIntegral(1e4, 1.0), 1.0 / 1e4);  // opaque: S / sigma_t
   EXPECT_EQ(shared::cloudStepIntegral(1e3, 100.0), 1.0 / 1e3);
   // Energy: never more than the thin-medium S dt, never more than the opaque S / sigma_t.
   for (double k = 1e-8; k < 1e4; k *= 3.0) {
@@ -73,7 +73,8 @@ TEST(CloudSunExitDistance, TopBaseGrazingAndCap) {
   EXPECT_LT(exit, 500.0 / std::cos(theta));
   EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, low, 3000.0), 3000.0, 1e-9);  // capped
   // Horizontal ray from the middle of the shell: it leaves through the top, sqrt(r_top^2 - r^2) = 79.8 km away.
-  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, glm::dvec3(1.0, 0.0, 0.0), 1e6), std::sqrt(top * top - r * r), 1e-3);
+  EXPECT_NEAR(shared::cloudSunExitDistance(layer, p, glm::dvec3(1.0, 0.0, 0.0), 1e6), std::sqrt(top * top - r * r),
+              1e-3);
 }
 
 // The bound that lets the march skip the way down from the layer top: no optical depth passes more of
@@ -103,7 +104,8 @@ TEST(CloudOctavePower, ZeroToTheZeroIsOneAndOtherwiseMatchesPow) {
   EXPECT_EQ(shared::cloudOctavePower(0.0, 3), 0.0);
   EXPECT_EQ(shared::cloudOctaveEccentricityScale(0.0, 0), 1.0);
   for (double x : {1e-3, 0.347, 0.538, 0.966, 1.0})
-    for (int i = 0; i <= 8; ++i) EXPECT_NEAR(shared::cloudOctavePower(x, i), std::pow(x, double(i)), 1e-15) << x << " " << i;
+    for (int i = 0; i <= 8; ++i)
+      EXPECT_NEAR(shared::cloudOctavePower(x, i), std::pow(x, double(i)), 1e-15) << x << " " << i;
 }
 
 }  // namespace

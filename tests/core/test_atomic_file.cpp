@@ -71,8 +71,7 @@ TEST(AtomicFile, ThrowingWriterKeepsExistingTargetAndLeavesNoTemporary) {
 
 TEST(AtomicFile, ThrowingWriterCreatesNoTarget) {
   const fs::path dir = test::scratchDir("atomic_throw_new");
-  EXPECT_THROW(writeFileAtomically(dir / "new.txt", [](const fs::path&) { throw RuntimeError("no"); }),
-               RuntimeError);
+  EXPECT_THROW(writeFileAtomically(dir / "new.txt", [](const fs::path&) { throw RuntimeError("no"); }), RuntimeError);
   EXPECT_EQ(fileCount(dir), 0u);
 }
 

@@ -24,8 +24,17 @@ namespace fs = std::filesystem;
 // Values that a lossy or half path would change: extremes, denormals, signed zero, many mantissa bits.
 Image makeTestImage(int width, int height, int channels) {
   Image image(width, height, channels);
-  const float specials[] = {0.0f, -0.0f, 1.0f, 3.14159274f, 1e-40f /* denormal */, 6.5e4f, 1.7e38f,
-                            -2.5f, 1.0f / 3.0f, 123456.789f, std::numeric_limits<float>::min()};
+  const float specials[] = {0.0f,
+                            -0.0f,
+                            1.0f,
+                            3.14159274f,
+                            1e-40f /* denormal */,
+                            6.5e4f,
+                            1.7e38f,
+                            -2.5f,
+                            1.0f / 3.0f,
+                            123456.789f,
+                            std::numeric_limits<float>::min()};
   for (size_t i = 0; i < image.pixels.size(); ++i)
     image.pixels[i] = i < std::size(specials) ? specials[i] : std::sin(float(i) * 0.37f) * float(i) * 1.001f;
   return image;
@@ -60,8 +69,9 @@ TEST_P(ExrRoundTrip, FloatPixelsAndMetadataAreBitExact) {
   image.metadata["firmament.timing.sky_ms"] = "12.5";
   image.metadata["firmament.sun_direction"] = "[0.1, 0.7, -0.2]";
   image.metadata["firmament.empty"] = "";
-  const fs::path path = test::scratchDir("exr_roundtrip_" + std::to_string(channels) + "_" +
-                                         std::to_string(int(compression))) / "image.exr";
+  const fs::path path =
+      test::scratchDir("exr_roundtrip_" + std::to_string(channels) + "_" + std::to_string(int(compression))) /
+      "image.exr";
   writeExr(path, image, compression);
   const Image back = readExr(path);
   expectBitExact(image, back);
@@ -77,8 +87,12 @@ INSTANTIATE_TEST_SUITE_P(ChannelsAndCompression, ExrRoundTrip,
 
 TEST(Exr, NanAndInfinitySurviveRoundTrip) {
   Image image(2, 1, 3);
-  image.pixels = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-                  -std::numeric_limits<float>::infinity(), 1, 2, 3};
+  image.pixels = {std::numeric_limits<float>::quiet_NaN(),
+                  std::numeric_limits<float>::infinity(),
+                  -std::numeric_limits<float>::infinity(),
+                  1,
+                  2,
+                  3};
   const fs::path path = test::scratchDir("exr_nan") / "nan.exr";
   writeExr(path, image);
   const Image back = readExr(path);
@@ -105,7 +119,9 @@ TEST(Exr, ReadsHalfChannelsIgnoresExtraChannelsAndHonoursDataWindow) {
     Imf::OutputFile file(path.c_str(), header);
     Imf::FrameBuffer frame;
     for (int c = 0; c < 3; ++c)
-      frame.insert(c == 0 ? "R" : c == 1 ? "G" : "B",
+      frame.insert(c == 0   ? "R"
+                   : c == 1 ? "G"
+                            : "B",
                    Imf::Slice::Make(Imf::HALF, rgb.data() + c, window, 3 * sizeof(half), 3 * sizeof(half) * width));
     frame.insert("Z", Imf::Slice::Make(Imf::FLOAT, z.data(), window, sizeof(float), sizeof(float) * width));
     file.setFrameBuffer(frame);

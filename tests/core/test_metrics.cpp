@@ -164,7 +164,7 @@ TEST(Heatmap, PixelsMapThroughScaleAndMaskAndNanAreMarked) {
   auto at = [&](int x) { return std::array<uint8_t, 3>{rgb[3 * x], rgb[3 * x + 1], rgb[3 * x + 2]}; };
   EXPECT_EQ(at(0), heatmapColor(0.0));
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(at(1)[c], heatmapColor(0.5)[c], 1);  // 5 % of a 10 % scale (float)
-  EXPECT_EQ(at(2), heatmapColor(1.0));  // 100 % error, clipped at the top
+  EXPECT_EQ(at(2), heatmapColor(1.0));                                         // 100 % error, clipped at the top
   EXPECT_EQ(at(3), (std::array<uint8_t, 3>{255, 0, 255}));
   const auto masked = errorHeatmapRgb8(test, reference, 0.1, {1, 0, 1, 1});
   EXPECT_EQ(masked[3], 64);

@@ -18,9 +18,7 @@ namespace fs = std::filesystem;
 
 // The reference formulas (docs/formats.md), written out again on purpose.
 double srgb(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
-uint8_t byteOf(double displayLinear) {
-  return uint8_t(std::lround(255.0 * srgb(std::clamp(displayLinear, 0.0, 1.0))));
-}
+uint8_t byteOf(double displayLinear) { return uint8_t(std::lround(255.0 * srgb(std::clamp(displayLinear, 0.0, 1.0)))); }
 double aces(double x) { return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
 
 struct LibpngImage {
@@ -90,7 +88,7 @@ TEST(Png, PreviewWithFixedExposureMatchesFormulas) {
   EXPECT_EQ(px(1, 0, 1), 0);
   EXPECT_EQ(px(2, 0, 2), 255);
   EXPECT_EQ(px(0, 1, 0), byteOf(0.0012 * exposure));
-  EXPECT_EQ(px(0, 1, 0), 3);    // 255 · 12.92 · 0.001 = 3.29
+  EXPECT_EQ(px(0, 1, 0), 3);  // 255 · 12.92 · 0.001 = 3.29
   EXPECT_EQ(px(0, 1, 1), byteOf(0.06 * exposure));
   EXPECT_EQ(px(0, 1, 2), 255);
   EXPECT_EQ(px(1, 1, 0), 0);
@@ -111,7 +109,7 @@ TEST(Png, AutoExposureOfConstantImageWithAces) {
       p[0] = p[1] = p[2] = float(luminance);
       p[3] = 0.5f;
     }
-    ExposureSettings settings;  // auto, aces
+    ExposureSettings settings;       // auto, aces
     settings.nightAdaptation = 1.0;  // the plain meter also below 5 cd/m² (tests/core/test_tonemap.cpp: NightExposure)
     settings.compensationEv = 1.0;
     settings.keepAlpha = true;

@@ -50,8 +50,8 @@ TEST(Scene, ArrayItemsGetDefaults) {
 }
 
 TEST(Scene, OverridesApplyBeforeValidation) {
-  Scene scene = Scene::parse("{}", "<test>",
-                             {"/camera/fov_deg=60", "/camera/projection=fisheye", "/clouds/layers/0/top_m=5000"});
+  Scene scene =
+      Scene::parse("{}", "<test>", {"/camera/fov_deg=60", "/camera/projection=fisheye", "/clouds/layers/0/top_m=5000"});
   EXPECT_DOUBLE_EQ(scene.number("/camera/fov_deg"), 60.0);
   EXPECT_EQ(scene.string("/camera/projection"), "fisheye");
   EXPECT_DOUBLE_EQ(scene.number("/clouds/layers/0/top_m"), 5000.0);
@@ -69,8 +69,7 @@ TEST(Scene, UnknownKeyNamesPointerAndAllowedKeys) {
 TEST(Scene, WrongTypeNamesFoundAndAllowed) {
   expectInputError([] { Scene::parse(R"({"camera": {"fov_deg": "wide"}})", "b.json"); },
                    {"b.json", "/camera/fov_deg", "string \"wide\"", "number"});
-  expectInputError([] { Scene::parse(R"({"camera": {"width": 12.5}})", "b.json"); },
-                   {"/camera/width", "integer"});
+  expectInputError([] { Scene::parse(R"({"camera": {"width": 12.5}})", "b.json"); }, {"/camera/width", "integer"});
   expectInputError([] { Scene::parse(R"({"camera": 3})", "b.json"); }, {"/camera", "an object"});
   expectInputError([] { Scene::parse(R"([1, 2])", "b.json"); }, {"b.json", "an object"});
 }
@@ -132,9 +131,12 @@ TEST(Scene, EverySchemaFieldHasDefaultAndDescription) {
         for (auto it = s["items"]["properties"].begin(); it != s["items"]["properties"].end(); ++it) {
           // a field listed in its object's "required" needs no default
           bool required = false;
-          for (const auto& r : s["items"].value("required", nlohmann::json::array())) required = required || r == it.key();
-          if (!required) walk(it.value(), p + "/N/" + it.key());
-          else EXPECT_TRUE(it.value().contains("description")) << p << "/N/" << it.key();
+          for (const auto& r : s["items"].value("required", nlohmann::json::array()))
+            required = required || r == it.key();
+          if (!required)
+            walk(it.value(), p + "/N/" + it.key());
+          else
+            EXPECT_TRUE(it.value().contains("description")) << p << "/N/" << it.key();
         }
     } else if (s.value("x-optional-section", false)) {
       // An optional field's default depends on other fields (e.g. the cloud type's calibrated octave

@@ -94,8 +94,8 @@ TEST(Exposure, AutoEv100OfConstantImageIsAnalytic) {
         << luminance;
   }
   // A coloured constant image: Y = 0.2126 R + 0.7152 G + 0.0722 B.
-  EXPECT_NEAR(autoEv100(constantImage(100, 200, 400)),
-              std::log2((0.2126 * 100 + 0.7152 * 200 + 0.0722 * 400) * 8.0), 1e-6);
+  EXPECT_NEAR(autoEv100(constantImage(100, 200, 400)), std::log2((0.2126 * 100 + 0.7152 * 200 + 0.0722 * 400) * 8.0),
+              1e-6);
 }
 
 TEST(Exposure, AutoEv100IsTheLogAverage) {
@@ -176,7 +176,8 @@ TEST(NightExposure, BelowTheMesopicTopTheExposureMakesUpOnlyPartOfTheFall) {
     const double full = std::log2(8.0 * luminance);
     const double ev = autoEv100ForLuminance(luminance, settings);
     EXPECT_NEAR(ev, knee + 0.8 * (full - knee), 1e-12);
-    std::printf("L %.0e cd/m^2: EV100 %.2f (full adaptation %.2f, %.2f stops darker)\n", luminance, ev, full, ev - full);
+    std::printf("L %.0e cd/m^2: EV100 %.2f (full adaptation %.2f, %.2f stops darker)\n", luminance, ev, full,
+                ev - full);
   }
   EXPECT_NEAR(autoEv100ForLuminance(2e-4, settings) - std::log2(8.0 * 2e-4), 0.2 * std::log2(5.0 / 2e-4), 1e-12);
   // Continuous at the knee and non-decreasing everywhere.
@@ -249,8 +250,8 @@ TEST(NightExposure, TemporalAdaptationIsAnExponentialInLogLuminance) {
   settings.temporal = ExposureSettings::TemporalAdaptation::Eye;
   ExposureAdaptation eye;
   eye.update(1e-4, 0.0, settings);
-  EXPECT_NEAR(std::log(eye.update(1.0, 0.4, settings) / 1.0), std::log(1e-4) * std::exp(-0.4 / eyeAdaptationTimeConstant(1e-4)),
-              1e-9);
+  EXPECT_NEAR(std::log(eye.update(1.0, 0.4, settings) / 1.0),
+              std::log(1e-4) * std::exp(-0.4 / eyeAdaptationTimeConstant(1e-4)), 1e-9);
 }
 
 TEST(NightExposure, ScotopicLuminanceFollowsLarsonRushmeierPiatko) {

@@ -63,7 +63,8 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
       ASSERT_GT(r.referenceNoise, 0.0) << r.knob << " " << r.value;
       if (r.knob == "view_steps" && r.value == "16") spp16 = r.samplesPerPixel;
       if (r.knob == "view_steps" && r.value == "256") spp256 = r.samplesPerPixel;
-      if (r.knob == "default") defaultSpp = r.samplesPerPixel, defaultMapSpp = r.mapSamplesPerPixel, defaultError = r.relRmse;
+      if (r.knob == "default")
+        defaultSpp = r.samplesPerPixel, defaultMapSpp = r.mapSamplesPerPixel, defaultError = r.relRmse;
       if (r.knob == "temporal_update") temporal[r.value] = {r.samplesPerPixel - r.mapSamplesPerPixel, r.relRmse};
       ASSERT_GE(r.mapSamplesPerPixel, 0.0);
       ASSERT_LE(r.mapSamplesPerPixel, r.samplesPerPixel);
@@ -74,7 +75,8 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     // within 0.05 of the still's error (measured at 32x18: noon 0.0000, sunset -0.030 to +0.026).
     ASSERT_EQ(temporal.size(), 2u) << scenario;
     for (const auto& [value, t] : temporal) {
-      EXPECT_LT(t.first, (value == "16" ? 1.5 / 16.0 : 1.5 / 4.0) * (defaultSpp - defaultMapSpp)) << scenario << " " << value;
+      EXPECT_LT(t.first, (value == "16" ? 1.5 / 16.0 : 1.5 / 4.0) * (defaultSpp - defaultMapSpp))
+          << scenario << " " << value;
       EXPECT_LT(t.second, defaultError + 0.05) << scenario << " " << value;
     }
     EXPECT_EQ(baseline, 1) << scenario;
@@ -98,8 +100,10 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
   std::ifstream csv(config.outDir / "clouds_results.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
-                    "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device");
+  EXPECT_EQ(
+      header,
+      "knob,value,scenario,precompute_ms,frame_ms,rel_rmse,psnr_db,max_rel_err,samples_per_pixel,"
+      "rel_rmse_noise_corrected,ref_noise_rel_rmse,mean_bias,bias_dark_quarter,bias_bright_quarter,against,device");
   // Every row has the header's 16 fields (commas inside quotes do not split: values such as
   // "1 octave, no cone, 16 light" are quoted).
   int lines = 0;
@@ -171,11 +175,17 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     EXPECT_LT(marchSamples["default"], 0.8 * marchSamples[mapOff]) << scenario;
     // Light samples by transmittance (with the map off): fewer as the exponent k grows (n T^k, at least 4).
     EXPECT_LT(samples["light_steps_falloff 0.5, deep_shadow_map off"], samples[mapOff]) << scenario;
-    EXPECT_LT(samples["light_steps_falloff 1, deep_shadow_map off"], samples["light_steps_falloff 0.5, deep_shadow_map off"]) << scenario;
-    EXPECT_LT(samples["light_steps_falloff 2, deep_shadow_map off"], samples["light_steps_falloff 1, deep_shadow_map off"]) << scenario;
+    EXPECT_LT(samples["light_steps_falloff 1, deep_shadow_map off"],
+              samples["light_steps_falloff 0.5, deep_shadow_map off"])
+        << scenario;
+    EXPECT_LT(samples["light_steps_falloff 2, deep_shadow_map off"],
+              samples["light_steps_falloff 1, deep_shadow_map off"])
+        << scenario;
     // Starting the falloff at T = 0.1 keeps the full counts in front, so it saves less than from T = 1.
     EXPECT_LT(samples["light_steps_falloff 1 from T 0.1, deep_shadow_map off"], samples[mapOff]) << scenario;
-    EXPECT_GT(samples["light_steps_falloff 1 from T 0.1, deep_shadow_map off"], samples["light_steps_falloff 1, deep_shadow_map off"]) << scenario;
+    EXPECT_GT(samples["light_steps_falloff 1 from T 0.1, deep_shadow_map off"],
+              samples["light_steps_falloff 1, deep_shadow_map off"])
+        << scenario;
     // The growing view steps take fewer samples than the fixed-step baseline at noon; at the sunset the
     // default light march takes up to 4x the baseline's 6 light steps along the long ways (steps per
     // layer thickness), so it takes more.
@@ -188,12 +198,15 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     EXPECT_LT(marchSamples["resolution_divisor 4"], 0.4 * marchSamples["resolution_divisor 2"]) << scenario;
     // Reprojected frames march 1 in 4 and 1 in 16 pixels.
     EXPECT_LT(marchSamples["temporal_update 4 (sequence)"], 0.3 * marchSamples["default"]) << scenario;
-    EXPECT_LT(marchSamples["temporal_update 16 (sequence)"], 0.3 * marchSamples["temporal_update 4 (sequence)"]) << scenario;
+    EXPECT_LT(marchSamples["temporal_update 16 (sequence)"], 0.3 * marchSamples["temporal_update 4 (sequence)"])
+        << scenario;
   }
   std::ifstream csv(config.outDir / "clouds_timing.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_EQ(header, "scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,rel_rmse_vs_default,bias_vs_default,device");
+  EXPECT_EQ(
+      header,
+      "scenario,setting,width,height,cloud_ms,frame_ms,samples_per_pixel,rel_rmse_vs_default,bias_vs_default,device");
   // Every row has the header's 10 fields: settings with commas ("..., temporal_update 16 (sequence)")
   // are quoted, as the device is.
   int lines = 0;

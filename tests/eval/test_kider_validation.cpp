@@ -62,7 +62,8 @@ std::vector<RingSample> symmetricSky(double sunAzimuth, double sunZenith) {
       const double cosGamma = std::sin(elevation) * std::cos(sunZenith) +
                               std::cos(elevation) * std::sin(sunZenith) * std::cos(azimuth - sunAzimuth);
       const double gamma = std::acos(std::clamp(cosGamma, -1.0, 1.0));
-      const double radiance = (1.0 + 8.0 * std::exp(-3.0 * gamma) + std::pow(cosGamma, 2)) * (1.0 + 0.5 * std::cos(elevation));
+      const double radiance =
+          (1.0 + 8.0 * std::exp(-3.0 * gamma) + std::pow(cosGamma, 2)) * (1.0 + 0.5 * std::cos(elevation));
       samples.push_back({azimuth, elevation, std::log(radiance)});
     }
   return samples;
@@ -127,7 +128,8 @@ std::filesystem::path shippedCapture() {
 }
 
 TEST(KiderConventions, ReadsAShippedCapture) {
-  ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
+  ASSERT_TRUE(std::filesystem::exists(shippedCapture()))
+      << "the shipped Kider capture is missing: " << shippedCapture();
   const KiderCapture capture = readKiderCapture(shippedCapture(), -4.0);
   ASSERT_EQ(capture.samples.size(), 81u);
   EXPECT_EQ(capture.utc, "2013-05-27T15:45:00.000Z");
@@ -153,7 +155,8 @@ class KiderValidationTest : public test::GpuTest {};
 // GPU image. Bound: per-capture RMSE < 30e-3 W m^-2 sr^-1 nm^-1, generous (this capture gives
 // about 10; the published models range from 11.2 to 88.2 in total).
 TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
-  ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
+  ASSERT_TRUE(std::filesystem::exists(shippedCapture()))
+      << "the shipped Kider capture is missing: " << shippedCapture();
   const auto data = dataDirWithTheShippedCapture("kider-one-capture");
   KiderValidationSettings settings;
   settings.quality.samplesPerPixel = 64;
@@ -163,7 +166,7 @@ TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
   const KiderCaptureResult& c = result.captures[0];
   EXPECT_EQ(c.directions.size(), 81u);
   EXPECT_NEAR(c.sunZenithDeg, 26.6, 0.2);
-  EXPECT_EQ(c.azimuthRefit, "published");  // the shipped capture is on the scanner's layout
+  EXPECT_EQ(c.azimuthRefit, "published");                      // the shipped capture is on the scanner's layout
   EXPECT_LE(c.sunAzimuthDeg, c.sunAzimuthComputedDeg + 1e-9);  // README: the fit lies below the computed one
   EXPECT_GE(c.sunAzimuthDeg, c.sunAzimuthComputedDeg - 20.0 - 1e-9);
   EXPECT_TRUE(std::isfinite(c.rmseSpectral));
@@ -185,7 +188,8 @@ TEST_F(KiderValidationTest, OneShippedCaptureRunsWithAFiniteBoundedError) {
 // wavelength by reading / bin value (the reference is deterministic per direction), the luminances
 // are untouched, and the scale is the G-173 reading over the atmosphere's bin value.
 TEST(KiderValidation, TheInstrumentSolarSpectrumRescalesTheComparedSpectra) {
-  ASSERT_TRUE(std::filesystem::exists(shippedCapture())) << "the shipped Kider capture is missing: " << shippedCapture();
+  ASSERT_TRUE(std::filesystem::exists(shippedCapture()))
+      << "the shipped Kider capture is missing: " << shippedCapture();
   const auto data = dataDirWithTheShippedCapture("kider-solar-spectrum");
   KiderValidationSettings bands;
   bands.quality.samplesPerPixel = 16;
@@ -209,7 +213,8 @@ TEST(KiderValidation, TheInstrumentSolarSpectrumRescalesTheComparedSpectra) {
   }
   EXPECT_DOUBLE_EQ(kiderSolarSpectrumScale(bands, 395.25), 1.0);
   EXPECT_NEAR(kiderSolarSpectrumScale(instrument, 395.25),
-              astmG173ExtraterrestrialSeenWithResolution(395.25, 3.0) / solarIrradianceTopOfAtmosphere()(395.25), 1e-12);
+              astmG173ExtraterrestrialSeenWithResolution(395.25, 3.0) / solarIrradianceTopOfAtmosphere()(395.25),
+              1e-12);
   // Bad widths are refused before anything renders.
   KiderValidationSettings wide = instrument;
   wide.instrumentFwhmNm = 9.0;

@@ -66,7 +66,8 @@ class TileCoverageTest : public test::GpuTest {};
 
 TEST_F(TileCoverageTest, EveryPixelWrittenExactlyOnce) {
   Context& gpu = context();
-  ComputePipeline coverage(gpu, {.shader = "gpu/tile_coverage_test", .bindings = {BindingType::StorageBuffer},
+  ComputePipeline coverage(gpu, {.shader = "gpu/tile_coverage_test",
+                                 .bindings = {BindingType::StorageBuffer},
                                  .pushConstantSize = sizeof(TileDispatch)});
   for (Size size : kSizes) {
     // Row order, interleaved, and a grid forced to wrap into rows of 5 groups (as past the device's

@@ -42,8 +42,8 @@ TEST_F(NightFunctionsTest, MoonDiscAndNightSkyAgreeBetweenGpuFloatAndCpuDouble) 
     glm::vec3 direction;
     if (i % 2 == 0) {  // around the Moon's disc, up to 1.2 radii
       const double r = 1.2 * std::sqrt(unit(rng)), phi = 2 * 3.14159265358979 * unit(rng);
-      direction = glm::normalize(glm::vec3(float(r * std::cos(phi) * std::tan(rho)),
-                                           float(r * std::sin(phi) * std::tan(rho)), 1.0f));
+      direction = glm::normalize(
+          glm::vec3(float(r * std::cos(phi) * std::tan(rho)), float(r * std::sin(phi) * std::tan(rho)), 1.0f));
     } else {  // anywhere on the sphere
       const double z = 2 * unit(rng) - 1, phi = 2 * 3.14159265358979 * unit(rng), s = std::sqrt(1 - z * z);
       direction = glm::vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z));
@@ -52,7 +52,8 @@ TEST_F(NightFunctionsTest, MoonDiscAndNightSkyAgreeBetweenGpuFloatAndCpuDouble) 
     inputs.emplace_back(direction, wavelength);
     const float alpha = float(3.1 * unit(rng));
     const double scale = shared::moonLitRadianceScale(0.3, rho, alpha);
-    inputs.emplace_back(float(2 * unit(rng) - 1), alpha, float(scale), float(shared::moonEarthshineRadiance(scale, alpha)));
+    inputs.emplace_back(float(2 * unit(rng) - 1), alpha, float(scale),
+                        float(shared::moonEarthshineRadiance(scale, alpha)));
   }
   ComputePipeline pipeline(context(), {.shader = "gpu/night_functions_test",
                                        .bindings = {BindingType::StorageBuffer, BindingType::StorageBuffer},
@@ -74,8 +75,8 @@ TEST_F(NightFunctionsTest, MoonDiscAndNightSkyAgreeBetweenGpuFloatAndCpuDouble) 
     const double wavelength = inputs[2 * i].w, cosZenith = inputs[2 * i + 1].x, alpha = inputs[2 * i + 1].y;
     const glm::dvec3 moonDir(0, 0, 1), sunFromMoon(std::sin(alpha), 0.0, -std::cos(alpha));
     double cpu[4];
-    cpu[0] = shared::moonDiscRadiance(direction, moonDir, sunFromMoon, rho, inputs[2 * i + 1].z, inputs[2 * i + 1].w,
-                                      1.0);
+    cpu[0] =
+        shared::moonDiscRadiance(direction, moonDir, sunFromMoon, rho, inputs[2 * i + 1].z, inputs[2 * i + 1].w, 1.0);
     cpu[1] = shared::airglowSpectralRadiance(wavelength, 10.0, cosZenith, observer, planet, 1.0);
     cpu[2] = shared::zodiacalSolarSpectrumFactor(direction);
     cpu[3] = shared::stellarBackgroundSolarSpectrumFactor(direction.z);
@@ -99,9 +100,10 @@ TEST_F(NightFunctionsTest, MoonDiscAndNightSkyAgreeBetweenGpuFloatAndCpuDouble) 
           << "output " << k << " sample " << i << ": gpu " << g << ", cpu " << cpu[k];
     }
   }
-  std::printf("worst relative error, float vs double: moon disc %.1e (%d), airglow %.1e (%d), zodiacal %.1e (%d), "
-              "stellar %.1e (%d)\n",
-              worst[0], compared[0], worst[1], compared[1], worst[2], compared[2], worst[3], compared[3]);
+  std::printf(
+      "worst relative error, float vs double: moon disc %.1e (%d), airglow %.1e (%d), zodiacal %.1e (%d), "
+      "stellar %.1e (%d)\n",
+      worst[0], compared[0], worst[1], compared[1], worst[2], compared[2], worst[3], compared[3]);
 }
 
 }  // namespace

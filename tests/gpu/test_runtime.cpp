@@ -38,8 +38,7 @@ TEST_F(GpuRuntimeTest, ListsDevicesAndDescribesTheChosenOne) {
   EXPECT_EQ(gpu.isCpu(), gpu.deviceType() == DeviceType::Cpu);
   // A GPU is preferred over the CPU whenever one is usable.
   bool anyGpu = false;
-  for (const auto& d : devices)
-    anyGpu |= d.type != DeviceType::Cpu && d.apiVersion >= VK_API_VERSION_1_3;
+  for (const auto& d : devices) anyGpu |= d.type != DeviceType::Cpu && d.apiVersion >= VK_API_VERSION_1_3;
   if (!anyGpu) {
     EXPECT_TRUE(gpu.isCpu());
   }
@@ -98,7 +97,10 @@ TEST(GpuValidation, MissingLayerIsRuntimeErrorNamingThePackage) {
   } catch (const RuntimeError& e) {
     message = e.what();
   }
-  if (previous) setenv("VK_LAYER_PATH", saved.c_str(), 1); else unsetenv("VK_LAYER_PATH");
+  if (previous)
+    setenv("VK_LAYER_PATH", saved.c_str(), 1);
+  else
+    unsetenv("VK_LAYER_PATH");
   EXPECT_NE(message.find("vulkan-validationlayers"), std::string::npos) << message;
 }
 
@@ -122,8 +124,8 @@ TEST_F(GpuRuntimeTest, BufferRoundTripDeviceAndHost) {
 }
 
 TEST_F(GpuRuntimeTest, Image2DRoundTripEveryFormat) {
-  for (Format format : {Format::RGBA32F, Format::RGBA16F, Format::RG32F, Format::RG16F, Format::R32F,
-                        Format::R16F, Format::RGBA8}) {
+  for (Format format :
+       {Format::RGBA32F, Format::RGBA16F, Format::RG32F, Format::RG16F, Format::R32F, Format::R16F, Format::RGBA8}) {
     SCOPED_TRACE(formatName(format));
     Image image(context(), {.width = 37, .height = 19, .format = format, .name = "round trip 2D"});
     std::vector<float> values(image.texelCount() * channelCount(format));
@@ -158,8 +160,10 @@ TEST_F(GpuRuntimeTest, SpecializationConstantsReachTheShader) {
   Context& gpu = context();
   const uint32_t count = 1000;
   auto run = [&](std::vector<uint32_t> constants) {
-    ComputePipeline kernel(gpu, {.shader = "gpu/specialization_test", .bindings = {BindingType::StorageBuffer},
-                                 .pushConstantSize = sizeof(uint32_t), .specialization = std::move(constants)});
+    ComputePipeline kernel(gpu, {.shader = "gpu/specialization_test",
+                                 .bindings = {BindingType::StorageBuffer},
+                                 .pushConstantSize = sizeof(uint32_t),
+                                 .specialization = std::move(constants)});
     Buffer values(gpu, count * 4, BufferUsage::Storage, MemoryLocation::Device, "specialized");
     CommandList list(gpu);
     list.bind(kernel, {values});
@@ -183,7 +187,8 @@ TEST_F(GpuRuntimeTest, SpecializationConstantsReachTheShader) {
 
 TEST_F(GpuRuntimeTest, FillKernelAndTimestamps) {
   Context& gpu = context();
-  ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test", .bindings = {BindingType::StorageBuffer},
+  ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test",
+                             .bindings = {BindingType::StorageBuffer},
                              .pushConstantSize = sizeof(FillPush)});
   const uint32_t count = 100003;
   Buffer values(gpu, count * 4, BufferUsage::Storage, MemoryLocation::Device, "fill");
@@ -233,7 +238,8 @@ struct FillImagePush {
 
 TEST_F(GpuRuntimeTest, FillImageKernelThroughTiles) {
   Context& gpu = context();
-  ComputePipeline fill(gpu, {.shader = "gpu/fill_image_test", .bindings = {BindingType::StorageImage},
+  ComputePipeline fill(gpu, {.shader = "gpu/fill_image_test",
+                             .bindings = {BindingType::StorageImage},
                              .pushConstantSize = sizeof(FillImagePush)});
   for (DispatchOrder order : {DispatchOrder::RowMajor, DispatchOrder::Interleaved}) {
     Image image(gpu, {.width = 131, .height = 45, .format = Format::RGBA32F, .name = "filled"});
@@ -300,7 +306,8 @@ TEST_F(GpuRuntimeTest, SampledTexturesAtTexelCentres) {
 TEST_F(GpuRuntimeTest, WrongResourcesAreRejected) {
   Context& gpu = context();
   EXPECT_THROW(ComputePipeline(gpu, {.shader = "gpu/no_such_shader"}), RuntimeError);
-  ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test", .bindings = {BindingType::StorageBuffer},
+  ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test",
+                             .bindings = {BindingType::StorageBuffer},
                              .pushConstantSize = sizeof(FillPush)});
   Image image(gpu, {.width = 8, .height = 8, .name = "wrong"});
   Buffer uniformOnly(gpu, 64, BufferUsage::Uniform, MemoryLocation::Host);
@@ -320,7 +327,8 @@ TEST(GpuPipelineCache, WrittenOnExitReadBackAndCorruptFilesIgnored) {
   std::filesystem::path file;
   {
     Context gpu(options);
-    ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test", .bindings = {BindingType::StorageBuffer},
+    ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test",
+                               .bindings = {BindingType::StorageBuffer},
                                .pushConstantSize = sizeof(FillPush)});
     file = gpu.pipelineCache().file();
     EXPECT_FALSE(gpu.pipelineCache().loadedFromDisk());
@@ -336,7 +344,8 @@ TEST(GpuPipelineCache, WrittenOnExitReadBackAndCorruptFilesIgnored) {
     std::ofstream(file, std::ios::binary | std::ios::trunc) << junk;
     Context gpu(options);
     EXPECT_FALSE(gpu.pipelineCache().loadedFromDisk());
-    ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test", .bindings = {BindingType::StorageBuffer},
+    ComputePipeline fill(gpu, {.shader = "gpu/fill_buffer_test",
+                               .bindings = {BindingType::StorageBuffer},
                                .pushConstantSize = sizeof(FillPush)});
     EXPECT_TRUE(gpu.validationMessages().empty());
   }

@@ -39,8 +39,8 @@ struct Push {
 
 // Error bounds of the float evaluation for one sphere (see the top of the file).
 struct SphereErrors {
-  double discriminant = 0;  // |δΔ|
-  double sum = 0;           // a root formed as |b| + s
+  double discriminant = 0;      // |δΔ|
+  double sum = 0;               // a root formed as |b| + s
   double quotientRelative = 0;  // relative error of a root formed as c / q
   double root(double t, bool formedAsSum) const { return formedAsSum ? sum : std::abs(t) * quotientRelative; }
   double anyRoot(double t) const { return std::max(sum, std::abs(t) * quotientRelative); }
@@ -70,7 +70,7 @@ std::vector<glm::vec2> makeInputs() {
   };
   std::vector<glm::vec2> inputs;
   auto add = [&](double r, double mu) { inputs.emplace_back(float(r), float(std::clamp(mu, -1.0, 1.0))); };
-  for (int i = 0; i < 2000; ++i) add(logUniform(6360e3, 1e8), unit(rng) * 2 - 1);  // anywhere
+  for (int i = 0; i < 2000; ++i) add(logUniform(6360e3, 1e8), unit(rng) * 2 - 1);         // anywhere
   for (int i = 0; i < 1000; ++i) add(kBottom + logUniform(0.1, 1e5), unit(rng) * 2 - 1);  // near the ground
   for (int i = 0; i < 1000; ++i) {  // grazing the ground, from low and from far
     double r = i % 2 ? kBottom + logUniform(0.1, 1e5) : logUniform(6360e3, 1e8);
@@ -169,10 +169,11 @@ TEST_F(SharedFunctionsTest, GeometryAgreesBetweenGpuFloatAndCpuDouble) {
       check("rayShellSegment exit", i, g[6], exit, shellBound);
     }
   }
-  std::printf("%u samples, %d comparisons; worst error / allowed = %.3f; worst relative error of the top "
-              "distance away from tangency = %.2e; tangent within float precision (booleans not compared): "
-              "ground %d, shell %d\n",
-              count, compared, worstRatio, worstBulkRelative, ambiguousGround, ambiguousShell);
+  std::printf(
+      "%u samples, %d comparisons; worst error / allowed = %.3f; worst relative error of the top "
+      "distance away from tangency = %.2e; tangent within float precision (booleans not compared): "
+      "ground %d, shell %d\n",
+      count, compared, worstRatio, worstBulkRelative, ambiguousGround, ambiguousShell);
   EXPECT_LT(worstBulkRelative, 2e-6);
   // Grazing within 1e-5 rad is often undecidable in float from far away (mu itself is only good to
   // ~6e-8, ~1e-6 rad at r = 1e8 m); most grazing rays from near the ground are still decided.

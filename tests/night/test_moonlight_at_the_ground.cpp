@@ -56,10 +56,11 @@ TEST(Moonlight, FullMoonNearTheZenithGivesAboutAThirdOfALux) {
                                                    astro::GeodeticLocation::fromDegrees(c.latitude, c.longitude, 0.0));
     ASSERT_LT(moon.zenith, 0.5 * kDegree);
     const double ground = groundIlluminance(moon);
-    std::printf("%s: distance %.0f km, phase angle %.2f deg, %.3f lx above the air, %.3f lx at the ground "
-                "(transmittance %.3f)\n",
-                c.utc, moon.distance / 1e3, moon.phaseAngle / kDegree, moon.illuminanceLux, ground,
-                ground / moon.illuminanceLux);
+    std::printf(
+        "%s: distance %.0f km, phase angle %.2f deg, %.3f lx above the air, %.3f lx at the ground "
+        "(transmittance %.3f)\n",
+        c.utc, moon.distance / 1e3, moon.phaseAngle / kDegree, moon.illuminanceLux, ground,
+        ground / moon.illuminanceLux);
     // The published range for a full Moon near the zenith on a clear night: 0.25-0.36 lx (K&S 1991's 0.31 lx
     // above the air at the mean distance, 0.85-0.9 transmitted; up to 14 % more at perigee).
     EXPECT_GT(ground, 0.25) << c.utc;  // measured 0.263 (apogee side)

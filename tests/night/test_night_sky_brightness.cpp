@@ -5,11 +5,11 @@
 
 #include <glm/geometric.hpp>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <vector>
 #include <numbers>
+#include <vector>
 
 #include "astro/moon.h"
 #include "astro/night_sky.h"
@@ -48,10 +48,11 @@ TEST(NightSky, DarkSiteZenithIsLeinertsSkyWithItsShares) {
   const NightSkyTerms l = nightSkyLuminance(frame, {0.0, 0.0, 1.0}, kPlanetRadius, kPlanetRadius);
   const double total = l.total();
   const double magnitude = surfaceBrightnessMagnitude(total);
-  std::printf("zenith: %.3e cd/m^2 = %.2f mag/arcsec^2; airglow %.1f %% (%.0f S10), zodiacal %.1f %% (%.0f S10), "
-              "stars %.1f %% (%.0f S10)\n",
-              total, magnitude, 100 * l.airglow / total, l.airglow / shared::kS10Luminance, 100 * l.zodiacal / total,
-              l.zodiacal / shared::kS10Luminance, 100 * l.stellar / total, l.stellar / shared::kS10Luminance);
+  std::printf(
+      "zenith: %.3e cd/m^2 = %.2f mag/arcsec^2; airglow %.1f %% (%.0f S10), zodiacal %.1f %% (%.0f S10), "
+      "stars %.1f %% (%.0f S10)\n",
+      total, magnitude, 100 * l.airglow / total, l.airglow / shared::kS10Luminance, 100 * l.zodiacal / total,
+      l.zodiacal / shared::kS10Luminance, 100 * l.stellar / total, l.stellar / shared::kS10Luminance);
   EXPECT_GT(magnitude, 21.6);
   EXPECT_LT(magnitude, 22.0);
   EXPECT_GT(total, 1.7e-4);
@@ -170,8 +171,8 @@ TEST(NightSky, MoonlessAstronomicalNightsAtADarkSiteOverAYear) {
 }
 
 TEST(NightSky, FiniteAndNonNegativeEverywhere) {
-  const NightSkyFrame frame = nightSkyFrame(makeAstroTime("2024-06-01T23:30:00Z"),
-                                            GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0));
+  const NightSkyFrame frame =
+      nightSkyFrame(makeAstroTime("2024-06-01T23:30:00Z"), GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0));
   for (double z = 0.0; z <= 180.0; z += 7.5)
     for (double a = 0.0; a < 360.0; a += 15.0)
       for (double r : {kPlanetRadius, kPlanetRadius + 5e5}) {

@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,7 +34,8 @@ namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
-shared::CameraParameters makeCamera(double yawDeg, double pitchDeg, double fovDeg, int projection, int width, int height) {
+shared::CameraParameters makeCamera(double yawDeg, double pitchDeg, double fovDeg, int projection, int width,
+                                    int height) {
   shared::CameraParameters c{};
   shared::cameraBasis(yawDeg * kDegree, pitchDeg * kDegree, 0.0, c.forward, c.right, c.up);
   c.fov = fovDeg * kDegree;
@@ -90,7 +91,8 @@ TEST(AerialPerspectiveLayout, ColumnDirectionsForEveryProjection) {
   const shared::CameraParameters persp = makeCamera(30.0, 10.0, 75.0, shared::kProjectionPerspective, 640, 360);
   bool valid = false;
   const glm::dvec2 pixel = shared::aerialColumnPixel(5, 9, 32, 32, 640, 360);
-  EXPECT_LT(glm::length(shared::aerialColumnDirection(persp, pixel) - shared::cameraRayDirection(persp, pixel, valid)), 1e-12);
+  EXPECT_LT(glm::length(shared::aerialColumnDirection(persp, pixel) - shared::cameraRayDirection(persp, pixel, valid)),
+            1e-12);
   // Equirectangular: the left and right edges are the same direction (the seam interpolates).
   const shared::CameraParameters equi = makeCamera(0.0, 0.0, 360.0, shared::kProjectionEquirectangular, 512, 256);
   for (int j = 1; j < 31; ++j) {
@@ -124,7 +126,7 @@ class AerialPerspectiveVolumeTest : public test::GpuTest {
   };
 
   struct Outcome {
-    double maxLightError = 0.0;   // |volume - march| / max(|march|, floor), sky-like and aerosol tiles
+    double maxLightError = 0.0;          // |volume - march| / max(|march|, floor), sky-like and aerosol tiles
     double maxTransmittanceError = 0.0;  // |volume - march|
     double maxLight = 0.0;
     size_t compared = 0;
@@ -166,7 +168,8 @@ class AerialPerspectiveVolumeTest : public test::GpuTest {
           for (int tile = 0; tile < tiles; ++tile)
             for (int ch = 0; ch < 3; ++ch) {
               const double v = texel(tile, i, j, k, ch);
-              EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << c.name << " tile " << tile << " froxel " << i << "," << j << "," << k;
+              EXPECT_TRUE(std::isfinite(v) && v >= 0.0)
+                  << c.name << " tile " << tile << " froxel " << i << "," << j << "," << k;
               if (tile == 2) {
                 EXPECT_LE(v, 1.0) << c.name;
               }
@@ -184,22 +187,24 @@ class AerialPerspectiveVolumeTest : public test::GpuTest {
     for (int j : columns)
       for (int i : columns)
         for (int k : slices) {
-          const glm::dvec3 dir = shared::aerialColumnDirection(camera, shared::aerialColumnPixel(i, j, C, R, width, height));
+          const glm::dvec3 dir =
+              shared::aerialColumnDirection(camera, shared::aerialColumnPixel(i, j, C, R, width, height));
           const double depth = shared::aerialSliceDepth(k, N, settings.maxDistance_m);
-          rays.insert(rays.end(), {float(origin.x), float(origin.y), float(origin.z), float(depth), float(dir.x), float(dir.y),
-                                   float(dir.z), 4096.0f});
+          rays.insert(rays.end(), {float(origin.x), float(origin.y), float(origin.z), float(depth), float(dir.x),
+                                   float(dir.y), float(dir.z), 4096.0f});
           froxels.push_back({i, j, k});
         }
     const uint32_t count = uint32_t(froxels.size());
-    gpu::Buffer rayBuffer(context(), rays.size() * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host, "rays");
+    gpu::Buffer rayBuffer(context(), rays.size() * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host,
+                          "rays");
     rayBuffer.upload(rays);
-    gpu::Buffer results(context(), size_t(count) * 3 * 4 * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Host,
-                        "results");
-    gpu::ComputePipeline probe(context(), {"sky/air_march_test",
-                                           {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                                            gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                                            gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
-                                           20});
+    gpu::Buffer results(context(), size_t(count) * 3 * 4 * sizeof(float), gpu::BufferUsage::Storage,
+                        gpu::MemoryLocation::Host, "results");
+    gpu::ComputePipeline probe(
+        context(), {"sky/air_march_test",
+                    {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                     gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer},
+                    20});
     struct {
       float sun[4];
       uint32_t count;
@@ -232,15 +237,15 @@ class AerialPerspectiveVolumeTest : public test::GpuTest {
           if (tile < 2) {
             const double e = std::abs(v - m) / std::max(std::abs(m), floor);
             out.maxLightError = std::max(out.maxLightError, e);
-          }
-          else
+          } else
             out.maxTransmittanceError = std::max(out.maxTransmittanceError, std::abs(v - m));
         }
       ++out.compared;
     }
-    std::printf("%d steps/slice, rise %4.0f m, %-40s max light error %.2e (of max %.3g), max |dT| %.2e over %zu froxels\n", settings.stepsPerSlice,
-                settings.maxStepRise_m, c.name.c_str(),
-                out.maxLightError, out.maxLight, out.maxTransmittanceError, out.compared);
+    std::printf(
+        "%d steps/slice, rise %4.0f m, %-40s max light error %.2e (of max %.3g), max |dT| %.2e over %zu froxels\n",
+        settings.stepsPerSlice, settings.maxStepRise_m, c.name.c_str(), out.maxLightError, out.maxLight,
+        out.maxTransmittanceError, out.compared);
     return out;
   }
 };
@@ -304,8 +309,10 @@ TEST(AerialPerspectivePlan, OnlyCloudsThatReadItRunThePass) {
   EXPECT_FALSE(planRender(Scene::parse(R"({"clouds": {"layers": []}})", "<t>")).has("sky/aerial_perspective_volume"));
   const std::string cloudy = R"({"clouds": {"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 3000}]}})";
   EXPECT_TRUE(planRender(Scene::parse(cloudy, "<t>")).has("sky/aerial_perspective_volume"));  // the default: volume
-  EXPECT_FALSE(planRender(Scene::parse(cloudy, "<t>", {"/clouds/aerial_perspective=march"})).has("sky/aerial_perspective_volume"));
-  EXPECT_FALSE(planRender(Scene::parse(cloudy, "<t>", {"/clouds/aerial_perspective=off"})).has("sky/aerial_perspective_volume"));
+  EXPECT_FALSE(planRender(Scene::parse(cloudy, "<t>", {"/clouds/aerial_perspective=march"}))
+                   .has("sky/aerial_perspective_volume"));
+  EXPECT_FALSE(
+      planRender(Scene::parse(cloudy, "<t>", {"/clouds/aerial_perspective=off"})).has("sky/aerial_perspective_volume"));
   PlanOptions off;
   off.aerialPerspective = AerialPerspective::Off;
   EXPECT_FALSE(planRender(Scene::parse(cloudy, "<t>"), off).has("sky/aerial_perspective_volume"));

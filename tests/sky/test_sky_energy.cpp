@@ -19,11 +19,11 @@ class SkyEnergyTest : public test::GpuTest {};
 
 TEST_F(SkyEnergyTest, WhiteGroundNoAbsorptionGainsNoEnergy) {
   for (const char* zenith : {"30", "80"}) {
-    Scene scene = Scene::parse("{}", "<test>",
-                               {"/atmosphere/ground_albedo=1", "/atmosphere/ozone/column_dobson=0",
-                                "/atmosphere/mie/single_scattering_albedo=1", std::string("/sun/zenith_deg=") + zenith,
-                                "/camera/projection=equirectangular", "/camera/width=16", "/camera/height=8",
-                                "/location/height_m=0"});
+    Scene scene = Scene::parse(
+        "{}", "<test>",
+        {"/atmosphere/ground_albedo=1", "/atmosphere/ozone/column_dobson=0",
+         "/atmosphere/mie/single_scattering_albedo=1", std::string("/sun/zenith_deg=") + zenith,
+         "/camera/projection=equirectangular", "/camera/width=16", "/camera/height=8", "/location/height_m=0"});
     SkyRenderer renderer(context());
     RenderResult fast = renderer.render(scene);
 
@@ -59,9 +59,10 @@ namespace {
 TEST_F(SkyEnergyTest, NoSeamAtTheTopOfTheAtmosphere) {
   SkyRenderer renderer(context());
   auto render = [&](double altitude, SkyMethod method) {
-    Scene scene = Scene::parse("{}", "<test>",
-                               {"/location/height_m=0", "/camera/height_above_ground_m=" + std::to_string(altitude),
-                                "/camera/pitch_deg=-10", "/sun/zenith_deg=50", "/camera/width=24", "/camera/height=16"});
+    Scene scene =
+        Scene::parse("{}", "<test>",
+                     {"/location/height_m=0", "/camera/height_above_ground_m=" + std::to_string(altitude),
+                      "/camera/pitch_deg=-10", "/sun/zenith_deg=50", "/camera/width=24", "/camera/height=16"});
     SkyRenderOptions options;
     options.method = method;
     RenderResult r = renderer.render(scene, options);

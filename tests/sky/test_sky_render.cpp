@@ -50,8 +50,9 @@ TEST_F(SkyRenderTest, DefaultSceneIsBrightDaylight) {
 TEST_F(SkyRenderTest, EverySunZenithIsFiniteAndDarkensAtNight) {
   double previous = 1e30;
   for (int zenith = 0; zenith <= 180; zenith += 1) {
-    RenderResult r = render({"/sun/zenith_deg=" + std::to_string(zenith), "/sun/azimuth_deg=90",
-                             "/camera/projection=equirectangular"}, 16, 8);
+    RenderResult r = render(
+        {"/sun/zenith_deg=" + std::to_string(zenith), "/sun/azimuth_deg=90", "/camera/projection=equirectangular"}, 16,
+        8);
     expectFiniteNonNegative(r.image, "sun zenith " + std::to_string(zenith));
     double mean = meanLuminance(r.image);
     // The whole-sphere mean falls as the sun sinks (a small tolerance for the sun at the horizon).
@@ -64,7 +65,8 @@ TEST_F(SkyRenderTest, EverySunZenithIsFiniteAndDarkensAtNight) {
 TEST_F(SkyRenderTest, AnyCameraAltitudeIsFinite) {
   for (const char* height : {"-100", "0", "1", "10000", "100000", "1000000", "100000000"}) {
     RenderResult r = render({std::string("/camera/height_above_ground_m=") + height, "/camera/pitch_deg=-30",
-                             "/camera/projection=equirectangular", "/sun/zenith_deg=60"}, 32, 16);
+                             "/camera/projection=equirectangular", "/sun/zenith_deg=60"},
+                            32, 16);
     expectFiniteNonNegative(r.image, std::string("camera height ") + height);
   }
 }
@@ -133,7 +135,8 @@ class SkyTableCacheTest : public test::GpuTest {};
 // A second renderer (nothing in memory) reads the tables from the disk cache and renders the same
 // bits as the renderer that computed them.
 TEST_F(SkyTableCacheTest, DiskCacheGivesIdenticalPixels) {
-  Scene scene = Scene::parse("{}", "<test>", {"/camera/width=24", "/camera/height=16", "/atmosphere/ground_albedo=0.37"});
+  Scene scene =
+      Scene::parse("{}", "<test>", {"/camera/width=24", "/camera/height=16", "/atmosphere/ground_albedo=0.37"});
   SkyRenderer first(context());
   RenderResult a = first.render(scene);
   EXPECT_EQ(a.tablesSource, "computed");
@@ -174,8 +177,9 @@ class SkyStabilityTest : public test::GpuTest {
 TEST_F(SkyStabilityTest, ThickHazeAndTransmittanceInUnitRange) {
   SkyRenderer renderer(context());
   for (const char* beta : {"0.5328", "0.005328"}) {
-    RenderResult r = render(renderer, {std::string("/atmosphere/mie/angstrom_beta=") + beta, "/sun/zenith_deg=70",
-                                       "/camera/projection=equirectangular"},
+    RenderResult r = render(renderer,
+                            {std::string("/atmosphere/mie/angstrom_beta=") + beta, "/sun/zenith_deg=70",
+                             "/camera/projection=equirectangular"},
                             {}, 32, 16);
     EXPECT_TRUE(finiteNonNegative(r.image)) << "beta " << beta;
   }
@@ -201,8 +205,9 @@ TEST_F(SkyStabilityTest, GrazingRaysAreFinite) {
     for (SkyMethod method : {SkyMethod::SkyViewLut, SkyMethod::PerPixel}) {
       SkyRenderOptions options;
       options.method = method;
-      RenderResult r = render(renderer, {"/location/height_m=0", "/camera/pitch_deg=" + std::to_string(pitch),
-                                         "/camera/fov_deg=0.001", "/sun/zenith_deg=89"},
+      RenderResult r = render(renderer,
+                              {"/location/height_m=0", "/camera/pitch_deg=" + std::to_string(pitch),
+                               "/camera/fov_deg=0.001", "/sun/zenith_deg=89"},
                               options, 3, 3);
       EXPECT_TRUE(finiteNonNegative(r.image)) << "offset " << offset;
     }
@@ -230,4 +235,3 @@ TEST_F(SkyStabilityTest, RadianceConvergesAsStepsGrow) {
 
 }  // namespace
 }  // namespace firmament
-

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -125,8 +125,10 @@ TEST_F(SkyTablesTest, OrdersConverge) {
 TEST_F(SkyTablesTest, AnyCameraAltitudeIsFiniteAndNonNegative) {
   for (MultipleScattering form : kForms)
     for (const char* height : {"-100", "0", "10000", "100000", "1000000", "100000000"}) {
-      RenderResult r = render(form, {std::string("/camera/height_above_ground_m=") + height, "/camera/pitch_deg=-30",
-                                     "/camera/projection=equirectangular", "/sun/zenith_deg=60"}, 32, 16);
+      RenderResult r = render(form,
+                              {std::string("/camera/height_above_ground_m=") + height, "/camera/pitch_deg=-30",
+                               "/camera/projection=equirectangular", "/sun/zenith_deg=60"},
+                              32, 16);
       EXPECT_EQ(badPixels(r.image), 0u) << name(form) << " camera height " << height;
       // From 1e8 m the planet (3.6 deg wide) falls between the pixels: only below 1000 km is it seen.
       if (std::atof(height) <= 1e6) {
@@ -149,8 +151,10 @@ TEST_F(SkyTablesTest, TwilightHasNoSteps) {
     std::vector<double> mean;
     for (int i = 0; i <= 50; ++i) {
       double zenith = 85.0 + 0.5 * i;
-      RenderResult r = render(form, {"/sun/zenith_deg=" + std::to_string(zenith), "/sun/azimuth_deg=90",
-                                     "/camera/yaw_deg=90", "/camera/pitch_deg=8", "/camera/fov_deg=90"}, 24, 12);
+      RenderResult r = render(form,
+                              {"/sun/zenith_deg=" + std::to_string(zenith), "/sun/azimuth_deg=90", "/camera/yaw_deg=90",
+                               "/camera/pitch_deg=8", "/camera/fov_deg=90"},
+                              24, 12);
       ASSERT_EQ(badPixels(r.image), 0u) << name(form) << " sun zenith " << zenith;
       mean.push_back(meanLuminance(r.image));
     }

@@ -4,9 +4,9 @@
 // their coordinates; every bad input is an InputError that says what is wrong.
 #include <gtest/gtest.h>
 
+#include <gdal_priv.h>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/UTMUPS.hpp>
-#include <gdal_priv.h>
 
 #include <cmath>
 #include <cstring>

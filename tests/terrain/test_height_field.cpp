@@ -20,7 +20,8 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 TEST(HeightField, BilinearReproducesSamplesAndLinearFields) {
   // h = 100 + 0.3 x − 0.2 y is linear, so bilinear interpolation is exact everywhere inside.
-  const HeightField f = makeField(33, 500.0, [](double x, double y) { return 100.0 + 0.25 * x - 0.125 * y; }, -5.0);
+  const HeightField f = makeField(
+      33, 500.0, [](double x, double y) { return 100.0 + 0.25 * x - 0.125 * y; }, -5.0);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-500.0, 500.0);
   for (int k = 0; k < 1000; ++k) {
@@ -41,7 +42,8 @@ TEST(HeightField, SurfaceNormalIsTheCrossProductOfTheSurfaceTangents) {
   const double s = 0.4, t = -0.7;
   auto h = [&](double x, double y) { return 800.0 + s * x + t * y; };
   auto P = [&](double x, double y) { return shared::terrainSurfacePoint({x, y}, h(x, y), kR); };
-  for (glm::dvec2 q : {glm::dvec2(0, 0), glm::dvec2(3000, -2000), glm::dvec2(-90000, 40000), glm::dvec2(250000, 250000)}) {
+  for (glm::dvec2 q :
+       {glm::dvec2(0, 0), glm::dvec2(3000, -2000), glm::dvec2(-90000, 40000), glm::dvec2(250000, 250000)}) {
     const double e = 0.5;
     const glm::dvec3 tx = (P(q.x + e, q.y) - P(q.x - e, q.y)) / (2 * e);
     const glm::dvec3 ty = (P(q.x, q.y + e) - P(q.x, q.y - e)) / (2 * e);
@@ -90,7 +92,8 @@ TEST(TerrainFrame, PlanePointsAreAtTheirGeodesicDistanceAndAzimuth) {
   const auto location = astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0);
   const TerrainFrame frame(location, kR);
   const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
-  for (glm::dvec2 q : {glm::dvec2(1000, 0), glm::dvec2(0, -25000), glm::dvec2(70000, 70000), glm::dvec2(-300000, 120000)}) {
+  for (glm::dvec2 q :
+       {glm::dvec2(1000, 0), glm::dvec2(0, -25000), glm::dvec2(70000, 70000), glm::dvec2(-300000, 120000)}) {
     const glm::dvec2 ll = frame.planeToGeodetic(q);
     double s12 = 0, azi1 = 0, azi2 = 0;
     g.Inverse(46.55, 7.98, ll.x / kDegree, ll.y / kDegree, s12, azi1, azi2);

@@ -88,7 +88,8 @@ TEST(ProceduralTerrain, CoarserDetailIsTheFinerFieldWithoutItsFinestOctaves) {
   EXPECT_NEAR(field.height(0.0, 0.0, 1.0), 1200.0, 1e-9);
   // Halving the finest wavelength f adds the octaves between f / 2 and 2 f, whose amplitudes (gain 0.5,
   // wavelength 6 km) are below relief × f / 6 km each.
-  const double relief = styleParameters(TerrainStyle::Hills).relief_m, longest = styleParameters(TerrainStyle::Hills).wavelength_m;
+  const double relief = styleParameters(TerrainStyle::Hills).relief_m,
+               longest = styleParameters(TerrainStyle::Hills).wavelength_m;
   double previous = field.height(1234.5, -678.9, 3000.0), previousChange = 0.0;
   for (double finest = 1500.0; finest >= 2.0; finest *= 0.5) {
     const double h = field.height(1234.5, -678.9, finest);
@@ -105,13 +106,14 @@ TEST(ProceduralTerrain, StyleRangesAreTheStatedReliefs) {
     const TerrainStyleParameters& p = styleParameters(style);
     double lo = 1e30, hi = -1e30;
     for (uint64_t seed : {1ull, 2ull, 3ull}) {
-      const HeightField f = ProceduralTerrainField(settingsFor(style, seed)).tile(TileRegion::centred(0, 0, 40000.0, 401));
+      const HeightField f =
+          ProceduralTerrainField(settingsFor(style, seed)).tile(TileRegion::centred(0, 0, 40000.0, 401));
       lo = std::min(lo, f.minHeight());
       hi = std::max(hi, f.maxHeight());
     }
     const double range = hi - lo;
-    std::printf("%-7s relief %6.0f m: heights %7.1f .. %7.1f m, range %6.1f m (%.2f x relief)\n", p.name, p.relief_m, lo,
-                hi, range, range / p.relief_m);
+    std::printf("%-7s relief %6.0f m: heights %7.1f .. %7.1f m, range %6.1f m (%.2f x relief)\n", p.name, p.relief_m,
+                lo, hi, range, range / p.relief_m);
     EXPECT_GT(range, 0.3 * p.relief_m) << p.name;
     EXPECT_LT(range, 2.0 * p.relief_m) << p.name;  // measured 0.96–1.59 × relief
   }
@@ -132,7 +134,8 @@ double spectralSlope(const HeightField& f) {
     // Linear detrend, Hann window.
     const double slope = (f.at(n - 1, j) - f.at(0, j)) / (n - 1);
     for (int i = 0; i < n; ++i)
-      row[size_t(i)] = (f.at(i, j) - f.at(0, j) - slope * i) * (0.5 - 0.5 * std::cos(2 * 3.14159265358979 * i / (n - 1)));
+      row[size_t(i)] =
+          (f.at(i, j) - f.at(0, j) - slope * i) * (0.5 - 0.5 * std::cos(2 * 3.14159265358979 * i / (n - 1)));
     for (int k = 1; k < n / 2; ++k) {
       std::complex<double> sum = 0.0;
       for (int i = 0; i < n; ++i) sum += row[size_t(i)] * std::polar(1.0, -2 * 3.14159265358979 * k * i / n);
@@ -174,7 +177,8 @@ SlopeStats slopeStats(const HeightField& f) {
   std::vector<std::pair<float, double>> samples;
   for (int j = 1; j + 1 < f.ny; ++j)
     for (int i = 1; i + 1 < f.nx; ++i) {
-      const double gx = (f.at(i + 1, j) - f.at(i - 1, j)) / (2 * f.dx), gy = (f.at(i, j + 1) - f.at(i, j - 1)) / (2 * f.dy);
+      const double gx = (f.at(i + 1, j) - f.at(i - 1, j)) / (2 * f.dx),
+                   gy = (f.at(i, j + 1) - f.at(i, j - 1)) / (2 * f.dy);
       samples.push_back({f.at(i, j), std::hypot(gx, gy)});
     }
   std::sort(samples.begin(), samples.end());
@@ -195,12 +199,13 @@ TEST(ProceduralTerrain, ErosionDampingSmoothsSteepFlanksAndKeepsValleysGentle) {
   const TileRegion region = TileRegion::centred(0, 0, 20000.0, 501);
   const SlopeStats e = slopeStats(ProceduralTerrainField(eroded).tile(region));
   const SlopeStats p = slopeStats(ProceduralTerrainField(plain).tile(region));
-  std::printf("alpine mean slope: lowest quarter %.3f -> %.3f, highest quarter %.3f -> %.3f, all %.3f -> %.3f, "
-              "share steeper than 45 deg %.4f -> %.4f (without -> with damping)\n",
-              p.low, e.low, p.high, e.high, p.all, e.all, p.steep, e.steep);
-  EXPECT_LT(e.all, p.all);      // the damping removes relief where it is steep
+  std::printf(
+      "alpine mean slope: lowest quarter %.3f -> %.3f, highest quarter %.3f -> %.3f, all %.3f -> %.3f, "
+      "share steeper than 45 deg %.4f -> %.4f (without -> with damping)\n",
+      p.low, e.low, p.high, e.high, p.all, e.all, p.steep, e.steep);
+  EXPECT_LT(e.all, p.all);  // the damping removes relief where it is steep
   EXPECT_LT(e.steep, p.steep);
-  EXPECT_LT(e.low, e.high);     // valleys gentler than ridges, with the ridged weights
+  EXPECT_LT(e.low, e.high);  // valleys gentler than ridges, with the ridged weights
 }
 
 }  // namespace

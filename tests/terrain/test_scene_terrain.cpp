@@ -32,9 +32,9 @@ std::string messageOf(const std::function<void()>& body) {
 }
 
 Scene sceneWith(const std::string& terrain, const std::string& source = "<test>") {
-  return Scene::parse(R"({"location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 1200}, "terrain": )" +
-                          terrain + "}",
-                      source);
+  return Scene::parse(
+      R"({"location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 1200}, "terrain": )" + terrain + "}",
+      source);
 }
 
 TEST(SceneTerrain, ASceneWithoutTerrainHasNone) {
@@ -72,10 +72,11 @@ TEST(SceneTerrain, ProceduralSceneIsTheGeneratorsTileThroughTheLocationHeight) {
 
 TEST(SceneTerrain, AbsurdProceduralScalesAreInputErrors) {
   const std::string m = messageOf([] {
-    resolveSceneTerrain(Scene::parse(R"({"location": {"height_m": 6000}, "terrain": {"style": "alpine", "vertical_scale": 4,
+    resolveSceneTerrain(
+        Scene::parse(R"({"location": {"height_m": 6000}, "terrain": {"style": "alpine", "vertical_scale": 4,
                                          "resolution": 64, "extent_m": 60000}})",
-                                     "<test>"),
-                        kR);
+                     "<test>"),
+        kR);
   });
   EXPECT_NE(m.find("outside the allowed [-11000, 9000]"), std::string::npos) << m;
   EXPECT_NE(m.find("vertical_scale 4"), std::string::npos) << m;
@@ -148,7 +149,8 @@ TEST(TerrainFill, BlendIsSmoothstepOfTheDistanceToTheData) {
   f.ny = 2;
   f.heights.assign(22, std::nanf(""));
   f.at(0, 0) = f.at(0, 1) = 1000.0f;
-  fillFromFallback(f, [](double, double) { return 0.0; }, 500.0);
+  fillFromFallback(
+      f, [](double, double) { return 0.0; }, 500.0);
   for (int i = 1; i <= 10; ++i) {
     const double s = std::min(i * 100.0 / 500.0, 1.0);
     EXPECT_NEAR(f.at(i, 0), 1000.0 * (1.0 - s * s * (3.0 - 2.0 * s)), 1e-3) << i;
@@ -162,8 +164,9 @@ TEST(SceneTerrain, BadInputsNameTheFileOrFieldAndWhatIsAllowed) {
   EXPECT_NE(messageOf([] { sceneWith(R"({"style": "moon"})"); }).find("one of \"alpine\""), std::string::npos);
   EXPECT_NE(messageOf([] { sceneWith(R"({"resolution": 1})"); }).find("/terrain/resolution"), std::string::npos);
   const std::string missing = (dir / "nothing.tif").string();
-  EXPECT_NE(messageOf([&] { resolveSceneTerrain(sceneWith(R"({"kind": "gdal", "file": ")" + missing + "\"}"), kR); })
-                .find("no such raster file"),
+  EXPECT_NE(messageOf([&] {
+              resolveSceneTerrain(sceneWith(R"({"kind": "gdal", "file": ")" + missing + "\"}"), kR);
+            }).find("no such raster file"),
             std::string::npos);
   // A colour PNG is not a height map.
   const std::vector<uint8_t> rgb(4 * 4 * 3, 100);
@@ -192,7 +195,8 @@ TEST(SceneTerrain, BadInputsNameTheFileOrFieldAndWhatIsAllowed) {
   // A text file given as a raster; an inverted PNG range.
   std::ofstream(dir / "notes.txt") << "heights\n";
   EXPECT_NE(messageOf([&] {
-              resolveSceneTerrain(sceneWith(R"({"kind": "gdal", "file": ")" + (dir / "notes.txt").string() + "\"}"), kR);
+              resolveSceneTerrain(sceneWith(R"({"kind": "gdal", "file": ")" + (dir / "notes.txt").string() + "\"}"),
+                                  kR);
             }).find("not a raster GDAL reads"),
             std::string::npos);
   EXPECT_NE(messageOf([&] {
@@ -208,9 +212,10 @@ TEST(SceneTerrain, GdalSceneOnTheTerraDemUsesItsHeightsAndTheFallbackBeyond) {
   // The raster's centre pixel (47, 45).
   const double lon = raster.geoTransform[0] + 47.5 * raster.geoTransform[1];
   const double lat = raster.geoTransform[3] + 45.5 * raster.geoTransform[5];
-  const Scene scene = Scene::parse(R"({"location": {"latitude_deg": )" + std::to_string(lat) + R"(, "longitude_deg": )" +
-                                       std::to_string(lon) + R"(, "height_m": 300},
-      "terrain": {"kind": "gdal", "file": ")" + file.string() + R"(", "extent_m": 200000, "resolution": 201,
+  const Scene scene = Scene::parse(R"({"location": {"latitude_deg": )" + std::to_string(lat) +
+                                       R"(, "longitude_deg": )" + std::to_string(lon) + R"(, "height_m": 300},
+      "terrain": {"kind": "gdal", "file": ")" +
+                                       file.string() + R"(", "extent_m": 200000, "resolution": 201,
                   "fallback": "procedural", "style": "hills"}})",
                                    "<test>");
   const ResolvedTerrain t = resolveSceneTerrain(scene, kR);
@@ -223,7 +228,8 @@ TEST(SceneTerrain, GdalSceneOnTheTerraDemUsesItsHeightsAndTheFallbackBeyond) {
   EXPECT_NEAR(t.field.sample(95000.0, 0.0), 300.0, 400.0);
   // And a raster that does not cover the location is refused.
   const Scene away = Scene::parse(R"({"location": {"latitude_deg": 10, "longitude_deg": 10},
-      "terrain": {"kind": "gdal", "file": ")" + file.string() + "\"}}",
+      "terrain": {"kind": "gdal", "file": ")" +
+                                      file.string() + "\"}}",
                                   "away.json");
   EXPECT_NE(messageOf([&] { resolveSceneTerrain(away, kR); }).find("does not cover the scene"), std::string::npos);
 }

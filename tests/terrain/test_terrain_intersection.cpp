@@ -45,7 +45,8 @@ void expectFiniteHit(const TerrainHit& hit) {
 
 TEST(TerrainIntersection, FlatFieldIsTheSphereOfRadiusRPlusH) {
   const double h = 523.25;
-  const HeightField f = makeField(129, 20000.0, [&](double, double) { return h; }, h);
+  const HeightField f = makeField(
+      129, 20000.0, [&](double, double) { return h; }, h);
   const TerrainIntersector cast(f, kR);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> elevation(-89.9, -0.01), azimuth(0.0, 360.0);
@@ -124,7 +125,8 @@ TEST(TerrainIntersection, CliffWithinOneCellIsHitOnItsFace) {
 
 TEST(TerrainIntersection, WallsJoinTheGridAndTheOutsideSphere) {
   // A 100 m plateau on a sphere at 0 m: a level ray at 50 m from the west hits the plateau's west wall.
-  const HeightField plateau = makeField(33, 1000.0, [](double, double) { return 100.0; }, 0.0);
+  const HeightField plateau = makeField(
+      33, 1000.0, [](double, double) { return 100.0; }, 0.0);
   const TerrainIntersector cast(plateau, kR);
   const glm::dvec3 o = up(50.0) + glm::dvec3(-3000.0, 0.0, 0.0);
   const TerrainHit hit = cast.intersect({o, {1.0, 0.0, 0.0}});
@@ -134,7 +136,8 @@ TEST(TerrainIntersection, WallsJoinTheGridAndTheOutsideSphere) {
   EXPECT_NEAR(hit.plane.x, -1000.0, 1e-3);
   EXPECT_LT(hit.normal.x, -0.99);
   // A basin: the grid at 0 m inside an outside sphere at 100 m: leaving the grid eastwards at 50 m.
-  const HeightField basin = makeField(33, 1000.0, [](double, double) { return 0.0; }, 100.0);
+  const HeightField basin = makeField(
+      33, 1000.0, [](double, double) { return 0.0; }, 100.0);
   const TerrainIntersector basinCast(basin, kR);
   const TerrainHit out = basinCast.intersect({up(50.0), {1.0, 0.0, 0.0}});
   ASSERT_TRUE(out.hit);
@@ -171,7 +174,8 @@ TEST(TerrainIntersection, RaysFromUnderAndFromFarAboveAndRaysThatMiss) {
                           p.style = TerrainStyle::Alpine;
                           p.baseHeight = 1500.0;
                           return p;
-                        }()).tile(TileRegion::centred(0, 0, 10000.0, 257));
+                        }())
+                            .tile(TileRegion::centred(0, 0, 10000.0, 257));
   const TerrainIntersector cast(f, kR);
   const double ground = f.sample(0.0, 0.0);
   // Under the surface, and inside the planet: the hit is the start.
@@ -266,10 +270,10 @@ TEST(TerrainIntersection, PyramidWalkFindsTheHitsOfTheCellWalkAndOfAFineMarch) {
         EXPECT_LT(std::fabs(glm::length(q) - kR - f.sample(x2, y2)), 0.05) << "ray " << k;
       }
     }
-    std::printf("%s: %d of 400 rays hit; pyramid %.1f nodes and %.1f cells tested per ray, cell walk %.1f cells "
-                "visited and %.1f tested; %d grazes differ from the fine march\n",
-                styleParameters(style).name, hits, nodes / 400.0, cells / 400.0, nodesFlat / 400.0, cellsFlat / 400.0,
-                grazes);
+    std::printf(
+        "%s: %d of 400 rays hit; pyramid %.1f nodes and %.1f cells tested per ray, cell walk %.1f cells "
+        "visited and %.1f tested; %d grazes differ from the fine march\n",
+        styleParameters(style).name, hits, nodes / 400.0, cells / 400.0, nodesFlat / 400.0, cellsFlat / 400.0, grazes);
     EXPECT_GT(hits, 200);
     EXPECT_LE(grazes, 2);
     EXPECT_LE(cells, cellsFlat);  // the pyramid tests no cell the cell walk would not

@@ -95,13 +95,15 @@ TEST_F(CloudVdb, GridHoldsTheMediumsExtinctionAtTheVoxelCentres) {
       for (int i = -30; i <= 29; ++i) {
         const openvdb::Coord ijk(i, j, k);
         const openvdb::Vec3d world = grid->indexToWorld(ijk);
-        const double expected =
-            medium.extinction(cloudFrameFromLocalEnu(glm::dvec3(world.x(), world.y(), world.z()), medium.groundRadius()));
+        const double expected = medium.extinction(
+            cloudFrameFromLocalEnu(glm::dvec3(world.x(), world.y(), world.z()), medium.groundRadius()));
         const float value = voxels.getValue(ijk);
         ASSERT_NEAR(value, expected, 6e-8 * expected) << "voxel " << ijk;
         ASSERT_EQ(voxels.isValueOn(ijk), expected > 0.0) << "voxel " << ijk << " value " << expected;
-        if (expected > 0.0) ++nonZero;
-        else if (world.z() > 1600.0 && world.z() < 3900.0) ++zeroInShell;
+        if (expected > 0.0)
+          ++nonZero;
+        else if (world.z() > 1600.0 && world.z() < 3900.0)
+          ++zeroInShell;
         maxExpected = std::max(maxExpected, expected);
       }
   // A real field with gaps: both cloud and clear voxels inside the layer.
@@ -242,7 +244,8 @@ TEST(CloudVolume, LatticeAndDefaultRegion) {
   CloudVolumeRegion off;
   off.west_m = 20000.0, off.east_m = 30000.0, off.south_m = -5000.0, off.north_m = 5000.0;
   fitCloudVolumeHeights(off, {layer}, ground);
-  EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(30000.0, -5000.0, off.bottom_m), ground)), layer.bottom_radius, 1e-6);
+  EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(30000.0, -5000.0, off.bottom_m), ground)),
+              layer.bottom_radius, 1e-6);
   EXPECT_NEAR(glm::length(cloudFrameFromLocalEnu(glm::dvec3(20000.0, 0.0, off.top_m), ground)), layer.top_radius, 1e-6);
   EXPECT_LT(off.top_m, 4000.0 - 31.0);  // 20 km out the top is 31 m below its height over the origin
   EXPECT_EQ(cloudVoxelBox(d).count(), 400u * 400u * uint64_t(std::ceil(4000.0 / 50.0) - std::floor(d.bottom_m / 50.0)));

@@ -58,7 +58,8 @@ TEST(Advection, BlobArrivesWhereUTimesTSaysWithItsMass) {
   advection.prepare(windU, windV, n, n, dx, dt);
   for (int s = 0; s < steps; ++s) advection.advectConserving(f);
   auto [cx, cy] = periodicCentroid(f, n, n);
-  double ex = std::fmod(40.0 + u * dt * steps / dx, double(n)), ey = std::fmod(70.0 + v * dt * steps / dx + 10 * n, double(n));
+  double ex = std::fmod(40.0 + u * dt * steps / dx, double(n)),
+         ey = std::fmod(70.0 + v * dt * steps / dx + 10 * n, double(n));
   EXPECT_LT(periodicDistance(cx, ex, n), 1.0) << "centroid x " << cx << " expected " << ex;
   EXPECT_LT(periodicDistance(cy, ey, n), 1.0) << "centroid y " << cy << " expected " << ey;
   // The peak as well (not only the first moment).
@@ -107,7 +108,8 @@ TEST(Advection, ModelMovesAVapourBlobWithThePrevailingWind) {
   for (size_t i = 0; i < anomaly.size(); ++i) anomaly[i] = s.vapour[i] - 2.0f;
   auto [x1, y1] = periodicCentroid(anomaly, 96, 96);
   glm::dvec2 u = model.prevailingWind_m_s();
-  double ex = std::fmod(x0 + u.x * 3 * 3600.0 / 200.0 + 960, 96.0), ey = std::fmod(y0 + u.y * 3 * 3600.0 / 200.0 + 960, 96.0);
+  double ex = std::fmod(x0 + u.x * 3 * 3600.0 / 200.0 + 960, 96.0),
+         ey = std::fmod(y0 + u.y * 3 * 3600.0 / 200.0 + 960, 96.0);
   EXPECT_LT(periodicDistance(x1, ex, 96), 1.0) << x1 << " vs " << ex;
   EXPECT_LT(periodicDistance(y1, ey, 96), 1.0) << y1 << " vs " << ey;
   WaterBudget b = model.waterBudget();
@@ -167,9 +169,12 @@ TEST(Advection, FusedTransportMatchesTheSeparateOperatorsBitForBit) {
       if (cloudBefore > 0.0) SemiLagrangianAdvection::restoreTotal(expected.cloudWater, cloudBefore);
       if (rainBefore > 0.0) SemiLagrangianAdvection::restoreTotal(expected.rain, rainBefore);
 
-      for (auto [got, want] : {std::pair{&s.temperature, &expected.temperature}, {&s.vapour, &expected.vapour},
-                               {&s.cloudWater, &expected.cloudWater}, {&s.rain, &expected.rain},
-                               {&s.updraft, &expected.updraft}, {&s.cloudTop, &expected.cloudTop},
+      for (auto [got, want] : {std::pair{&s.temperature, &expected.temperature},
+                               {&s.vapour, &expected.vapour},
+                               {&s.cloudWater, &expected.cloudWater},
+                               {&s.rain, &expected.rain},
+                               {&s.updraft, &expected.updraft},
+                               {&s.cloudTop, &expected.cloudTop},
                                {&s.convectiveFraction, &expected.convectiveFraction}})
         for (size_t c = 0; c < s.cells(); ++c)
           ASSERT_EQ(std::memcmp(&(*got)[c], &(*want)[c], sizeof(float)), 0)

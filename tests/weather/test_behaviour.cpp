@@ -60,12 +60,12 @@ TEST(Behaviour, FairWeatherDiurnalCycle) {
   size_t deepestAt = 0;
   for (size_t k = 0; k < day.depths.size(); ++k)
     if (day.depths[k] > deepest) deepest = day.depths[k], deepestAt = k;
-  std::printf("  layer: %.0f m at dawn, %.0f m deepest at %.1f h, %.0f m at the end\n", morning, deepest, solar(deepestAt),
-              day.depths.back());
+  std::printf("  layer: %.0f m at dawn, %.0f m deepest at %.1f h, %.0f m at the end\n", morning, deepest,
+              solar(deepestAt), day.depths.back());
   EXPECT_GT(deepest, morning + 300.0);
   EXPECT_GE(solar(deepestAt), 12.0);
   EXPECT_LT(day.depths.back(), morning + 0.25 * (deepest - morning));  // collapsed by night
-  EXPECT_GE(solar(peakAt), 11.0);  // afternoon-ish peak (after late morning)
+  EXPECT_GE(solar(peakAt), 11.0);                                      // afternoon-ish peak (after late morning)
   EXPECT_LE(solar(peakAt), 18.0);
   for (size_t k = 0; k < day.samples.size(); ++k) {
     double h = solar(k);
@@ -100,7 +100,8 @@ TEST(Behaviour, StrongerHeatingHigherTops) {
     Day day = runDay(c, 15.0);
     double highest = 0.0;
     for (auto& s : day.samples) highest = std::max(highest, s.meanTop_m);
-    std::printf("  thunderstorm, heating ×%.1f: highest mean top %.0f m, peak cloud %.3f\n", scale, highest, day.peakCloud());
+    std::printf("  thunderstorm, heating ×%.1f: highest mean top %.0f m, peak cloud %.3f\n", scale, highest,
+                day.peakCloud());
     EXPECT_GT(highest, previous + 100.0) << "heating ×" << scale;
     previous = highest;
   }
@@ -114,8 +115,9 @@ TEST(Behaviour, ThunderstormMakesCumulonimbusAndRain) {
     rainArea = std::max(rainArea, s.precipAreaFraction);
     top = std::max(top, s.maxTop_m);
   }
-  std::printf("  thunderstorm: max Cb fraction %.3f, max rain area %.3f, max top %.0f m, updraft %.1f m/s, rain %.3e kg\n",
-              cb, rainArea, top, day.maxUpdraft, day.samples.back().precipOut_kg);
+  std::printf(
+      "  thunderstorm: max Cb fraction %.3f, max rain area %.3f, max top %.0f m, updraft %.1f m/s, rain %.3e kg\n", cb,
+      rainArea, top, day.maxUpdraft, day.samples.back().precipOut_kg);
   EXPECT_GT(cb, 0.01);
   EXPECT_GT(top, 8000.0);
   EXPECT_GT(rainArea, 0.01);

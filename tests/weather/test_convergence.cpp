@@ -65,10 +65,11 @@ Ensemble ensemble(const char* preset, double dt) {
 void checkConvergence(const char* preset, bool rains, double cloudTolerance = 0.10) {
   Ensemble e120 = ensemble(preset, 120.0), e60 = ensemble(preset, 60.0), e30 = ensemble(preset, 30.0);
   const DayIntegrals &d120 = e120.mean, &d60 = e60.mean, &d30 = e30.mean;
-  std::printf("  %s: mean cloud %.4f / %.4f / %.4f, mean top %.0f / %.0f / %.0f m, rain %.4e / %.4e / %.4e kg "
-              "(Δt 120 / 60 / 30 s)\n",
-              preset, d120.meanCloud, d60.meanCloud, d30.meanCloud, d120.meanTop, d60.meanTop, d30.meanTop,
-              d120.precipitation, d60.precipitation, d30.precipitation);
+  std::printf(
+      "  %s: mean cloud %.4f / %.4f / %.4f, mean top %.0f / %.0f / %.0f m, rain %.4e / %.4e / %.4e kg "
+      "(Δt 120 / 60 / 30 s)\n",
+      preset, d120.meanCloud, d60.meanCloud, d30.meanCloud, d120.meanTop, d60.meanTop, d30.meanTop, d120.precipitation,
+      d60.precipitation, d30.precipitation);
   std::printf("    relative change 60→30 s: cloud %.3f, top %.3f, rain %.3f\n", relative(d60.meanCloud, d30.meanCloud),
               relative(d60.meanTop, d30.meanTop), rains ? relative(d60.precipitation, d30.precipitation) : 0.0);
   EXPECT_LT(relative(d60.meanCloud, d30.meanCloud), cloudTolerance);

@@ -11,9 +11,9 @@
 
 #include "core/error.h"
 #include "tests/support/test_paths.h"
+#include "tests/weather/weather_test_support.h"
 #include "weather/preset_schedule.h"
 #include "weather/sun_elevation.h"
-#include "tests/weather/weather_test_support.h"
 #include "weather/weather_config.h"
 
 using namespace firmament::weather;

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 
 #include "weather/fast_math.h"
 #include "weather/fast_math_sse.h"
@@ -57,7 +57,8 @@ TEST(Thermodynamics, FastExpAndLogMatchLibm) {
     double exact = std::exp(double(x));
     expError = std::max(expError, std::fabs(expFast(x) - exact) / exact);
   }
-  for (float x = 1e-3f; x < 1e3f; x *= 1.0013f) logError = std::max(logError, std::fabs(logFast(x) - std::log(double(x))));
+  for (float x = 1e-3f; x < 1e3f; x *= 1.0013f)
+    logError = std::max(logError, std::fabs(logFast(x) - std::log(double(x))));
   for (float x = 1e-8f; x < 1.0f; x *= 1.001f) {
     double exact = std::pow(double(x), 0.875);
     powError = std::max(powError, std::fabs(powFast(x, 0.875f) - exact) / exact);
@@ -104,7 +105,8 @@ TEST(Thermodynamics, SseLanesMatchScalarBitForBit) {
     }
   }
   // transferWater: traces into large paths, ordinary moves, nothing, more than there is.
-  const float from[4] = {1e-6f, 0.3f, 5.0f, 2.0f}, to[4] = {13.0f, 0.7f, 1e-3f, 0.0f}, amount[4] = {1e-6f, 0.1f, 0.0f, 3.0f};
+  const float from[4] = {1e-6f, 0.3f, 5.0f, 2.0f}, to[4] = {13.0f, 0.7f, 1e-3f, 0.0f},
+              amount[4] = {1e-6f, 0.1f, 0.0f, 3.0f};
   __m128 f = _mm_loadu_ps(from), t = _mm_loadu_ps(to);
   sse::transferWater(f, t, _mm_loadu_ps(amount));
   const auto fl = lanes(f), tl = lanes(t);

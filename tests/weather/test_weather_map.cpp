@@ -30,7 +30,8 @@ TEST(WeatherMap, PlacementWrapAndMotion) {
 
   // Periodic: a full region width away gives the same sample; texel centres return the texel.
   glm::dvec2 p(1234.5, -2345.6);
-  glm::vec4 a = map.sampleMap(p, map.time_s), b = map.sampleMap(p + glm::dvec2(map.width_m(), -2 * map.height_m()), map.time_s);
+  glm::vec4 a = map.sampleMap(p, map.time_s),
+            b = map.sampleMap(p + glm::dvec2(map.width_m(), -2 * map.height_m()), map.time_s);
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(a[k], b[k], 1e-3f * (1.0f + std::fabs(a[k])));
   glm::vec4 texel = WeatherMap::sampleImage(map.map, 10.5, 20.5);
   for (int k = 0; k < 4; ++k) EXPECT_FLOAT_EQ(texel[k], map.map.at(10, 20)[k]);

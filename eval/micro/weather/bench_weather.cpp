@@ -38,7 +38,8 @@ double threadCpuSeconds() {
 
 // 21 June at 46.55° N, 7.98° E (the default scene), from 03:00 UTC (03:32 local mean solar time).
 SunElevationFunction summerDay() {
-  return astro::sunElevationAfter(astro::GeodeticLocation::fromDegrees(46.55, 7.98, 0.0), astro::parseUtc("2026-06-21T03:00:00Z"));
+  return astro::sunElevationAfter(astro::GeodeticLocation::fromDegrees(46.55, 7.98, 0.0),
+                                  astro::parseUtc("2026-06-21T03:00:00Z"));
 }
 double localSolarHours(double t_s) { return 3.0 + 7.98 / 15.0 + t_s / 3600.0; }
 
@@ -63,12 +64,15 @@ void stepCase(const char* label, int cells, const char* preset, double earliest_
     cpu.push_back((threadCpuSeconds() - c0) * 1e3);
     wall.push_back(seconds(t0, Clock::now()) * 1e3);
   }
-  std::printf("  %-24s %4d² %-13s %5.2f h: median %7.3f ms CPU, %7.3f ms wall (%d steps, %d sub-steps in the last; cloud %.2f, Cb %.3f, rain area %.3f)\n",
-              label, cells, preset, localSolarHours(spinup_s), median(cpu), median(wall), repeats, model.lastSubsteps(),
-              before.cloudFraction, before.cumulonimbusFraction, before.precipAreaFraction);
+  std::printf(
+      "  %-24s %4d² %-13s %5.2f h: median %7.3f ms CPU, %7.3f ms wall (%d steps, %d sub-steps in the last; cloud %.2f, "
+      "Cb %.3f, rain area %.3f)\n",
+      label, cells, preset, localSolarHours(spinup_s), median(cpu), median(wall), repeats, model.lastSubsteps(),
+      before.cloudFraction, before.cumulonimbusFraction, before.precipAreaFraction);
   std::printf("      per step:");
   const OperatorTimes& t = model.operatorTimes();
-  for (int k = 0; k < OperatorTimes::kCount; ++k) std::printf(" %s %.3f", OperatorTimes::kNames[k], t.seconds[k] * 1e3 / repeats);
+  for (int k = 0; k < OperatorTimes::kCount; ++k)
+    std::printf(" %s %.3f", OperatorTimes::kNames[k], t.seconds[k] * 1e3 / repeats);
   std::printf(" (ms CPU)\n");
 }
 
@@ -89,9 +93,11 @@ void series(const char* preset, int cells, double hours) {
   c.preset = preset;
   c.cellsX = c.cellsY = cells;
   WeatherModel model(c, summerDay());
-  std::printf("# %s %d² from 03:32 local solar time\n"
-              "# local_h cloud mean_top max_top rain_area cb_fraction layer_depth_m subsidence_K mass_flux_m_s min_T_K mean_T_K\n",
-              preset, cells);
+  std::printf(
+      "# %s %d² from 03:32 local solar time\n"
+      "# local_h cloud mean_top max_top rain_area cb_fraction layer_depth_m subsidence_K mass_flux_m_s min_T_K "
+      "mean_T_K\n",
+      preset, cells);
   for (int k = 0; k <= int(hours * 2); ++k) {
     if (k > 0) model.advance(1800.0);
     WeatherStats s = model.stats();
