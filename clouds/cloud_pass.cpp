@@ -229,7 +229,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach, bo
   // map, on the Beer shadow map, or with the sun at or below some sample's horizon (its ray descends).
   // Else the march's code is left out: lavapipe ran its loop once per lit sample under an empty mask
   // (the term's cost on a cumulonimbus 1/16 sequence frame +8.5 % -> +3.0 %; docs/clouds.md
-  // "Calibration", session 19).
+  // "Calibration").
   if ((features & 2048u) && (!usesDeepShadowMap(settings) || m.beerShadowMap || !sunClearsEverySample))
     features |= 4096u;
   return features;

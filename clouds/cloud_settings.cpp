@@ -37,95 +37,67 @@ struct CloudMultipleScatteringFits {
 };
 
 const CloudMultipleScatteringFits& cloudMultipleScatteringFits(CloudPhaseModel phase, bool reflectedLight) {
-  // One fit per calibration group: cumulus (also cumulonimbus), stratocumulus, stratus (dual HG since
-  // session 8, the approximate Mie phase since session 25), cirrus (dual HG since session 9, the
-  // approximate Mie phase since session 25), all the cumulus and stratocumulus scenes.
-  // `firmament bench clouds --calibrate --out out/calibration` (9 scenes at 48x27, 128 paths/pixel,
-  // 3 octaves; docs/clouds.md "Calibration" has the per-scene errors). Cumulus from session 2's fit (the
-  // session 5 refit, same scenes, moved it by <= 0.011); stratocumulus and the joint fit from session 5,
-  // when the backlit deck sc_backlit joined the scenes.
-  // Session 7 (`--out /tmp/cal7_full`): with the Eddington diffusion floor, its weight d fitted too.
-  // Session 8 (`--out /tmp/cal8_st`): stratus from its own two decks, st_low_sun and st_high_sun.
-  // Session 9 (`--calibrate --group cirrus --reference-spp 1024 --out /tmp/s9/cal_ci`): cirrus from its
-  // own two scenes, ci_high_sun and ci_low_sun (rms 0.127 with the joint fit -> 0.111).
-  // Session 21: stratus refitted (`--group stratus --out /tmp/s21/cal_st_fit`, 91 evaluations) with the
-  // floor's base limb darkening and low-sun factor: rms 0.3315 (the session 8 constants with them) ->
-  // 0.3282, d 0.966 -> 0.919; held out, overcast 0.036 / +2.8 % -> 0.035 / -2.2 % (0.053 / +4.4 % before both).
-  // Stratocumulus's octaves-only fit (reflected_light false) likewise (`--group stratocumulus --out
-  // /tmp/s21/cal_sc_noref`, 90 evaluations): rms 0.3622 -> 0.3387, d 0.859 -> 1.023; held out (the bench's
-  // `no reflected light` rows) inside_cloud 0.143 -> 0.019, the sunset 0.229 / -8.0 % -> 0.253 / +8.1 %,
-  // two_layers 0.206 -> 0.216.
-  // Cirrus refitted on its two scenes with today's model (`--group cirrus --out /tmp/s21/cal_ci_fit`, 90
-  // evaluations; its session 9 constants predate the floor's escape function and factors): rms 0.1903 ->
-  // 0.1858, d 0.903 -> 0.835; held out, cirrus 0.130 / +4.7 % -> 0.123 / -1.8 %.
+  // One fit per calibration group: cumulus (also cumulonimbus), stratocumulus, stratus, cirrus, and the
+  // joint fit of all the cumulus and stratocumulus scenes. Each comes from `firmament bench clouds
+  // --calibrate [--phase P] [--group G] [--reflection] [--reference-spp N] --out DIR` (the scenes under
+  // eval/scenarios/calibration/, 48x27, 3 octaves; docs/clouds/calibration.md has the per-scene errors
+  // and decision records 0100-0172 the fits that were tried and not kept).
+  // Dual Henyey-Greenstein, octaves and the Eddington diffusion floor (its weight d fitted too):
+  // cumulus and stratocumulus from the cumulus/stratocumulus groups (stratocumulus with the backlit deck
+  // sc_backlit); stratus from its own two decks st_low_sun and st_high_sun with the floor's base limb
+  // darkening and low-sun factor (`--group stratus`, 91 evaluations: rms rel RMSE 0.3282, d 0.919; held
+  // out, overcast 0.035 / -2.2 %); stratocumulus's octaves-only fit likewise (`--group stratocumulus`, 90
+  // evaluations: rms 0.3387, d 1.023; held out, the bench's `no reflected light` rows: inside_cloud 0.019,
+  // the sunset 0.253 / +8.1 %, two_layers 0.216); cirrus from ci_high_sun and ci_low_sun (`--group cirrus
+  // --reference-spp 1024`, 90 evaluations: rms 0.1858, d 0.835; held out, cirrus 0.123 / -1.8 %; its own
+  // fit against the joint one: 0.127 -> 0.111).
   static constexpr CloudMultipleScatteringFits dualHenyeyGreenstein{{0.347, 1.000, 0.538, 0.749},
                                                                     {0.595, 0.963, 0.763, 1.023},
                                                                     {0.622, 0.947, 0.792, 0.847},
                                                                     {0.370, 0.999, 0.005, 0.919},
                                                                     {0.597, 0.988, 0.787, 0.835}};
-  // `... --calibrate --phase approximate_mie` (same scenes and settings, the δ-scaled march of session 6);
-  // session 8 (`--out /tmp/cal8_mie`) with the diffusion floor's d fitted too: rms rel RMSE cumulus
-  // 0.2795 -> 0.2794 (d ~ 0.09), stratocumulus 0.436 -> 0.342, all 0.429 -> 0.365.
-  // Session 25: stratus and cirrus given their own fits (until then the stratocumulus and the joint
-  // one), against 512-path references of their calibration scenes (`--calibrate --phase approximate_mie
-  // --group stratus|cirrus --reference-spp 512`, 90 evaluations each): rms stratus 0.3356 -> 0.2340, cirrus
-  // 0.1613 -> 0.1014. Held out (the bench's `approximate mie 20 um` rows): overcast 0.165 / +12.8 % ->
-  // 0.132 / -10.1 %, cirrus 0.284 / +20.4 % -> 0.206 / +14.1 % (1024-path references).
+  // The approximate Mie phase (`--phase approximate_mie`, the same scenes, the delta-scaled march), d
+  // fitted too: rms rel RMSE cumulus 0.2794 (d ~ 0.09), stratocumulus 0.342, all 0.365. Stratus and
+  // cirrus on their own calibration scenes against 512-path references (`--group stratus|cirrus
+  // --reference-spp 512`, 90 evaluations each): rms stratus 0.2340 (0.3356 with the stratocumulus fit),
+  // cirrus 0.1014 (0.1613 with the joint fit); held out (the bench's `approximate mie 20 um` rows, 1024-path
+  // references): overcast 0.132 / -10.1 %, cirrus 0.206 / +14.1 %.
   static constexpr CloudMultipleScatteringFits approximateMie{{0.330, 0.603, 0.586, 0.094},
                                                               {0.320, 0.320, 0.621, 0.379},
                                                               {0.379, 0.558, 0.448, 0.268},
                                                               {0.691, 0.744, 0.010, 0.302},
                                                               {0.630, 1.000, 0.471, 0.000}};
-  // Session 18: the reflected light (cloudReflectedSource) fitted with the octaves, r and a_r too, on
-  // calibration groups that now include views from above (cu_above, cu_above_side, sc_above): `bench
-  // clouds --calibrate --group G --reflection --out /tmp/s18/cal_G_r` (150 evaluations; docs/clouds.md
-  // "Calibration"): rms rel RMSE with the previous constants -> the fit, cumulus 0.2677 -> 0.2114,
-  // stratocumulus 0.3612 -> 0.3359. (Session 17 fitted the same term on views from below only; its fits
-  // did not carry over to the held-out bench.) Stratus, cirrus and the joint fit keep the octaves alone.
-  // Session 19: stratocumulus's r and a_r fitted alone, its octaves kept at their own fit (`--group
-  // stratocumulus --reflection-only --out /tmp/s19/cal_sc_ro`; rms 0.3384 against the six-constant
-  // fit's 0.3359): the six-constant fit's larger floor weight (d 0.859 -> 0.944) had made the held-out
-  // stratocumulus_sunset +15.6 % bright; now 0.291, +5.9 % (inside_cloud 0.082, two_layers 0.182).
-  // Cumulus refitted (`--group cumulus --reflection --out /tmp/s19/cal_cu_r`) with a far view low over
-  // the horizon (cu_far) in its scenes: rms 0.2218 -> 0.2165 over the seven; held out, cumulus_noon
-  // 0.096 -> 0.081, cumulonimbus 0.156 -> 0.142, horizon 0.179 / +12.1 % -> 0.120 / +4.7 %, above_clouds
-  // 0.090 -> 0.094; two_layers, -21 % with it alone, 0.203 / -0.2 % with the light through the deck
-  // (cloudOctaveTransmittanceThroughOthers). docs/clouds.md "Calibration", session 19.
-  // Session 21: stratocumulus refitted (`--group stratocumulus --reflection --out /tmp/s21/cal_sc_fit3`,
-  // 150 evaluations) with the floor's base limb darkening and low-sun factor (cloudBaseLimbFactor,
-  // cloudFloorLowSunFactor, both checked against a Monte Carlo of a homogeneous slab): rms 0.3364 (the
-  // session 19 constants with them) -> 0.3315, d 0.859 -> 0.963; held out against 1024-path references,
-  // inside_cloud 0.059 / -5.4 % -> 0.006 / -0.1 %, stratocumulus_sunset 0.222 / +1.8 % -> 0.248 / +2.4 %
-  // (its 40 horizon pixels; the deck above them 0.123 -> 0.134), two_layers 0.201 -> 0.204.
-  // Session 27: cumulus's low-sun scale mu_0 (cloudOctaveLowSunScale) fitted alone, every other constant
-  // as it was, on the fifteen cumulus scenes (four new ones under suns at 76-85 deg; `--calibrate --group
-  // cumulus --low-sun --reference-spp 1024`): rms 0.5823 (off) -> 0.1920 at mu_0 0.412; the four low-sun
-  // scenes +18 % to +198 % -> -11 % to +26 %, the eleven others unchanged but cu_backlit (70 deg, 0.107).
-  // Session 28: refitted (the same command) with the reflected light's depth scale a_r / s under the scale s
-  // (cloudReflectedLowSunDepthScale): rms 0.1920 -> 0.1772 at mu_0 0.358 (cu_low_away 0.351 / +26.3 % ->
-  // 0.245 / +6.7 %, cu_backlit 0.107 -> 0.105); the ten scenes with suns at most 65 deg from the zenith
-  // unchanged.
+  // With the reflected light (cloudReflectedSource): its r and a_r fitted with the octaves, on groups that
+  // include views from above (cu_above, cu_above_side, sc_above) and a far view low over the horizon
+  // (cu_far). Cumulus (`--group cumulus --reflection`, 150 evaluations): rms 0.2165 over its seven scenes;
+  // held out, cumulus_noon 0.081, cumulonimbus 0.142, horizon 0.120 / +4.7 %, above_clouds 0.094,
+  // two_layers 0.203 / -0.2 % with the light through the deck (cloudOctaveTransmittanceThroughOthers; -21 %
+  // without it). Its low-sun scale mu_0 (cloudOctaveLowSunScale) fitted alone on the fifteen cumulus
+  // scenes, four of them under suns 76-85 deg from the zenith, with the reflected light's depth scale a_r / s
+  // (cloudReflectedLowSunDepthScale; `--group cumulus --low-sun --reference-spp 1024`): rms 0.5823 without
+  // the scale -> 0.1772 at mu_0 0.358 (cu_low_away 0.245 / +6.7 %, cu_backlit 0.105); the ten scenes with
+  // suns at most 65 deg from the zenith unchanged. Stratocumulus (`--group stratocumulus --reflection`, 150
+  // evaluations) with the floor's base limb darkening and low-sun factor (cloudBaseLimbFactor,
+  // cloudFloorLowSunFactor, both checked against a Monte Carlo of a homogeneous slab): rms 0.3315, d 0.963;
+  // held out against 1024-path references, inside_cloud 0.006 / -0.1 %, stratocumulus_sunset 0.248 / +2.4 %
+  // (its 40 horizon pixels; the deck above them 0.134), two_layers 0.204. Fitting r and a_r alone with the
+  // octaves kept (`--reflection-only`) gave rms 0.3384 and kept the floor weight lower, but a fit on views
+  // from below only did not carry over to the held-out bench. Stratus, cirrus and the joint fit keep the
+  // octaves alone.
   static constexpr CloudMultipleScatteringFits dualHenyeyGreensteinReflected{
       {0.445, 0.995, 0.671, 0.623, 0.860, 0.043, 0.358},
       {0.619, 0.979, 0.788, 0.963, 0.335, 0.180},
       dualHenyeyGreenstein.all,
       dualHenyeyGreenstein.stratus,
       dualHenyeyGreenstein.cirrus};
-  // Session 23: the approximate Mie phase's cumulus refitted with the reflected light, against
-  // 512-path references of the cumulus calibration scenes (`bench clouds --calibrate --phase
-  // approximate_mie --group cumulus --reflection --reference-spp 512`; the session 8 fit predates the views
-  // from above and far, which it left 28-53 % dark): rms 0.3212 -> 0.2413. Held out against 256-path
-  // references (the bench's `approximate mie 20 um` rows): cumulus_noon 0.223 / -18.6 % -> 0.160 / -12.1 %,
-  // horizon 0.190 / -13.5 % -> 0.158 / -5.3 %. The stratocumulus refit of the same kind (rms 0.2910 ->
-  // 0.2444) held out worse at the sunset (0.380 -> 0.491) though better for the overcast (0.160 -> 0.117):
-  // not adopted. Cumulonimbus takes the cumulus fit, unchecked held out.
-  // Session 24: refitted with the build-up along the view (CloudMarchSettings::msBuildUpScale) on the eleven
-  // cumulus scenes (`--calibrate --phase approximate_mie --group cumulus --reflection --reference-spp 512`):
-  // rms 0.2458 (the session 23 constants with the build-up) -> 0.2288. Held out against the 256-path
-  // references: cumulus_noon 0.160 / -12.1 % (session 23, no build-up) -> 0.174 / -15.7 % (build-up, old
-  // constants) -> 0.078 / -2.7 %, horizon 0.158 / -5.3 % -> 0.169 / -8.9 % -> 0.144 / +3.6 %; with the
-  // build-up, session 23's constants -> these: cumulonimbus 0.291 / -19.0 % -> 0.228 / -8.9 %, above_clouds
-  // 0.140 / +7.4 % -> 0.185 / +12.9 % (worse).
+  // The approximate Mie phase's cumulus with the reflected light and the build-up along the view
+  // (CloudMarchSettings::msBuildUpScale), on the eleven cumulus scenes against 512-path references
+  // (`--calibrate --phase approximate_mie --group cumulus --reflection --reference-spp 512`): rms 0.2288.
+  // Held out against 256-path references: cumulus_noon 0.078 / -2.7 %, horizon 0.144 / +3.6 %,
+  // cumulonimbus 0.228 / -8.9 %, above_clouds 0.185 / +12.9 % (0.140 / +7.4 % with the fit without the
+  // build-up). The stratocumulus refit of the same kind (rms 0.2444) held out worse at the sunset (0.380 ->
+  // 0.491) though better for the overcast (0.160 -> 0.117): not adopted. Cumulonimbus takes the cumulus fit,
+  // unchecked held out.
   static constexpr CloudMultipleScatteringFits approximateMieReflected{{0.303, 0.677, 0.629, 0.015, 0.513, 0.000},
                                                                        approximateMie.stratocumulus,
                                                                        approximateMie.all,
@@ -340,7 +312,7 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   s.march.beerShadowMap = scene.boolean("/clouds/shadow_map");
   s.march.lightShafts = scene.boolean("/clouds/light_shafts");
   const std::string quality = scene.string("/clouds/quality");
-  // The presets set the march's steps only. Until session 17 `low` also capped the octaves at 2, for
+  // The presets set the march's steps only. A `low` that also capped the octaves at 2, for
   // constants fitted for 3: two_layers -52 % against the path tracer (3 octaves: -1.4 %), horizon -26 %
   // (+15 %), at no time measurable (docs/clouds.md "Quality presets").
   if (quality == "low") {

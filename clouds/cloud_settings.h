@@ -46,7 +46,7 @@ struct CloudMarchSettings {
   int coarseFactor = 4;  // a coarse (empty-space) step is this many fine steps; 1 = no skipping
   // A coarse step skips its span only where its shape-only sample lies below the shape's edge by more
   // than emptySpaceMargin x span / (thickest layer's thickness), in units of the unclamped shape density
-  // (cloudShapeSignedDensity). 0: skip wherever the sample is outside (sessions 1-4; at a sunset it lost
+  // (cloudShapeSignedDensity). 0: skip wherever the sample is outside (at a sunset it lost
   // thin fringes, single scattering -16 %). 0.4: the margin is 0.025 at the nearest spans, 0.2 at the
   // farthest; bench clouds measured the same images for 0.05 fixed, 0.4, 0.8 and 1.6, and as with no
   // skipping at all, for +0.4 to +1 % samples (docs/clouds.md, "Empty-space skipping").
@@ -74,23 +74,23 @@ struct CloudMarchSettings {
   bool lightMarchToExit = true;
   // With lightMarchToExit: lightSteps per layer thickness of the way to the exit, from lightSteps up to
   // 4 lightSteps (a low sun's long ways get more samples; docs/clouds.md "Lighting"). Off: lightSteps
-  // whatever the length (the fixed-step baseline's and earlier sessions' light march).
+  // whatever the length (the fixed-step baseline's light march).
   bool lightStepsPerThickness = true;
   // The light march also crosses the other layers on the sun ray (lightSteps equal steps per layer
   // thickness of each crossing, 2 to 4 lightSteps): a deck above shadows the one below, as in the path
-  // tracer. Off: each sample sees only its own layer (sessions 1-8). Not used where the Beer shadow map
+  // tracer. Off: each sample sees only its own layer. Not used where the Beer shadow map
   // covers the sample (the map has every layer). docs/clouds.md "Light through other layers".
   bool lightThroughOtherLayers = true;
   // The other layers' crossings take lightSteps x this scale per layer thickness of each (2 to 4 times
-  // that). 1 until session 14; 2 since the crossings come from a map baked once per frame
+  // that). 2, since the crossings come from a map baked once per frame
   // (otherLayerMap): it halves their Jensen bias (two_layers' single scattering +15 % -> +7 %) for one
   // more bake's samples, not more per lit sample (docs/clouds.md "Light through other layers").
   double otherLayerLightStepsScale = 2.0;
   // The other layers' crossings from a map baked once per frame (clouds/other_layer_map.glsl): every
   // point on one line along the sun shares its crossing of a layer above, so a 2D map of the lines
   // (a plane through the camera, perpendicular to the sun, log-warped out to maxDistance_m) holds them
-  // all, marched with the same steps. Off: each lit sample marches the crossings itself (sessions
-  // 9-14). docs/clouds.md "The other layers' map".
+  // all, marched with the same steps. Off: each lit sample marches the crossings itself. docs/clouds.md "The other
+  // layers' map".
   bool otherLayerMap = true;
   int otherLayerMapSize = 256;  // texels per side
   // The vertical optical depths (the octaves' way down from the layer top, the diffusion floor) from a
@@ -105,7 +105,7 @@ struct CloudMarchSettings {
   // (clouds/deep_shadow_map.glsl, a deep shadow map of optical depth): per sun line (the other layers'
   // map's plane) and layer, the optical depth from K + 1 levels up to the top. The march takes the first
   // deepShadowNearSteps of its n steps (the shadow's detail next to the sample, up to L (near / n)^2)
-  // and the rest of the way from the map in one lookup. Off: every step marched (sessions 1-15).
+  // and the rest of the way from the map in one lookup. Off: every step marched.
   // docs/clouds.md "The deep shadow map".
   bool deepShadowMap = true;
   int deepShadowMapSize = 256;   // texels per side
@@ -127,7 +127,7 @@ struct CloudMarchSettings {
   // Longer view steps behind dense cloud: once the view ray's δ-scaled transmittance T falls below
   // T1 = lowTransmittanceStepStart, the fine step is multiplied by min(T1 / T, K), K =
   // lowTransmittanceStepMax (common/cloud_march.glsl cloudLowTransmittanceStepFactor; docs/clouds.md
-  // "Longer steps behind dense cloud"). 0: off. The default T1 0.1, K 4 (session 12): the bench's errors
+  // "Longer steps behind dense cloud"). 0: off. The default T1 0.1, K 4: the bench's errors
   // against the path tracer move by at most 0.005, the stills are 5-19 % faster; larger T1 and K save
   // more but a long step through patchy cloud is biased bright (Jensen's inequality).
   double lowTransmittanceStepStart = 0.1;
@@ -140,38 +140,38 @@ struct CloudMarchSettings {
   bool msScatteredOnly = true;
   // The higher orders' build-up along the view ray (common/cloud_lighting.glsl cloudBuildUpDecay;
   // docs/clouds.md "Build-up along the view"): the octaves' and the floor's source at a sample times
-  // 1 - e^(-k tau_behind), tau_behind the view ray's optical depth behind the sample. k = 4 (session 24)
+  // 1 - e^(-k tau_behind), tau_behind the view ray's optical depth behind the sample. k = 4
   // has the least summed squared error of 1, 2, 3, 4, 6 and 10 over the seven cumulus and six
   // stratocumulus calibration scenes with the shipped constants (rms rel RMSE cumulus 0.1420 -> 0.1338,
   // stratocumulus 0.1818 -> 0.1791; on the eleven cumulus scenes since, 0.1467 -> 0.1410). 0: off.
   double msBuildUpScale = 4.0;
   // The ambient's sky and ground weights from the layer as a conservative slab under diffuse light
   // (common/cloud_lighting.glsl cloudAmbientGroundWeight, from the column's optical depths up and down)
-  // instead of visibilities linear in the height (CloudLightingSettings::ambientBottomVisibility,
-  // sessions 1-24). Session 25, against the path tracer with the sky and ground (bench rows `ambient`):
+  // instead of visibilities linear in the height (CloudLightingSettings::ambientBottomVisibility).
+  // Against the path tracer with the sky and ground (bench rows `ambient`):
   // the light the ambient adds 0.84 -> 1.11 of the path tracer's at noon, 1.09 -> 0.99 at the sunset,
   // 0.75 -> 1.02 under the overcast; docs/clouds.md "Lighting".
   bool ambientSlab = true;
   // The slab's depths up and down include the other layers' whole columns above and below (the column
   // map's, column_map.glsl columnMapOtherLayersOpticalDepths): a deck above dims the sky a layer below
-  // sees. Only with the column map (octaves > 1); without it each layer is its own slab, as in session 25.
+  // sees. Only with the column map (octaves > 1); without it each layer is its own slab.
   bool ambientThroughOtherLayers = true;
   // The slab's net flux turned towards the camera by the phase's forward lobe (common/cloud_lighting.glsl
-  // cloudAmbientViewGroundWeight), times this; 0: the slab's mean radiance J alone (session 25).
+  // cloudAmbientViewGroundWeight), times this; 0: the slab's mean radiance J alone.
   double ambientFlow = 1.0;
   // The octaves' (i >= 1) and the reflected light's sunlight scaled by min(1, mu_s / mu_0)
   // (cloudOctaveLowSunScale). Under a low sun the octaves gave up to three times the path tracer's
   // higher orders in cumulus fields (bench scenario cumulus_low_sun, the calibration's low-sun scenes).
-  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.358 since session 28, 0.412 in session
-  // 27, or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere; session 26's
+  // mu_0 is per layer (CloudLayerSettings::msLowSunMu: the type's fit, cumulus 0.358,
+  // or the scene's ms_low_sun_mu). This, where >= 0, overrides it for every layer (0: off everywhere; the
   // option); negative: each layer's own.
   double octaveLowSunMu = -1.0;
   // Under that low-sun scale s < 1 the reflected light's depth scale a_r becomes a_r / s too
   // (cloudReflectedLowSunDepthScale): the sun line then crosses kilometres of broken field, and the light
-  // reflected back from deep along it was what stayed too bright (session 28: the view away from a sun 82 deg
-  // from the zenith +26 %, its far cloud bases 2.1x). Off: a_r whatever the sun (session 27).
+  // reflected back from deep along it was what stayed too bright (the view away from a sun 82 deg
+  // from the zenith +26 %, its far cloud bases 2.1x). Off: a_r whatever the sun.
   bool reflectedLowSunDepth = true;
-  // The sun's shadow on the column's cloud top (docs/clouds.md "The shadowed top", session 29): the way
+  // The sun's shadow on the column's cloud top (docs/clouds.md "The shadowed top"): the way
   // down from the layer top and the diffusion floor assume sunlight falls on the top of p's column;
   // under a low sun a taller cloud upsun shadows it. With it on the column's cloud top (the lowest
   // column-map level above p with at most topEntryThreshold optical depth above it) takes the sun's
@@ -203,7 +203,7 @@ struct CloudMarchSettings {
   // Noise LOD by distance (the issue's "LOD mips"): a view sample and its light marches read the shape
   // and detail textures' mip level log2(s h / texel) (the nearest level, at least 0), h the view step
   // there (it grows with the distance, common/cloud_march.glsl) and s this scale. 0: level 0 everywhere
-  // (the path tracer's field; sessions 1-8). 1 since session 9: the same errors against the path tracer,
+  // (the path tracer's field). 1: the same errors against the path tracer,
   // 0.07-0.22 % from level 0 at 640x360, 4-7 % faster on lavapipe where clouds are far, noon within the
   // timing noise (docs/clouds.md "Noise LOD").
   double noiseLodScale = 1.0;
@@ -328,19 +328,19 @@ struct CloudOverrides {
 double cloudTypeExtinction(int kind);
 // The octave parameters a, b, c and the diffusion floor's weight d of a cloud type, fitted to the path
 // tracer by `firmament bench clouds --calibrate` (eval/cloud_calibration.h; docs/clouds.md "Calibration"):
-// cumulus, stratocumulus, stratus (since session 8) and cirrus (since session 9) on their own
+// cumulus, stratocumulus, stratus (since) and cirrus (since) on their own
 // calibration scenes (the approximate Mie phase's stratus takes stratocumulus's, its cirrus the joint
 // fit); cumulonimbus takes cumulus's. Per phase
 // model: c scales the phase's lobes and the approximate Mie's transport is δ-scaled, so each phase has
-// its own fit (`--phase`; the approximate Mie's d fitted in session 8).
+// its own fit (`--phase`; the approximate Mie's d fitted in).
 struct CloudMultipleScattering {
   double a, b, c, d;
   double r = 0.0, ra = 0.0;  // the reflected light's weight and depth scale (0: off)
   double lowSunMu = 0.0;     // the octaves' low-sun scale min(1, mu_s / mu_0): mu_0 (0: off)
 };
 // reflectedLight (/clouds/lighting/reflected_light, default true): the fit with the reflected light
-// (cloudReflectedSource; session 18: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves
-// alone (session 9's fits).
+// (cloudReflectedSource: cumulus, cumulonimbus, stratocumulus) where the type has one, else the octaves
+// alone.
 CloudMultipleScattering cloudTypeMultipleScattering(int kind,
                                                     CloudPhaseModel phase = CloudPhaseModel::DualHenyeyGreenstein,
                                                     bool reflectedLight = true);

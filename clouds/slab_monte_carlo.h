@@ -9,7 +9,7 @@
 //
 // Cut to a vertical cylinder (an optical radius; infinite by default, the slab), it is a finite cloud: the
 // light that leaves through the sides, which the column-wise floor does not see, measured
-// (`bench_floor_slab` part 4, session 23).
+// (`bench_floor_slab` part 4).
 //
 // Depths are optical (0 at the top); directions are propagation directions with z pointing down; the sun's
 // light travels towards +x, so the cylinder's sunlit side is at -x. Horizontal positions are optical too.

@@ -176,8 +176,8 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
     };
     std::vector<CloudCalibrationSceneError> scratch;
     // The group's shipped constants: its type's, or for "all" the joint fit. --reflection-only fits r and
-    // a_r over the shipped reflected-light fit's octaves (until session 28 over the octaves-alone fit's,
-    // which for cumulus are not the shipped ones).
+    // a_r over the shipped reflected-light fit's octaves (not the octaves-alone
+    // fit's, which for cumulus are not the shipped ones).
     const CloudMultipleScattering shipped =
         group == "all" ? cloudJointMultipleScattering(phase)
                        : cloudTypeMultipleScattering(cloudKindFromName(group), phase, config.reflection);
@@ -250,7 +250,7 @@ CloudCalibrationResult runCloudCalibration(gpu::Context& context, const CloudCal
       result.fits.push_back(std::move(fit));
       continue;
     }
-    // The simplex starts at the shipped constants (since session 8): the objective is flat across quite
+    // The simplex starts at the shipped constants (since): the objective is flat across quite
     // different (a, b, c, d), and from a fixed start the 90 evaluations could end on a point worse than
     // the shipped one (docs/clouds.md, "Calibration"); from there a fit can only improve on it.
     const bool fromZero = shipped.r <= 0.0;

@@ -39,7 +39,7 @@ struct CloudCalibrationConfig {
   // (cloudTypeMultipleScattering's reflectedLight false).
   bool reflection = false;
   // Fit r and a_r alone, the octaves' a, b, c, d fixed at the group's shipped fit with the reflected light
-  // (until session 28 at the octaves-alone fit's).
+  // (not the octaves-alone fit's).
   bool reflectionOnly = false;
   // Fit the octaves' low-sun scale's mu_0 alone (cloudOctaveLowSunScale), every other constant at the
   // group's shipped fit with the reflected light: a sweep over mu_0 in 0, 0.05, ..., 0.8 (each point's

@@ -17,7 +17,7 @@
 // hemisphere's solid angle (cos(theta) 5/6, 1/2, 1/6: tan(theta) 0.663, 1.732, 5.916), and given back
 // as the depth of a uniform layer with that mean, tau' = (1/T - 1) 4/3 (cloudDiffuseSlabDepth). A uniform layer comes back
 // unchanged. D is from the middle of layer j to the middle of the other (at least half the other's
-// thickness). Marching these 9 lookups per lit sample instead cost 18 % of two_layers' still (session 26).
+// thickness). Marching these 9 lookups per lit sample instead cost 18 % of two_layers' still.
 #include "clouds/cloud_sampling.glsl"
 #include "clouds/column_map.glsl"
 

@@ -209,7 +209,7 @@ SHARED_INLINE Real cloudFloorSunFactor(Real mu0) {
 // and 9-13 % at 0.15; with the corrections all 36 cases are 0.978-1.077 of it, those at mu0 <= 0.5
 // 0.978-1.037 (the largest left, +7.7 % at depth 1 and +4.5 % at 2 under a zenith sun, is the
 // Eddington form's own; test CloudDeckTransmission.MatchesTheSlabMonteCarlo; docs/clouds.md
-// "Lighting", item 6). Until session 22 the Eddington form alone.
+// "Lighting", item 6).
 SHARED_INLINE Real cloudSlabTransmission(Real tauSlant, Real mu0, Real g) {
   Real m = max(mu0, 0.02);
   Real tau = max(tauSlant, 0.0);
@@ -232,7 +232,7 @@ SHARED_INLINE Real cloudDeckDiffuseLight(Real tauOther, Real mu0, Real g) {
 // tauOther along the sun) and then the sample's own layer (tauOwn). The octave alone would take
 // e^(-a^i (tauOwn + tauOther)): for a thick deck above it goes to 0 exponentially, where the deck
 // passes ~1/tau of the flux, scattered (the bench's two_layers: a cumulus fit with a larger a left the
-// cumulus under the deck -21 %, session 19). The octaves i >= 1 together (their phases ~1/4pi for light
+// cumulus under the deck -21 %). The octaves i >= 1 together (their phases ~1/4pi for light
 // from all over the sky) carry at least the deck's diffuse light D = cloudDeckDiffuseLight, octave i
 // its share b^i / sum_j b^j (share). So the way through the others is the octave's own
 // e^(-a^i tauOther), but at least share D, and from the deck's base on the octave is attenuated by the
@@ -248,8 +248,8 @@ SHARED_INLINE Real cloudOctaveTransmittanceThroughOthers(Real extinctionScale, R
 // The weight of the way down from a layer's top for octaves i >= 1 (docs/clouds.md, "Multiple
 // scattering"): sunlight entering a horizontal top at mu_s = cos(sun zenith) brings the flux E mu_s,
 // and the part of it that diffuses down through a thick, conservatively scattering slab grows like the
-// escape function K(mu_s) (cloudEscapeFunction; until session 20 the Eddington approximation's 1/2 + 3/4
-// mu_s): light entering at a grazing angle is turned back out of the top before it gets deep. Normalised
+// escape function K(mu_s) (cloudEscapeFunction; rather than the Eddington approximation's 1/2 +
+// 3/4 mu_s): light entering at a grazing angle is turned back out of the top before it gets deep. Normalised
 // to 1 for the sun at the zenith: mu_s K(mu_s) / K(1); 0 for the sun at or below the horizontal.
 SHARED_INLINE Real cloudTopEntryWeight(Real muS) {
   Real m = clamp(muS, 0.0, 1.0);
@@ -323,7 +323,7 @@ SHARED_INLINE Real cloudDiffuseSlabDepth(Real transmission) { return (4.0 / 3.0)
 // towards the sun, as a source for octaves i >= 1, per unit solar irradiance and per steradian
 // (docs/clouds.md, "Multiple scattering"). The octaves carry light on along the sun's direction
 // (transmission); a sunlit face of a thick cloud seen with the sun behind the camera is bright with
-// light reflected by the cloud under it, which they lack (session 8: that quarter of the noon pixels
+// light reflected by the cloud under it, which they lack (that quarter of the noon pixels
 // -21 % without the diffusion floor). Three factors:
 //   - the reflectance of the medium behind, optical depth tauBehind along the sun: s tau / (4/3 + s tau)
 //     with s = 1 - g (cloudDiffuseSlabReflectance), the diffuse reflectance of a conservative slab in the two-stream (Eddington) form
@@ -341,10 +341,10 @@ SHARED_INLINE Real cloudReflectedSource(Real tauBehind, Real tauSun, Real g, Rea
 // The reflected light's depth scale under the low-sun scale s = cloudOctaveLowSunScale (1 above mu_0):
 // a_r / s, so e^(-a_r tau_sun / s). Measured, not derived: a_r was fitted under suns whose line crosses
 // about one cloud; under a low sun it crosses kilometres of broken field, and with a_r alone the light
-// reflected from deep along it stayed bright (session 28: in the calibration's view away from a sun 82 deg
+// reflected from deep along it stayed bright (in the calibration's view away from a sun 82 deg
 // from the zenith, +26 % over the image and 2.1x on the far cloud bases, the reflected light more than
 // half the model's light there). Refitting a_r itself for every sun did as well on the low-sun scenes but
-// worse on the held-out views from above (session 27); this leaves suns above mu_0 exactly as they were.
+// worse on the held-out views from above; this leaves suns above mu_0 exactly as they were.
 // s is clamped at 1e-3 (the sun at the horizon: the term is then ~0, as the scale makes it anyway).
 SHARED_INLINE Real cloudReflectedLowSunDepthScale(Real depthScale, Real lowSunScale) {
   return depthScale / max(lowSunScale, 1e-3);
@@ -404,7 +404,7 @@ SHARED_INLINE Real cloudAmbientViewGroundWeight(Real tauUp, Real tauDown, Real g
 // Ambient light on a cloud sample (docs/clouds.md, "Lighting"): isotropic scattering of a sky of uniform
 // radiance L_sky = E_sky / pi over the upper hemisphere and a Lambertian ground of radiance L_ground
 // over the lower one gives the in-scattered radiance (1/4pi)(2pi L_sky + 2pi L_ground) = (L_sky +
-// L_ground) / 2 (the slab's w = 1/2). By height (sessions 1-24; CloudMarchSettings::ambientSlab false),
+// L_ground) / 2 (the slab's w = 1/2). By height (CloudMarchSettings::ambientSlab false),
 // the cloud hides part of each hemisphere: the sky is scaled by a visibility rising linearly from
 // `bottomVisibility` at the base to 1 at the top of the shell, the ground by one falling from 1 at the
 // base to `bottomVisibility` at the top (after Hillaire 2016's top/bottom ambient gradient). Their sum is

@@ -103,7 +103,7 @@ std::vector<double> slabSourceMonteCarlo(double tau, double g, bool down, int bi
 TEST(CloudAmbient, FlowTowardsTheCameraAgreesWithMonteCarlo) {
   // S = 1 - w' with w' = cloudAmbientViewGroundWeight over the similarity-scaled depths, against a
   // Monte Carlo of a HG slab, looking up from below (mu_view 1) and down from above (-1), at each
-  // bin's middle depth; and the slab's J alone (w, session 25) for comparison. Measured (20000 photons;
+  // bin's middle depth; and the slab's J alone (w) for comparison. Measured (20000 photons;
   // printed): mean |error| 0.029 with the flow against 0.219 for J alone; the worst bin 0.098 (g 0.8,
   // tau 0.5 or 2, looking down, where the clamp to [0, 1] holds the linear radiance's overshoot).
   double flowError = 0.0, meanError = 0.0, worst = 0.0;

@@ -46,8 +46,8 @@ TEST(CloudDeckTransmission, IsTheDiffusionFloorsSlabTransmission) {
 
 TEST(CloudDeckTransmission, MatchesTheSlabMonteCarlo) {
   // The diffuse flux out of the base (photons of scattering orders >= 1, 100000 per case, the default
-  // phase, g its mean cosine) against cloudSlabTransmission less the direct beam. Measured (session 22,
-  // 200000 photons, depth 1-40, mu0 0.087-1): the Eddington form alone 15-22 % too large at mu0 = 0.087,
+  // phase, g its mean cosine) against cloudSlabTransmission less the direct beam. Measured
+  // (200000 photons, depth 1-40, mu0 0.087-1): the Eddington form alone 15-22 % too large at mu0 = 0.087,
   // 9-13 % at 0.15; with the corrections 0.978-1.077, and 0.978-1.037 for mu0 <= 0.5. The standard error
   // here is 0.3-1.3 %; measured here 0.986-1.047 (the Eddington form 0.992-1.202).
   const CloudLightingSettings l;  // the phase SlabMonteCarlo samples

@@ -114,7 +114,7 @@ TEST(CloudFloorAgainstMonteCarlo, LimbDarkeningIsBoundedAndOnlyAtTheBase) {
   EXPECT_LT(shared::cloudBaseLimbFactor(0.1, 0.01, std::exp(-0.1), 1.0), 0.85);
 }
 
-// The same medium cut to a vertical cylinder (session 23): a finite cloud loses diffuse light through its
+// The same medium cut to a vertical cylinder: a finite cloud loses diffuse light through its
 // sides, which the column-wise floor (the slab's source at the column's depths) does not see. Thickness
 // 20, sun overhead, the source of orders >= 2 at mid-depth on the axis, scattered down: bench_floor_slab
 // part 4 measured 0.37 of the slab's at R/H = 0.5, 0.76 at 1, 1.03 at 2 (standard errors 1.5-3 %).

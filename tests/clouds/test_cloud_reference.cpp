@@ -109,9 +109,9 @@ TEST_F(CloudReference, GpuMarchAgainstPathTracer) {
 
 // The same thin cumulus under a sun 80 deg from the zenith, to the side, looked at 20 deg up, all orders,
 // the shipped model: the octaves, fitted under higher suns, give nearly twice the path tracer's light
-// (measured +92 %; looking up 60 deg, 2.9x, session 26) with the single scattering right. Cumulus's
+// (measured +92 %; looking up 60 deg, 2.9x) with the single scattering right. Cumulus's
 // low-sun scale (cloudOctaveLowSunScale, mu_0 fitted on the calibration's low-sun scenes, not on this
-// one) must bring it within the bounds of the noon case above (measured -2.5 %; -10 % in session 27, before the
+// one) must bring it within the bounds of the noon case above (measured -2.5 %; -10 % without the
 // reflected light's low-sun depth scale; the reference's SE of the mean 3 %), while the model without it stays far too
 // bright (the check can fail).
 TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
@@ -121,7 +121,7 @@ TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
   SkyRenderOptions o = fineMarchOptions();
   const RenderResult shipped = test::cloudRenderer().render(scene, o);
   o.clouds.reflectedLowSunDepth = false;
-  const RenderResult session27 = test::cloudRenderer().render(scene, o);
+  const RenderResult withoutDepthScale = test::cloudRenderer().render(scene, o);
   o.clouds.octaveLowSunMu = 0.0;
   const RenderResult off = test::cloudRenderer().render(scene, o);
   const CloudSettings settings = CloudSettings::fromScene(scene);
@@ -134,7 +134,7 @@ TEST_F(CloudReference, LowSunCumulusAgainstPathTracer) {
   const CloudReferenceImage ref = renderCloudReference(tracer, glm::dvec3(0.0, 0.0, view.cameraRadius), view.camera, 0);
   const CloudReferenceError e = compareWithCloudReference(shipped.clouds, ref);
   const CloudReferenceError eOff = compareWithCloudReference(off.clouds, ref);
-  const CloudReferenceError e27 = compareWithCloudReference(session27.clouds, ref);
+  const CloudReferenceError e27 = compareWithCloudReference(withoutDepthScale.clouds, ref);
   ASSERT_GT(e.pixels, 20);
   const double meanSe = relativeStandardErrorOfMean(ref, e);
   std::printf(
@@ -253,8 +253,8 @@ TEST_F(CloudReference, AmbientAgainstPathTracerWithSkyAndGround) {
   ASSERT_GT(g.pixels, 20);
   EXPECT_GT(g.reference, 10.0 * g.gainStandardError);  // the sky's light is resolved by the references
   // Measured 1651 against 1591 +- 8 a pixel (ratio 1.038, per-pixel error of the gain 0.047); the slab's
-  // J alone (session 25, CloudMarchSettings::ambientFlow 0) 1802 (1.133, per pixel 0.134: its ground
-  // light 1.44x the path tracer's, its sky 0.77x); the ambient by height of sessions 1-24 1377 (0.87).
+  // J alone (CloudMarchSettings::ambientFlow 0) 1802 (1.133, per pixel 0.134: its ground
+  // light 1.44x the path tracer's, its sky 0.77x); the ambient by height 1377 (0.87).
   // Bounds: within 10 % + 3 SE, which J alone fails, and closer per pixel than J alone.
   EXPECT_LE(std::abs(g.gpu[0] - g.reference), 0.10 * g.reference + 3.0 * g.gainStandardError);
   EXPECT_LT(g.gainRmse[0], g.gainRmse[1]);
@@ -274,12 +274,12 @@ Scene cumulusUnderADeck(
 
 // The same cumulus under an unbroken stratus deck: the ambient's slab through both layers' columns
 // (CloudMarchSettings::ambientThroughOtherLayers, column_map.glsl columnMapOtherLayersOpticalDepths)
-// against each layer as its own slab (session 25), under which the cumulus sees the whole sky.
+// against each layer as its own slab, under which the cumulus sees the whole sky.
 // Measured (128 paths): the ambient adds 2532 against the path tracer's 2610 +- 3 a pixel (0.970;
 // its own slab 0.914), per-pixel relative error of the gain 0.051 (its own slab 0.096); the whole
-// image 0.144 / -7.8 % (0.157 / -9.2 %). Without the slab's flow (ambientFlow 0, session 26's first
-// build) the same comparison was 1.010 against 0.970, per pixel 0.040 against 0.051. Bounds: the mean within 5 % + 3
-// SE, and the per-pixel error below its own slab's, which each layer alone fails.
+// image 0.144 / -7.8 % (0.157 / -9.2 %). Without the slab's flow (ambientFlow 0) the same comparison was 1.010 against
+// 0.970, per pixel 0.040 against 0.051. Bounds: the mean within 5 % + 3 SE, and the per-pixel error below its own
+// slab's, which each layer alone fails.
 TEST_F(CloudReference, AmbientUnderADeckAgainstPathTracer) {
   SkyRenderOptions o = test::smallCloudOptions();
   o.clouds.aerialPerspective = AerialPerspective::Off;
@@ -387,7 +387,7 @@ TEST_F(CloudReference, ADeckAboveShadowsTheLayerBelow) {
 // reflected light), sunlight only: the light that reaches the cumulus through the deck is mostly
 // scattered, ~1/tau of the flux for a thick deck, which the octaves' e^(-a^i tau) alone lose. With the
 // deck's diffuse light (cloudOctaveTransmittanceThroughOthers) the bench's two_layers is -0.2 %; without
-// it, -21 % (session 19, the cumulus fit with a = 0.445). This scene (like the bench's, other seed and
+// it, -21 % (the cumulus fit with a = 0.445). This scene (like the bench's, other seed and
 // sun) measured -5.2 % with it and -14.1 % without (a scratch build; the reference's standard error of
 // the mean 1.9 %). Bound: 8 % + 2 standard errors (11.8 %).
 TEST_F(CloudReference, ALayerUnderADeckKeepsTheDecksDiffuseLight) {

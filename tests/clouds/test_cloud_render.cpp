@@ -597,7 +597,7 @@ TEST_F(CloudRender, ErrorFallsAsViewStepsGrow) {
 // The shipped thunderstorm scene (one cumulonimbus layer 1-12 km at the type's full extinction, its
 // storm cells 10-50 km away, the weather simulation's map with 200 m cells) converges as the view
 // steps grow. Measured at 80x45 against 1024 steps: 7.35 / 3.39 / 1.47 % at 64 / 128 / 256 steps with
-// the empty-space test on the coverage reach (session 13), against 24.2 / 8.1 / 2.9 % with the margin
+// the empty-space test on the coverage reach, against 24.2 / 8.1 / 2.9 % with the margin
 // test, whose bound the map's coverage jumps broke (docs/clouds.md "Empty-space skipping").
 TEST_F(CloudRender, TallStormLayerConvergesAsViewStepsGrow) {
   SkyRenderOptions o = test::smallCloudOptions();
@@ -664,8 +664,8 @@ TEST_F(CloudRender, EmptySpaceSkippingKeepsThinFringes) {
   SkyRenderOptions old = o;
   old.clouds.emptySpaceMargin = 0.0;
   const double errOld = compare(cloudLuminance(old), biasOld);
-  std::printf("vs no skipping: default rel RMSE %.4f bias %+.4f; margin 0 (sessions 1-4) %.4f bias %+.4f\n", errDefault,
-              biasDefault, errOld, biasOld);
+  std::printf("vs no skipping: default rel RMSE %.4f bias %+.4f; margin 0 %.4f bias %+.4f\n", errDefault, biasDefault,
+              errOld, biasOld);
   EXPECT_LT(std::abs(biasDefault), 0.01);
   EXPECT_LT(errDefault, 0.02);
   EXPECT_GT(errOld, 5.0 * errDefault);  // the scene does show the fringes the old test lost
@@ -752,7 +752,7 @@ TEST(CloudSettingsTest, RejectsOctavesThatAddEnergyAndOverlaps) {
       InputError);
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/layers/0/top_m=1000"})), InputError);
   // ms_a alone is checked against the layer type's calibrated b for the scene's phase (cumulus with the
-  // approximate Mie phase: b = 0.677 since session 24; every dual-HG type's b is 1 since session 9).
+  // approximate Mie phase: b = 0.677; every dual-HG type's b is 1).
   const double cumulusMieB = cloudTypeMultipleScattering(shared::kCloudCumulus, CloudPhaseModel::ApproximateMie).b;
   ASSERT_LT(cumulusMieB, 0.99);
   const std::string mie = "/clouds/lighting/phase=approximate_mie";
@@ -797,7 +797,7 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
   EXPECT_THROW(CloudSettings::fromScene(test::cloudScene({"/clouds/lighting/ms_d=3"}, twoLayers)), InputError);
   EXPECT_EQ(given.layers[1].msC, 0.7);
   EXPECT_EQ(given.layers[0].msB, sc.b);
-  // The low-sun scale's mu_0 (session 27): cumulus's fit, none for stratocumulus; the scene's for every layer.
+  // The low-sun scale's mu_0: cumulus's fit, none for stratocumulus; the scene's for every layer.
   EXPECT_EQ(typed.layers[1].msLowSunMu, cu.lowSunMu);
   EXPECT_GT(cu.lowSunMu, 0.0);
   EXPECT_EQ(typed.layers[0].msLowSunMu, sc.lowSunMu);
@@ -810,8 +810,8 @@ TEST(CloudSettingsTest, OctaveParametersPerTypeUnlessGiven) {
 }
 
 // The quality presets change the march's steps only. The octave parameters are fitted for 3 octaves: a
-// 4th adds about +48 % at noon (docs/clouds.md, bench "octaves" rows), and `low`'s 2 octaves until
-// session 17 made two_layers -52 % against the path tracer (docs/clouds.md "Quality presets").
+// 4th adds about +48 % at noon (docs/clouds.md, bench "octaves" rows), and a `low` with 2 octaves
+// made two_layers -52 % against the path tracer (docs/clouds.md "Quality presets").
 TEST(CloudSettingsTest, QualityPresetsKeepTheFittedOctaves) {
   const CloudSettings standard = CloudSettings::fromScene(test::cloudScene({}));
   const CloudSettings low = CloudSettings::fromScene(test::cloudScene({"/clouds/quality=\"low\""}));

@@ -167,7 +167,7 @@ TEST_F(CloudTemporal, ClampRejectsHistoryThatNoLongerBelongs) {
 // (measured 11.7 % and 9.3 %: the horizon's fine detail, compressed into the fisheye's rim, blurs as
 // the history is resampled; a Catmull-Rom read took 10.5 % to 9.2 % before the per-thickness light march).
 // The bias the turning adds is bounded by the still sequence's own plus half a point: the reflected light
-// (session 18) moved the still sequences' floor to 10.5 % and 12.7 %, bias -1.0 % and -1.4 % (without it
+// moved the still sequences' floor to 10.5 % and 12.7 %, bias -1.0 % and -1.4 % (without it
 // 7.5 % and 9.4 %, -0.65 % and -1.0 %), and the turning ones to +0.16 % and -1.2 %.
 TEST_F(CloudTemporal, OtherProjectionsStayNearTheirNoiseFloor) {
   SkyRenderer& renderer = test::cloudRenderer();

@@ -84,7 +84,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(milestone, 1) << scenario;
     EXPECT_EQ(single, 7) << scenario;
     // One layer: the rows about the other layers would give the same image, so they are left out
-    // (session 15); without the early exit the march goes on.
+    //; without the early exit the march goes on.
     EXPECT_LT(ownLayerOnlyError, 0.0) << scenario;
     EXPECT_GT(noEarlyExitSpp, defaultSpp) << scenario;
     EXPECT_GT(spp256, spp16) << scenario;
@@ -160,11 +160,11 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     }
     ASSERT_EQ(samples.size(), 18u) << scenario;
     // The quality presets: low marches fewer samples than the default, high more; the octaves cost no
-    // samples (low with 2 octaves, as until session 17, marches exactly what low does).
+    // samples (low with 2 octaves, the earlier preset, marches exactly what low does).
     const std::string low = "quality low (32v/4l/3o)";
     EXPECT_LT(marchSamples[low], 0.8 * marchSamples["default"]) << scenario;
     EXPECT_GT(marchSamples["quality high (128v/8l/3o)"], 1.25 * marchSamples["default"]) << scenario;
-    EXPECT_EQ(samples["quality low, 2 octaves (until session 17)"], samples[low]) << scenario;
+    EXPECT_EQ(samples["quality low, 2 octaves (the earlier preset)"], samples[low]) << scenario;
     // The noise LOD changes which mip level a lookup reads, not how many lookups there are (the
     // empty-space test sees a blurred shape, hence a little slack).
     for (const char* lod : {"noise_lod 0 (level 0)", "noise_lod 2"})
