@@ -572,7 +572,7 @@ void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& 
 void CloudPass::record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
                        const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                        const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial,
-                       bool continueSequence) {
+                       bool continueSequence, const gpu::Buffer* terrainDepth) {
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
   if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
@@ -689,7 +689,15 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   const size_t variant = size_t(m.aerialPerspective);
   static const char* const kVariants[3] = {"clouds/render_clouds_ap_off", "clouds/render_clouds_ap_march",
                                            "clouds/render_clouds"};
-  const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0, sunClearsEveryCloudSample(m, view));
+  // Bit 8192: the march stops at the terrain (terrainDepth).
+  const uint32_t features = cloudMarchFeatures(settings, reachRadius_ > 0.0, sunClearsEveryCloudSample(m, view)) |
+                            (terrainDepth ? 8192u : 0u);
+  if (!terrainDepthPlaceholder_) {
+    terrainDepthPlaceholder_ = gpu::Buffer(context_, sizeof(float), gpu::BufferUsage::Storage,
+                                           gpu::MemoryLocation::Device, "terrain depth placeholder");
+    const float far = 1.0e30f;
+    terrainDepthPlaceholder_.upload(&far, sizeof(far));
+  }
   std::unique_ptr<gpu::ComputePipeline>& pipeline = pipelines_[{int(variant), features}];
   if (!pipeline)
     pipeline = std::make_unique<gpu::ComputePipeline>(
@@ -702,7 +710,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
              gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer,
              gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,
              gpu::BindingType::SampledImage,  gpu::BindingType::StorageBuffer, gpu::BindingType::SampledImage,
-             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage},
+             gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,  gpu::BindingType::SampledImage,
+             gpu::BindingType::StorageBuffer},
             sizeof(Push),
             {features}});
   if (!volume && !aerialPlaceholder_)
@@ -731,7 +740,8 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                               {weatherReach_, noise_.linearRepeat()},
                               {otherLayerImage_, luts.linearClamp()},
                               {columnImage_, luts.linearClamp()},
-                              {deepShadowImage_, luts.linearClamp()}});
+                              {deepShadowImage_, luts.linearClamp()},
+                              terrainDepth ? *terrainDepth : terrainDepthPlaceholder_});
     // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
     // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
     Push push{marchTiles,

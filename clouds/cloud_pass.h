@@ -96,10 +96,13 @@ class CloudPass {
   // previous frame (clouds/temporal_resolve). It does so only when the previous frame was recorded
   // with the same cloud settings, image size and weather map, and the camera is not inside a layer;
   // otherwise every pixel is marched (and the next frame can reproject from this one).
+  //
+  // terrainDepth: per image pixel the distance to the terrain (m; sky/terrain_pass.h), where the march
+  // stops; null without terrain (the march's code for it is compiled out).
   void record(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
               const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
               const gpu::TileDispatch& tiles, gpu::CommandList& commands, const CloudAerialVolume* aerial = nullptr,
-              bool continueSequence = false);
+              bool continueSequence = false, const gpu::Buffer* terrainDepth = nullptr);
 
   // RGBA32F pixels of the view, row-major: rgb = the clouds' light in front of the sky (cd/m^2, aerial
   // perspective included), a = the clouds' transmittance. Valid after the recorded commands ran.
@@ -156,7 +159,8 @@ class CloudPass {
   // the options a frame uses (cloudMarchFeatures): created on first use, keyed by AerialPerspective and
   // the features.
   std::map<std::pair<int, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> pipelines_;
-  gpu::Image aerialPlaceholder_;  // 2x2x2, bound where the variant reads no volume
+  gpu::Image aerialPlaceholder_;         // 2x2x2, bound where the variant reads no volume
+  gpu::Buffer terrainDepthPlaceholder_;  // one float (1e30), bound without terrain
   gpu::ComputePipeline bakeShadow_;
   gpu::ComputePipeline bakeOtherLayers_;    // clouds/bake_other_layers
   gpu::ComputePipeline bakeColumns_;        // clouds/bake_columns

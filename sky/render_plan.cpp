@@ -2,6 +2,7 @@
 
 #include "clouds/cloud_settings.h"
 #include "sky/scene_cloud_medium.h"
+#include "sky/terrain_plan.h"
 
 namespace firmament {
 
@@ -97,7 +98,9 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                 aerial == AerialPerspective::March
                                     ? "aerial perspective 'march': the cloud march marches the air per pixel"
                                     : "aerial perspective 'off'"});
-      const bool shadowMap = options.cloudShadowMap ? *options.cloudShadowMap : scene.boolean("/clouds/shadow_map");
+      // With terrain the map is baked always: the ground's cloud shadows read it (sky/terrain_pass.h).
+      const bool shadowMap = scene.hasSection("terrain") ||
+                             (options.cloudShadowMap ? *options.cloudShadowMap : scene.boolean("/clouds/shadow_map"));
       if (shadowMap)
         plan.passes.push_back({"clouds/bake_shadow_map",
                                "Beer shadow map: front depth, mean extinction, optical depth to the sun",
@@ -202,9 +205,10 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   } else {
     plan.omitted.push_back({"weather", "no weather section: no simulation"});
   }
-  if (scene.hasSection("terrain")) {
-    plan.unavailable.push_back(
-        {"terrain", "terrain rendering is not implemented in this version; the ground is the smooth sphere"});
+  if (scene.hasSection("terrain") && options.multipleScattering == MultipleScattering::BrunetonTables) {
+    plan.unavailable.push_back({"terrain", "terrain needs the f_ms path (--multiple-scattering fms) in this version"});
+  } else if (scene.hasSection("terrain")) {
+    addTerrainPasses(scene, plan);
   } else {
     plan.omitted.push_back({"terrain", "no terrain section: the ground is the atmosphere's smooth sphere"});
   }

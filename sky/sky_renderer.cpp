@@ -98,6 +98,7 @@ struct SkyRenderer::Frame {
   bool derivedRecorded = false;           // the derived tables (4D tables or the ground's skylight) were recomputed
   bool lutsComputed = false;              // the atmosphere LUTs were computed (not from memory or disk)
   std::unique_ptr<CloudSettings> clouds;  // null without cloud layers
+  bool terrain = false;                   // the scene has a /terrain section (sky/terrain_pass.h)
   std::unique_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
   gpu::TileDispatch tiles{};
 };
@@ -109,6 +110,10 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   prepareClouds(scene, frame, result);
   gpu::CommandList commands(context_);
   recordSky(frame, result, commands);
+  if (frame.terrain && !frame.clouds) {
+    commands.barrier();
+    recordTerrain(frame, result, commands, nullptr);
+  }
   if (frame.clouds) recordClouds(frame, result, commands);
   resolve(scene, frame, commands, result);
   return result;
@@ -122,9 +127,19 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
     throw InputError("the 4D scattering tables carry three wavelengths: use spectral samples 3 with them");
   result.view = makeSceneView(scene);
   frame.options = requested;
+  // Terrain: the camera stands on the field at the location (sky/terrain_pass.h).
+  frame.terrain = scene.hasSection("terrain");
+  if (frame.terrain) {
+    if (!terrain_) terrain_ = std::make_unique<TerrainPass>(context_);
+    terrain_->prepare(scene, result.view.atmosphere.bottomRadius);
+    result.view.cameraRadius = result.view.atmosphere.bottomRadius + terrain_->groundUnderCamera() +
+                               scene.number("/camera/height_above_ground_m");
+  }
   const bool hasClouds = sceneHasCloudLayers(scene);
   if (hasClouds && frame.useTables)
     throw InputError("clouds need the f_ms path (--multiple-scattering fms) in this version");
+  if (scene.hasSection("terrain") && frame.useTables)
+    throw InputError("terrain needs the f_ms path (--multiple-scattering fms) in this version");
   frame.options.luts.spectralSamples =
       resolveSpectralSamples(frame.options.luts.spectralSamples, result.view.sunZenith, hasClouds, frame.useTables);
   result.spectralSamples = frame.options.luts.spectralSamples;
@@ -132,6 +147,8 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
   if (hasClouds) {
     frame.clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     frame.options.clouds.apply(frame.clouds->march);
+    // The terrain's cloud shadows come from the Beer shadow map: baked whenever there is terrain.
+    if (frame.terrain) frame.clouds->march.beerShadowMap = true;
   }
   return frame;
 }
@@ -382,8 +399,26 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
     commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
     commands.barrier();
   }
+  if (frame.terrain) {
+    const CloudPass::ShadowPlacement& p = clouds_->shadowPlacement();
+    const TerrainCloudShadow shadow{&clouds_->shadowMap(), p.centre, p.u, p.v, p.extent_m, p.start_m};
+    recordTerrain(frame, result, commands, &shadow);
+  }
   clouds_->record(clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume,
-                  options.continueSequence);
+                  options.continueSequence, frame.terrain ? &terrain_->depth() : nullptr);
+}
+
+void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands,
+                                const TerrainCloudShadow* shadow) {
+  const SceneView& view = result.view;
+  TerrainPassView terrainView;
+  terrainView.cameraPosition = glm::dvec3(0.0, 0.0, double(float(view.cameraRadius)));
+  terrainView.sunDirection = view.sunDirection;
+  terrainView.camera = view.camera;
+  terrainView.airSteps = frame.options.viewSteps;
+  std::vector<const gpu::Image*> irradiance;
+  for (size_t b = 0; b < luts_.batchCount(); ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
+  terrain_->record(terrainView, luts_, irradiance, *frame.output, frame.tiles, commands, shadow);
 }
 
 // Resolve: submit and wait, the timings, the images downloaded (unless the caller keeps them on the

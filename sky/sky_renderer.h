@@ -19,6 +19,7 @@
 #include "sky/aerial_perspective_volume.h"
 #include "sky/render_plan.h"
 #include "sky/scene_view.h"
+#include "sky/terrain_pass.h"
 
 namespace firmament {
 
@@ -93,6 +94,8 @@ class SkyRenderer {
   gpu::Context& context() { return context_; }
   // The clouds' Beer shadow map of the last render with it enabled (RGBA floats; empty otherwise).
   std::vector<float> cloudShadowMap() const;
+  // The terrain pass of the last render with terrain (its depth and hits), null before one.
+  const TerrainPass* terrainPass() const { return terrain_.get(); }
 
  private:
   // render() in four steps: plan (the view, the options' automatic choices, the passes), prepare (the
@@ -104,6 +107,8 @@ class SkyRenderer {
   void prepareClouds(const Scene& scene, Frame& frame, RenderResult& result);
   void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  // The terrain (sky/terrain_pass.h) over the sky, before the clouds; shadow: the clouds' Beer shadow map.
+  void recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands, const TerrainCloudShadow* shadow);
   void resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result);
 
   gpu::Context& context_;
@@ -117,6 +122,7 @@ class SkyRenderer {
   std::unique_ptr<CloudPass> clouds_;                          // created for the first scene with clouds
   std::unique_ptr<gpu::ComputePipeline> lightShaftsPipeline_;  // sky/cloud_light_shafts
   std::unique_ptr<AerialPerspectiveVolume> aerial_;            // created for the first scene that reads it
+  std::unique_ptr<TerrainPass> terrain_;                       // created for the first scene with terrain
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
   // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:

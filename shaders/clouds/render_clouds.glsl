@@ -106,6 +106,10 @@ layout(set = 0, binding = 19) uniform sampler3D columnMap;
 // Each layer's optical depth along the sun from any point to its top (clouds/deep_shadow_map.glsl; linear,
 // clamp; 1x1x1 and unread without it).
 layout(set = 0, binding = 20) uniform sampler3D deepShadowMap;
+// The distance to the terrain per image pixel (sky/terrain_pass.h; 1e30 where none), where the march
+// stops (one float, unread, without terrain).
+const bool kTerrainDepth = (kMarchFeatures & 8192u) != 0u;
+layout(std430, set = 0, binding = 21) readonly buffer TerrainDepth { float t[]; } terrainDepth;
 
 // Air between the camera and distance d along dir, by a march of `steps` equal steps of the clear-sky
 // integrand (atmosphere/air_integrand.glsl, as the sky and the aerial-perspective volume): the
@@ -160,6 +164,11 @@ void main() {
   // 1. The stretches inside the shells, before the ground and the march limit, sorted by start.
   float tMax = cloud.sun_direction.w;
   if (rayIntersectsGround(r, mu, atmosphere.bottom_radius)) tMax = min(tMax, distanceToBottomAtmosphereBoundary(r, mu, atmosphere.bottom_radius));
+  if (kTerrainDepth) {
+    ivec2 imagePixel = clamp(ivec2(imagePoint), ivec2(0), ivec2(cloud.image.xy) - 1);
+    uint terrainIndex = uint(imagePixel.y * cloud.image.x + imagePixel.x);
+    if (terrainIndex < uint(terrainDepth.t.length())) tMax = min(tMax, terrainDepth.t[terrainIndex]);
+  }
   vec2 segments[kMaxSegments];
   int segmentLayer[kMaxSegments];
   int count = 0;

@@ -1,0 +1,69 @@
+// terrain_block.glsl (GPU only): what the terrain passes read (sky/terrain_pass.cpp fills it): the
+// camera and sun, the height field on the gnomonic plane (common/terrain_geometry.glsl), its min/max
+// pyramid (terrain/min_max_pyramid.h) level by level, the clouds' Beer shadow map's placement
+// (common/cloud_shadow.glsl) and the albedo's parameters (common/terrain_albedo.glsl).
+//
+// Define TERRAIN_BLOCK_BINDING, TERRAIN_HEIGHTS_BINDING and TERRAIN_PYRAMID_BINDING before including.
+#ifndef FIRMAMENT_TERRAIN_BLOCK_GLSL
+#define FIRMAMENT_TERRAIN_BLOCK_GLSL
+
+#include "common/terrain_albedo.glsl"
+#include "common/terrain_geometry.glsl"
+
+const int kTerrainMaxLevels = 16;
+
+// std140; mirrored by TerrainBlock in sky/terrain_pass.cpp.
+layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
+  vec4 camera_position;  // planet-centred (m); w = the planet radius R of the heights (sea level)
+  vec4 camera_forward;   // xyz; w = horizontal fov (rad)
+  vec4 camera_right;     // xyz; w = yaw (rad)
+  vec4 camera_up;        // xyz
+  vec4 sun_direction;    // xyz, unit; w: 1 = cast shadow rays at the sun (self-shadowing)
+  ivec4 image;           // width, height, projection, air march steps
+  vec4 grid;             // x0, y0, dx, dy of the samples on the plane (m)
+  ivec4 grid_size;       // nx, ny, pyramid levels, 1 when the outside sphere exists
+  vec4 heights;          // outside height, highest height (field and outside), unused, unused
+  vec4 shadow_centre;    // Beer shadow map: centre (cloud frame, m); w = extent (m)
+  vec4 shadow_u;         // axis u; w = start distance L (m)
+  vec4 shadow_v;         // axis v; w = 1 when the map is read (clouds with a shadow map)
+  vec4 albedo_rock;      // linear Rec.709; w = the clouds' phase asymmetry g for the deck's diffuse light
+  vec4 albedo_vegetation;
+  vec4 albedo_snow;
+  vec4 albedo_lines;     // tree line (m), its transition (m), vegetation's steepest slope (rad), snow line (m)
+  vec4 albedo_slopes;    // snow line's transition (m), snow's steepest slope (rad), slope transition (rad), unused
+  ivec4 levels[kTerrainMaxLevels];  // per pyramid level: offset of its minima in the pyramid buffer, width, height, unused
+} terrain;
+
+// Heights (m above R), nx x ny, row-major from the south-west sample.
+layout(std430, set = 0, binding = TERRAIN_HEIGHTS_BINDING) readonly buffer TerrainHeights { float h[]; } terrainHeights;
+// Per level: width x height minima, then width x height maxima (row 0 south).
+layout(std430, set = 0, binding = TERRAIN_PYRAMID_BINDING) readonly buffer TerrainPyramid { float v[]; } terrainPyramid;
+
+float terrainAt(int i, int j) { return terrainHeights.h[j * terrain.grid_size.x + i]; }
+
+vec4 terrainCellHeights(int i, int j) {
+  return vec4(terrainAt(i, j), terrainAt(i + 1, j), terrainAt(i, j + 1), terrainAt(i + 1, j + 1));
+}
+
+vec2 terrainNodeRange(int level, int i, int j) {
+  ivec4 l = terrain.levels[level];
+  int k = l.x + j * l.y + i;
+  return vec2(terrainPyramid.v[k], terrainPyramid.v[k + l.y * l.z]);
+}
+
+TerrainAlbedoParameters terrainAlbedoParameters() {
+  TerrainAlbedoParameters p;
+  p.rock = terrain.albedo_rock.rgb;
+  p.vegetation = terrain.albedo_vegetation.rgb;
+  p.snow = terrain.albedo_snow.rgb;
+  p.treeLine = terrain.albedo_lines.x;
+  p.treeLineTransition = terrain.albedo_lines.y;
+  p.vegetationMaxSlope = terrain.albedo_lines.z;
+  p.snowLine = terrain.albedo_lines.w;
+  p.snowLineTransition = terrain.albedo_slopes.x;
+  p.snowMaxSlope = terrain.albedo_slopes.y;
+  p.slopeTransition = terrain.albedo_slopes.z;
+  return p;
+}
+
+#endif  // FIRMAMENT_TERRAIN_BLOCK_GLSL

@@ -1,0 +1,96 @@
+#pragma once
+// The terrain in the frame (docs/terrain.md): the scene's height field ray-cast on the GPU from the
+// camera (shaders/terrain/cast_terrain.comp: the min/max pyramid walk of terrain/terrain_intersection.h
+// in float, a shadow ray at the sun, the clouds' optical depth along the sun line from their Beer shadow
+// map), then shaded once per spectral batch (shaders/terrain/shade_terrain.comp: a Lambertian ground
+// under sun and sky light through the air and the clouds, the air between camera and ground) over the
+// frame's pixels that meet it. It leaves, per pixel, the distance to the terrain that the cloud march
+// stops at. Created only for scenes with a /terrain section.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "atmosphere/atmosphere_luts.h"
+#include "common/camera.glsl"
+#include "core/scene.h"
+#include "gpu/buffer.h"
+#include "gpu/command.h"
+#include "gpu/dispatch.h"
+#include "gpu/image.h"
+#include "gpu/pipeline.h"
+#include "terrain/scene_terrain.h"
+
+namespace firmament {
+
+struct TerrainPassView {
+  glm::dvec3 cameraPosition{0.0};  // planet-centred (the camera on +z of its ground point's ENU frame)
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};
+  shared::CameraParameters camera{};
+  int airSteps = 32;       // the air march's steps to the ground (the sky's view steps)
+  bool selfShadow = true;  // a shadow ray per pixel at the sun
+};
+
+// The clouds' Beer shadow map and where it lies (clouds/cloud_pass.h ShadowPlacement).
+struct TerrainCloudShadow {
+  const gpu::Image* map = nullptr;
+  glm::dvec3 centre{0.0}, u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0};
+  double extent_m = 1.0, start_m = 0.0;
+};
+
+class TerrainPass {
+ public:
+  explicit TerrainPass(gpu::Context& context);
+
+  // Resolves the scene's terrain (terrain/scene_terrain.h) and uploads the heights and the pyramid;
+  // kept while the scene's /terrain and /location and the radius are unchanged. True when resolved now.
+  bool prepare(const Scene& scene, double planetRadius);
+  const terrain::ResolvedTerrain& resolved() const { return *resolved_; }
+  // The ground height under the camera (m above sea level): the field at the location.
+  double groundUnderCamera() const;
+  // Seconds the last resolution took (0 when reused).
+  double resolveSeconds() const { return resolveSeconds_; }
+
+  // Records the cast (a barrier after) and the shading of each spectral batch into `frame` (RGBA32F,
+  // the view's pixels, row-major; the sky written before, a barrier between). skyIrradiance[b]: batch b's
+  // ground irradiance table. shadow: the clouds' Beer shadow map (baked before, a barrier between), or
+  // null. A barrier follows the last shading.
+  void record(const TerrainPassView& view, const AtmosphereLuts& luts,
+              const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& frame, const gpu::TileDispatch& tiles,
+              gpu::CommandList& commands, const TerrainCloudShadow* shadow = nullptr);
+
+  // Per pixel of the last record(): the distance to the terrain along the view ray (m; 1e30 where it
+  // meets none). Valid once the recorded commands ran.
+  const gpu::Buffer& depth() const { return depth_; }
+  // Per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun, height,
+  // surface) (shaders/terrain/cast_terrain.comp).
+  const gpu::Buffer& hits() const { return hits_; }
+
+  // The GPU cast on given rays, for tests: per ray (origin, r) and (direction, mu) in; per ray
+  // (normal, t) and (height, surface, 0, 0) out. Submits and waits.
+  std::vector<glm::vec4> castRays(const std::vector<glm::vec4>& rays);
+
+ private:
+  void uploadBlock(const TerrainPassView& view, const TerrainCloudShadow* shadow);
+
+  gpu::Context& context_;
+  gpu::ComputePipeline cast_;
+  gpu::ComputePipeline shade_;
+  std::unique_ptr<gpu::ComputePipeline> castRays_;  // created by the first castRays()
+  std::unique_ptr<terrain::ResolvedTerrain> resolved_;
+  std::string key_;
+  double planetRadius_ = 0.0;
+  double resolveSeconds_ = 0.0;
+  std::vector<glm::ivec4> levels_;  // offset, width, height, 0 per pyramid level
+  float fieldTop_ = 0.0f;
+  gpu::Buffer block_;
+  gpu::Buffer heights_;
+  gpu::Buffer pyramid_;
+  gpu::Buffer hits_;
+  gpu::Buffer depth_;
+  gpu::Image shadowPlaceholder_;
+  gpu::Sampler linearClamp_;
+};
+
+}  // namespace firmament
