@@ -42,6 +42,12 @@ void main() {
     vec3 sun = terrain.sun_direction.xyz;
     vec3 p = origin + dir * hit.t;
     vec3 up = normalize(p);
+    // Field points shade with the smooth normal (the cast's exact one stays for walls and the outside).
+    if (hit.surface == 1) {
+      vec2 plane = terrainPlanePoint(p, R);
+      vec3 smoothNormal = terrainSmoothNormal(plane, R);
+      if (dot(smoothNormal, smoothNormal) > 0.5) hit.normal = smoothNormal;
+    }
     // The shadow ray starts 2 m out along the normal and 0.5 m up: the hit's float position is good to
     // ~0.5 m at the planet's radius, and a start under the surface would shadow the point itself.
     if (terrain.sun_direction.w > 0.5 && dot(hit.normal, sun) > 0.0 && dot(up, sun) > -0.1) {

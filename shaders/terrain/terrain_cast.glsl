@@ -44,6 +44,28 @@ vec3 terrainFieldNormal(vec2 plane, float R) {
   return terrainSurfaceNormal(plane, h, gradient, R);
 }
 
+// The shading normal at a plane point inside the grid: the samples' central-difference gradients
+// interpolated bilinearly (continuous across cells, where the bilinear surface's own gradient jumps:
+// facets a camera near the ground sees as flat-shaded cells).
+vec2 terrainVertexGradient(int i, int j) {
+  int nx = terrain.grid_size.x, ny = terrain.grid_size.y;
+  int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1), j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
+  return vec2((terrainAt(i1, j) - terrainAt(i0, j)) / (float(i1 - i0) * terrain.grid.z),
+              (terrainAt(i, j1) - terrainAt(i, j0)) / (float(j1 - j0) * terrain.grid.w));
+}
+
+vec3 terrainSmoothNormal(vec2 plane, float R) {
+  int ncx = terrain.grid_size.x - 1, ncy = terrain.grid_size.y - 1;
+  vec2 g = (plane - terrain.grid.xy) / terrain.grid.zw;
+  int i = clamp(int(floor(g.x)), 0, ncx - 1);
+  int j = clamp(int(floor(g.y)), 0, ncy - 1);
+  vec2 f = clamp(g - vec2(i, j), 0.0, 1.0);
+  vec2 gradient = mix(mix(terrainVertexGradient(i, j), terrainVertexGradient(i + 1, j), f.x),
+                      mix(terrainVertexGradient(i, j + 1), terrainVertexGradient(i + 1, j + 1), f.x), f.y);
+  float h = terrainBilinear(terrainCellHeights(i, j), f);
+  return terrainSurfaceNormal(plane, h, gradient, R);
+}
+
 TerrainCastHit terrainNoHit() {
   TerrainCastHit h;
   h.hit = false;
