@@ -487,13 +487,15 @@ int runTimelapse(const Args& args) {
   const Range range = frameRange(args, plan.frames);
 
   // The folder and the resume manifest: a folder of another scene or other options is refused.
+  const fs::path manifestPath = plan.dir / kManifestName;
+  if (args.has("resume") && !fs::exists(manifestPath))
+    throw InputError("--resume: " + plan.dir.string() + " holds no time-lapse (no " + kManifestName + ")");
   std::error_code ec;
   fs::create_directories(plan.dir, ec);
   if (ec || !fs::is_directory(plan.dir))
     throw InputError("--out " + plan.dir.string() + ": cannot create the folder" + (ec ? ": " + ec.message() : ""));
   if (::access(plan.dir.c_str(), W_OK) != 0)
     throw InputError("--out " + plan.dir.string() + ": the folder is not writable");
-  const fs::path manifestPath = plan.dir / kManifestName;
   const nlohmann::json manifest = manifestOf(plan);
   if (fs::exists(manifestPath)) {
     const nlohmann::json old = readJson(manifestPath);
@@ -505,8 +507,6 @@ int runTimelapse(const Args& args) {
                          " here): cannot resume it; name another --out folder or delete this one");
     logInfo("resuming the time-lapse in " + plan.dir.string());
   } else {
-    if (args.has("resume"))
-      throw InputError("--resume: " + plan.dir.string() + " holds no time-lapse (no " + kManifestName + ")");
     try {
       writeTextFileAtomically(manifestPath, manifest.dump(2) + "\n");
     } catch (const std::exception& e) {
@@ -566,7 +566,11 @@ int runTimelapse(const Args& args) {
       }
       previous = i;
       const Scene scene = frameScene(i);
-      const RenderResult result = renderer.render(scene, options);
+      RenderResult result = renderer.render(scene, options);
+      // The EXR keeps the scene's metadata but not the per-pass timings: a frame's file is the same whichever
+      // process renders it (the timings go to the record).
+      for (auto it = result.image.metadata.begin(); it != result.image.metadata.end();)
+        it = it->first.rfind("firmament.timing", 0) == 0 ? result.image.metadata.erase(it) : std::next(it);
       const std::string stem = frameStem(i);
       writeExr(plan.dir / (stem + ".exr"), result.image);
       const double logAverage = logAverageLuminance(result.image);
