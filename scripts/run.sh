@@ -15,7 +15,7 @@ action=${1:-build}
 packages=(cmake ninja-build g++ pkg-config libglm-dev nlohmann-json3-dev libopenexr-dev libpng-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools liberfa-dev
   libgeographiclib-dev libopenvdb-dev libboost-dev libgdal-dev libgtest-dev xplanet clang-format
-  ffmpeg slurm-wlm munge)
+  ffmpeg slurm-wlm munge libglfw3-dev libimgui-dev xvfb)
 
 missing=()
 for p in "${packages[@]}"; do
