@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "core/color.h"
 #include "sky/night_pass.h"
 #include "sky/render_plan.h"
 #include "sky/sky_renderer.h"
@@ -95,6 +97,36 @@ TEST_F(NightFrameTest, NightFramesAreFiniteNonNegativeAndDarkerThanDay) {
     EXPECT_GT(mean, 1e-4) << utc;
     EXPECT_LT(mean, 10.0) << utc;
   }
+}
+
+}  // namespace
+}  // namespace firmament
+
+namespace firmament {
+namespace {
+
+// Leinert et al. 1998: the moonless zenith at a dark site is 21.6-22.0 V mag/arcsec^2 at the ground
+// (1.0807e5 cd/m^2 at 0 mag/arcsec^2, docs/night.md "Units"). New Moon, the zenith near the galactic pole (April, 22:00
+// UTC), stars left out (the catalogue's stars are points, not the diffuse sky), a 10° view of the zenith from sea
+// level.
+TEST_F(NightFrameTest, MoonlessDarkSiteZenithIsInLeinertsRangeAtTheGround) {
+  static SkyRenderer renderer(context());
+  const Scene scene = Scene::parse(
+      R"({"location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 0},
+          "time": {"utc": "2026-04-17T22:00:00Z"},
+          "camera": {"width": 16, "height": 16, "pitch_deg": 90, "fov_deg": 10}})",
+      "<test>");
+  SkyRenderOptions options;
+  options.night.stars = false;
+  RenderResult r = renderer.render(scene, options);
+  ASSERT_TRUE(r.night.run);
+  EXPECT_FALSE(r.night.moonSky);  // the new Moon is below the horizon
+  double sum = 0.0;
+  for (size_t i = 0; i < r.image.pixelCount(); ++i) sum += luminanceRec709(r.image.pixels.data() + i * 4);
+  const double magnitude = -2.5 * std::log10(sum / double(r.image.pixelCount()) / 1.0807e5);
+  std::printf("dark-site zenith at the ground: %.3f mag/arcsec^2\n", magnitude);
+  EXPECT_GT(magnitude, 21.6);
+  EXPECT_LT(magnitude, 22.0);
 }
 
 }  // namespace
