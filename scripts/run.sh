@@ -14,7 +14,8 @@ action=${1:-build}
 # Debian 12 packages the project needs (docs/dependencies.md says why each).
 packages=(cmake ninja-build g++ pkg-config libglm-dev nlohmann-json3-dev libopenexr-dev libpng-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools liberfa-dev
-  libgeographiclib-dev libopenvdb-dev libboost-dev libgdal-dev libgtest-dev xplanet clang-format)
+  libgeographiclib-dev libopenvdb-dev libboost-dev libgdal-dev libgtest-dev xplanet clang-format
+  ffmpeg slurm-wlm munge libglfw3-dev libimgui-dev xvfb)
 
 missing=()
 for p in "${packages[@]}"; do

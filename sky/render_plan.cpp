@@ -205,6 +205,13 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   } else {
     plan.omitted.push_back({"weather", "no weather section: no simulation"});
   }
+  {
+    // The night (sky/night_plan.h): the moonlit sky is a second sky-view table.
+    const double altitude = scene.number("/location/height_m") + scene.number("/camera/height_above_ground_m");
+    const bool skyView = options.multipleScattering == MultipleScattering::HillaireFms && options.skyViewLut &&
+                         altitude <= scene.number("/atmosphere/thickness_m");
+    planNight(decideNight(scene, options.night, skyView), plan);
+  }
   if (scene.hasSection("terrain") && options.multipleScattering == MultipleScattering::BrunetonTables) {
     plan.unavailable.push_back({"terrain", "terrain needs the f_ms path (--multiple-scattering fms) in this version"});
   } else if (scene.hasSection("terrain")) {

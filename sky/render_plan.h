@@ -8,6 +8,7 @@
 
 #include "clouds/cloud_settings.h"
 #include "core/scene.h"
+#include "sky/night_plan.h"
 
 namespace firmament {
 
@@ -37,6 +38,7 @@ struct PlanOptions {
   std::optional<bool> cloudOtherLayerMap;
   std::optional<bool> cloudColumnMap;      // SkyRenderOptions::clouds.columnMap
   std::optional<bool> cloudDeepShadowMap;  // SkyRenderOptions::clouds.deepShadowMap
+  NightOptions night;                      // SkyRenderOptions::night (sky/night_plan.h)
 };
 
 struct PlannedPass {

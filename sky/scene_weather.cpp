@@ -10,6 +10,7 @@
 #include "astro/geodetic.h"
 #include "astro/sun.h"
 #include "astro/time.h"
+#include "core/error.h"
 #include "weather/weather_config.h"
 #include "weather/weather_model.h"
 
@@ -22,6 +23,44 @@ double secondsSinceSolarMidnight(const std::string& utc, double longitude_deg) {
   const double solar = t.hour * 3600.0 + t.minute * 60.0 + t.second + longitude_deg / 15.0 * 3600.0;
   const double s = std::fmod(std::fmod(solar, day) + day, day);
   return s;
+}
+
+namespace {
+
+double secondsBetween(const astro::UtcTime& from, const astro::UtcTime& to) {
+  const astro::JulianDate a = astro::makeAstroTime(from).utcJulian, b = astro::makeAstroTime(to).utcJulian;
+  return ((b.dayStart - a.dayStart) + (b.dayFraction - a.dayFraction)) * 86400.0;
+}
+
+}  // namespace
+
+astro::UtcTime sceneWeatherStart(const Scene& scene) {
+  const std::string utc = scene.string("/time/utc");
+  const astro::UtcTime time = astro::parseUtc(utc);
+  if (!scene.root().contains("weather") || !scene.at("/weather").value("start_utc", nlohmann::json()).is_string())
+    return astro::addSeconds(time, -secondsSinceSolarMidnight(utc, scene.number("/location/longitude_deg")));
+  const std::string text = scene.string("/weather/start_utc");
+  astro::UtcTime start;
+  try {
+    start = astro::parseUtc(text);
+  } catch (const InputError& e) {
+    throw InputError(scene.source() + ": /weather/start_utc: " + e.what());
+  }
+  const double run = secondsBetween(start, time);
+  if (run < 0.0)
+    throw InputError(scene.source() + ": /weather/start_utc " + text + " is after /time/utc " + utc +
+                     "; allowed: a start at or before the scene's time, at most 7 days before it");
+  if (run > kSceneWeatherMaxRun_s)
+    throw InputError(scene.source() + ": /weather/start_utc " + text + " is " + std::to_string(run / 86400.0) +
+                     " days before /time/utc " + utc + "; allowed: at most 7 days before it");
+  return start;
+}
+
+double sceneWeatherRunSeconds(const Scene& scene) {
+  if (!scene.root().contains("weather") || !scene.at("/weather").value("start_utc", nlohmann::json()).is_string())
+    return secondsSinceSolarMidnight(scene.string("/time/utc"), scene.number("/location/longitude_deg"));
+  return std::clamp(secondsBetween(sceneWeatherStart(scene), astro::parseUtc(scene.string("/time/utc"))), 0.0,
+                    kSceneWeatherMaxRun_s);
 }
 
 namespace {
@@ -90,8 +129,8 @@ CloudWeatherMap cloudWeatherMapForScene(const Scene& scene, SceneWeatherInfo* in
 
   const double latitude = scene.number("/location/latitude_deg"), longitude = scene.number("/location/longitude_deg");
   const std::string utc = scene.string("/time/utc");
-  const double run_s = secondsSinceSolarMidnight(utc, longitude);
-  const astro::UtcTime start = astro::addSeconds(astro::parseUtc(utc), -run_s);
+  const astro::UtcTime start = sceneWeatherStart(scene);
+  const double run_s = sceneWeatherRunSeconds(scene);
   const std::string place = scene.at("/weather").dump() + "|" + std::to_string(latitude) + "|" +
                             std::to_string(longitude) + "|" + std::to_string(scene.number("/location/height_m"));
   const std::string key = place + "|" + utc;

@@ -81,6 +81,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.cloudLightThroughOtherLayers = options.clouds.lightThroughOtherLayers;
   plan.cloudOtherLayerMap = options.clouds.otherLayerMap;
   plan.cloudColumnMap = options.clouds.columnMap;
+  plan.night = options.night;
   return plan;
 }
 
@@ -110,6 +111,7 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   prepareClouds(scene, frame, result);
   gpu::CommandList commands(context_);
   recordSky(frame, result, commands);
+  if (result.night.run) recordNight(scene, frame, result, commands);
   if (frame.terrain && !frame.clouds) {
     commands.barrier();
     recordTerrain(frame, result, commands, nullptr);
@@ -144,6 +146,10 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
       resolveSpectralSamples(frame.options.luts.spectralSamples, result.view.sunZenith, hasClouds, frame.useTables);
   result.spectralSamples = frame.options.luts.spectralSamples;
   result.plan = planRender(scene, planOptions(frame.options));
+  const bool skyView = !frame.useTables && frame.options.method == SkyMethod::SkyViewLut &&
+                       result.view.cameraRadius <=
+                           atmosphereParametersAt(result.view.atmosphere, frame.options.luts.wavelengthsNm).top_radius;
+  result.night = decideNight(scene, frame.options.night, skyView);
   if (hasClouds) {
     frame.clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     frame.options.clouds.apply(frame.clouds->march);
@@ -338,6 +344,28 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
     commands.dispatchTiles(tiles, useSkyView ? "sky/render_sky" : "sky/render_sky_march");
     if (b + 1 < renderPasses) commands.barrier();
   }
+}
+
+// Record the night (sky/night_pass.h): added to the sky frame before the clouds composite over it.
+void SkyRenderer::recordNight(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands) {
+  if (!night_) night_ = std::make_unique<NightPass>(context_);
+  NightPass::Inputs in;
+  in.scene = &scene;
+  in.decision = &result.night;
+  in.luts = &luts_;
+  in.lutSettings = &frame.options.luts;
+  for (const auto& irradiance : fmsSkyIrradiance_) in.skyIrradiance.push_back(&irradiance->irradiance());
+  in.frameBlock = &frameBlock_;
+  in.output = frame.output.get();
+  in.tiles = frame.tiles;
+  in.camera = result.view.camera;
+  in.cameraRadius = result.view.cameraRadius;
+  in.solarIrradianceScale = result.view.atmosphere.solarIrradianceScale;
+  in.viewSteps = frame.options.viewSteps;
+  in.skyViewWidth = frame.options.skyViewWidth;
+  in.skyViewHeight = frame.options.skyViewHeight;
+  commands.barrier();
+  night_->record(in, commands);
 }
 
 // Record the clouds: the Beer shadow map (when on), the aerial-perspective volume they read (with the

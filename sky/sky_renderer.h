@@ -17,6 +17,7 @@
 #include "gpu/context.h"
 #include "gpu/dispatch.h"
 #include "sky/aerial_perspective_volume.h"
+#include "sky/night_pass.h"
 #include "sky/render_plan.h"
 #include "sky/scene_view.h"
 #include "sky/terrain_pass.h"
@@ -61,6 +62,7 @@ struct SkyRenderOptions {
   // renders this way: downloading two 1920x1080 float images per frame kept an H100 busy 13-37 % of
   // the time, and its driver lowered the clocks from 1980 to 615 MHz in about 2 s (docs/gpu.md).
   bool downloadImages = true;
+  NightOptions night;  // the Moon, stars and the sky's own light (sky/night_plan.h)
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).
@@ -85,6 +87,7 @@ struct RenderResult {
   Image clouds;
   CloudSampleCounts cloudSamples;  // density evaluations per pixel of the cloud march
   bool cloudsReprojected = false;  // the clouds marched 1 in /clouds/temporal_update pixels, reprojected the rest
+  NightDecision night;             // which night passes ran (sky/night_plan.h)
 };
 
 class SkyRenderer {
@@ -106,6 +109,7 @@ class SkyRenderer {
   void prepareTables(Frame& frame, RenderResult& result);
   void prepareClouds(const Scene& scene, Frame& frame, RenderResult& result);
   void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  void recordNight(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   // The terrain (sky/terrain_pass.h) over the sky, before the clouds; shadow: the clouds' Beer shadow map.
   void recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands, const TerrainCloudShadow* shadow);
@@ -123,6 +127,7 @@ class SkyRenderer {
   std::unique_ptr<gpu::ComputePipeline> lightShaftsPipeline_;  // sky/cloud_light_shafts
   std::unique_ptr<AerialPerspectiveVolume> aerial_;            // created for the first scene that reads it
   std::unique_ptr<TerrainPass> terrain_;                       // created for the first scene with terrain
+  std::unique_ptr<NightPass> night_;                           // created for the first night scene
   gpu::Buffer frameBlock_;
   gpu::Image skyView_;
   // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:

@@ -69,8 +69,10 @@ WeatherConfig configFromJson(const json& w) {
   const std::string path = "/weather";
   WeatherConfig c;
   if (w.is_null()) return c;
-  rejectUnknownKeys(
-      w, path, {"preset", "seed", "wind", "grid", "time_step_s", "heating_scale", "surface_heterogeneity", "schedule"});
+  // start_utc (when the run starts) belongs to the caller that places the run in time (sky/scene_weather.h).
+  rejectUnknownKeys(w, path,
+                    {"preset", "seed", "wind", "grid", "time_step_s", "heating_scale", "surface_heterogeneity",
+                     "schedule", "start_utc"});
   c.preset = presetName(w, "preset", path, c.preset);
   c.seed = uint32_t(integer(w, "seed", path, c.seed, 0, 4294967295LL));
   if (w.contains("wind")) {

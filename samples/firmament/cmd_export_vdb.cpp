@@ -19,6 +19,7 @@
 #include "core/scene.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
+#include "samples/firmament/region_option.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/scene_view.h"
 
@@ -32,35 +33,6 @@ std::string format(const char* pattern, double v) {
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), pattern, v);
   return buffer;
-}
-
-// --region WEST,SOUTH,EAST,NORTH: four finite numbers (m), WEST < EAST, SOUTH < NORTH.
-void parseRegion(const std::string& text, CloudVolumeRegion& region) {
-  const std::string allowed =
-      "; allowed: WEST,SOUTH,EAST,NORTH in metres east and north of the camera's ground "
-      "point, WEST < EAST, SOUTH < NORTH, each within " +
-      format("%.0f", kCloudVolumeMaxExtent_m) + " m (e.g. -10000,-10000,10000,10000)";
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v))
-      throw InputError("option --region: '" + item + "' in '" + text + "' is not a number" + allowed);
-    values.push_back(v);
-  }
-  if (values.size() != 4 || (!text.empty() && text.back() == ','))
-    throw InputError("option --region: '" + text + "' has " + std::to_string(values.size()) + " value(s), not 4" +
-                     allowed);
-  for (double v : values)
-    if (std::abs(v) > kCloudVolumeMaxExtent_m)
-      throw InputError("option --region: '" + text + "' is too large" + allowed);
-  if (!(values[0] < values[2]))
-    throw InputError("option --region: WEST must be less than EAST in '" + text + "'" + allowed);
-  if (!(values[1] < values[3]))
-    throw InputError("option --region: SOUTH must be less than NORTH in '" + text + "'" + allowed);
-  region.west_m = values[0], region.south_m = values[1], region.east_m = values[2], region.north_m = values[3];
 }
 
 int runExportVdb(const Args& args) {

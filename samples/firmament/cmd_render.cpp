@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <memory>
 
-#include "astro/time.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
 #include "samples/firmament/render_outputs.h"
+#include "samples/firmament/sequence_scene.h"
 #include "sky/render_plan.h"
 #include "sky/sky_renderer.h"
 
@@ -97,25 +97,18 @@ int runRender(const Args& args) {
       (args.has("yaw-rate") || args.has("pitch-rate") || args.has("climb-rate") || args.has("frame-interval")))
     throw InputError(
         "--yaw-rate, --pitch-rate, --climb-rate and --frame-interval describe a sequence: give --frames N (N > 1)");
+  const SequenceSceneSource source{args.positionals.empty() ? std::string() : scenePath, overrides};
   auto frameScene = [&](int i) {
     if (i == 0) return scene;
     const double t = double(i) * interval;
-    std::vector<std::string> o = overrides;
-    double yaw = std::fmod(scene.number("/camera/yaw_deg") + yawRate * t, 360.0);
-    o.push_back("/camera/yaw_deg=" + std::to_string(yaw));
-    const double pitch = scene.number("/camera/pitch_deg") + pitchRate * t;
-    if (pitch < -90.0 || pitch > 90.0)
-      throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " + std::to_string(pitch) +
-                       " deg; allowed: -90 to 90");
-    o.push_back("/camera/pitch_deg=" + std::to_string(pitch));
-    o.push_back("/camera/height_above_ground_m=" +
-                std::to_string(scene.number("/camera/height_above_ground_m") + climbRate * t));
-    if (scene.hasSection("clouds")) o.push_back("/clouds/time_s=" + std::to_string(scene.number("/clouds/time_s") + t));
-    // The sun follows the clock when the scene takes it from time and location (a time-lapse).
-    if (!scene.hasSection("sun"))
-      o.push_back("/time/utc=" + astro::formatUtc(astro::addSeconds(astro::parseUtc(scene.string("/time/utc")), t)));
-    return args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o)
-                                    : Scene::load(scenePath, o);
+    CameraPose pose = cameraPoseOf(scene);
+    pose.yaw_deg = std::fmod(pose.yaw_deg + yawRate * t, 360.0);
+    pose.pitch_deg += pitchRate * t;
+    if (pose.pitch_deg < -90.0 || pose.pitch_deg > 90.0)
+      throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " +
+                       std::to_string(pose.pitch_deg) + " deg; allowed: -90 to 90");
+    pose.height_above_ground_m += climbRate * t;
+    return sequenceFrameScene(source, scene, t, pose);
   };
   auto framePath = [&](int i) {
     if (frames == 1) return out;

@@ -1,7 +1,10 @@
 // firmament weather SCENE --hours H --out DIR: runs the weather simulation alone and writes the weather
 // maps (EXR), colour-coded previews (PNG), stats.csv and a plot of it (stats.svg).
 //
-// The sun follows astro's ephemeris for the scene's place and time (refraction included).
+// The simulation starts where the render's does (sky/scene_weather.h, sceneWeatherStart: weather.start_utc,
+// or the local mean solar midnight before the scene's time), so the maps at a time are the ones the
+// render's clouds read at that time. The sun follows astro's ephemeris for the scene's place (refraction
+// included).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +31,7 @@
 #include "core/exr_io.h"
 #include "core/png_io.h"
 #include "core/scene.h"
+#include "sky/scene_weather.h"
 
 namespace firmament::cli {
 namespace {
@@ -62,8 +66,9 @@ int runWeather(const Args& args) {
                                            scene.number("/location/longitude_deg"), scene.number("/location/height_m"));
   double latitude = location.latitude, longitude = location.longitude;
   config.surfacePressure_Pa = surfacePressureFromHeight(scene.number("/location/height_m"));
-  std::string utc = scene.string("/time/utc");
-  astro::UtcTime start = astro::parseUtc(utc);
+  const astro::UtcTime start = sceneWeatherStart(scene);
+  const std::string utc = astro::formatUtc(start);
+  const double sceneAt_h = sceneWeatherRunSeconds(scene) / 3600.0;
 
   fs::path dir(*out);
   std::error_code ec;
@@ -97,7 +102,8 @@ int runWeather(const Args& args) {
   };
 
   logInfo("weather: " + config.preset + ", " + std::to_string(config.cellsX) + "x" + std::to_string(config.cellsY) +
-          " cells of " + std::to_string(int(config.cellSize_m)) + " m, " + std::to_string(hours) + " h from " + utc);
+          " cells of " + std::to_string(int(config.cellSize_m)) + " m, " + std::to_string(hours) + " h from " + utc +
+          " (the scene's time " + scene.string("/time/utc") + " is at " + std::to_string(sceneAt_h) + " h)");
   record();
   writeFrame();
   Progress progress("weather", uint64_t(std::ceil(duration / statsInterval)));
@@ -116,7 +122,7 @@ int runWeather(const Args& args) {
 
   LinePlot plot;
   plot.title = "Weather: " + config.preset + " from " + utc;
-  plot.xLabel = "time since start (h)";
+  plot.xLabel = "time since start (h); the scene's time at " + std::to_string(sceneAt_h).substr(0, 5) + " h";
   plot.leftLabel = "fraction of the domain";
   plot.rightLabel = "cloud top (m)";
   PlotSeries cloud{"cloud fraction", "#1f77b4", {}, false}, rain{"precipitation area", "#2ca02c", {}, false},
@@ -142,7 +148,7 @@ const CommandRegistration registration(Command{
     "run the weather simulation alone: weather maps (EXR), previews (PNG), stats.csv and stats.svg",
     "weather SCENE --out DIR [--hours H] [--interval-min M] [--set /PATH=VALUE ...]",
     {{"out", "DIR", "output folder (created if missing)", false, 'o'},
-     {"hours", "H", "simulated hours (default 24)"},
+     {"hours", "H", "simulated hours from the start (default 24: the scene's day)"},
      {"interval-min", "M", "minutes between written maps (default 30)"},
      setOption()},
     1,

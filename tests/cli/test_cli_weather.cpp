@@ -12,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "astro/time.h"
 #include "core/exr_io.h"
+#include "core/scene.h"
+#include "sky/scene_weather.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/support/test_paths.h"
 
@@ -92,6 +95,39 @@ TEST(CliWeather, ShortRunWritesMapsPreviewsAndStats) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+// One timeline: `weather` starts where the render's simulation does, so its map an hour after the start
+// is, bit for bit, the map that the render's clouds read for a scene an hour after that start.
+TEST(CliWeather, MapsAreTheRendersAtTheSameTime) {
+  auto dir = test::scratchDir("cli_weather_timeline");
+  auto scene = test::sourceDir() / "scenes" / "fair-weather.json";
+  const std::string start = " --set /weather/start_utc=2026-06-21T06:00:00Z --set /time/utc=2026-06-21T07:00:00Z";
+  CommandRun r = firmament("weather " + scene.string() + " --hours 1 --interval-min 60" + kSmallGrid + start +
+                           " --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Image map = readExr(dir / "weather_0001.exr");
+  EXPECT_EQ(map.metadata.at("weather:start_utc"), "2026-06-21T06:00:00.000Z");
+
+  clearSceneWeatherCache();
+  const Scene oneHourIn =
+      Scene::load(scene, {"/weather/start_utc=2026-06-21T06:00:00Z", "/time/utc=2026-06-21T07:00:00Z",
+                          "/weather/grid/cells_x=32", "/weather/grid/cells_y=32"});
+  EXPECT_DOUBLE_EQ(sceneWeatherRunSeconds(oneHourIn), 3600.0);
+  const CloudWeatherMap rendered = cloudWeatherMapForScene(oneHourIn);
+  ASSERT_EQ(rendered.map.pixels.size(), map.pixels.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < map.pixels.size(); ++i) differ += rendered.map.pixels[i] != map.pixels[i];
+  EXPECT_EQ(differ, 0u) << "of " << map.pixels.size() << " values";
+  double coverage = 0.0;
+  for (size_t i = 0; i < map.pixels.size(); i += 4) coverage += map.pixels[i];
+  EXPECT_GE(coverage, 0.0);
+
+  // Without a start, both start at the local mean solar midnight before the scene's time (7.98 deg E:
+  // 31.92 min before midnight UTC), the day's convection up to the scene's time.
+  const Scene noStart = Scene::load(scene, {"/time/utc=2026-06-21T13:00:00Z"});
+  EXPECT_EQ(astro::formatUtc(sceneWeatherStart(noStart)), "2026-06-20T23:28:04.800Z");
+  EXPECT_NEAR(sceneWeatherRunSeconds(noStart), 13.5 * 3600.0 + 115.2, 1e-6);
+}
+
 TEST(CliWeather, BadInputExitsTwoWithAClearMessage) {
   auto dir = test::scratchDir("cli_weather_bad");
   auto scene = (test::sourceDir() / "scenes" / "fair-weather.json").string();
@@ -109,6 +145,9 @@ TEST(CliWeather, BadInputExitsTwoWithAClearMessage) {
       {"weather " + scene + " --set /weather/preset=monsoon" + out, "/weather/preset"},
       {"weather " + scene + " --set /weather/grid/cells_x=2" + out, "/weather/grid/cells_x"},
       {"weather " + scene + " --set /weather/no_such_key=1" + out, "/weather/no_such_key"},
+      {"weather " + scene + " --set /weather/start_utc=2026-06-21T05:00:00Z" + out, "is after /time/utc"},
+      {"weather " + scene + " --set /weather/start_utc=2026-06-01T00:00:00Z" + out, "at most 7 days"},
+      {"weather " + scene + " --set /weather/start_utc=tomorrow" + out, "/weather/start_utc"},
       {"weather " + noWeather.string() + out, "weather"},
       {"weather " + (dir / "missing.json").string() + out, "missing.json"},
       {"weather" + out, ""},

@@ -1,0 +1,444 @@
+// `firmament view [SCENE]`: the interactive viewer (docs/viewer.md). A GLFW window, the sky rendered each
+// frame through the public API (include/firmament/sky.h), tone-mapped on the CPU with the scene's
+// exposure (core/tonemap.h), presented with a swapchain of its own (samples/viewer/presenter.h), with
+// Dear ImGui controls and a fly camera. --script replays inputs with no person at the window.
+// Built only where GLFW and Dear ImGui are found (samples/CMakeLists.txt).
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_vulkan.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "astro/time.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "core/log.h"
+#include "core/scene.h"
+#include "core/statistics.h"
+#include "core/tonemap.h"
+#include "firmament/sky.h"
+#include "gpu/context.h"
+#include "samples/firmament/command.h"
+#include "samples/viewer/fly_camera.h"
+#include "samples/viewer/presenter.h"
+#include "samples/viewer/script.h"
+
+namespace firmament::cli {
+namespace {
+
+using viewer::FlyState;
+
+// What the controls edit besides the camera, read from the sky's scene.
+struct Controls {
+  astro::UtcTime utc;
+  float dayHours = 12.0f;  // UTC hour of day
+  int dayOfYear = 172;
+  std::vector<float> coverage;  // per cloud layer
+  int quality = 1;              // clouds: low, default, high
+  int weatherPreset = -1;       // index into kWeatherPresets, -1 without a weather section
+  bool autoExposure = true;
+  float ev100 = 15.0f;
+  float compensation = 0.0f;
+  bool reprojection = true;
+};
+
+const char* kQualities[] = {"low", "default", "high"};
+const char* kWeatherPresets[] = {"clear", "fair-weather", "scattered-showers", "thunderstorm", "overcast", "frontal"};
+
+int dayOfYear(const astro::UtcTime& t) {
+  static const int before[] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
+  const bool leap = (t.year % 4 == 0 && t.year % 100 != 0) || t.year % 400 == 0;
+  return before[t.month - 1] + t.day + (leap && t.month > 2 ? 1 : 0);
+}
+
+std::string unquote(const std::string& json) {
+  return json.size() >= 2 && json.front() == '"' ? json.substr(1, json.size() - 2) : json;
+}
+
+class Viewer {
+ public:
+  Viewer(const Args& args) {
+    Sky::Builder builder;
+    if (!args.positionals.empty()) builder.sceneFile(args.positionals[0]);
+    for (const auto& o : args.all("set")) builder.set(o);
+    builder.device(args.getOr("device", ""));
+    controls_.reprojection = !args.has("no-reprojection");
+    builder.temporalReprojection(true);
+    sky_ = builder.build();
+    width_ = args.integer("width", 960, 16, 8192);
+    height_ = args.integer("height", 540, 16, 8192);
+    renderScale_ = float(args.number("render-scale", 1.0));
+    if (!(renderScale_ >= 0.05f && renderScale_ <= 1.0f))
+      throw InputError("--render-scale " + args.getOr("render-scale", "") + ": allowed: 0.05 to 1");
+    if (auto s = args.get("script")) script_ = viewer::loadScript(*s);
+    scripted_ = args.has("script");
+    readControls();
+    SkyCamera c = sky_->camera();
+    fly_.camera = c;
+    fly_.latitude_deg = std::stod(sky_->get("/location/latitude_deg"));
+    fly_.longitude_deg = std::stod(sky_->get("/location/longitude_deg"));
+  }
+
+  int run() {
+    if (!glfwInit())
+      throw RuntimeError(
+          "view: cannot open a window (GLFW could not initialise: is DISPLAY set? "
+          "Without a display run it under xvfb-run)");
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(width_, height_, "firmament view", nullptr, nullptr);
+    if (!window_) {
+      glfwTerminate();
+      throw RuntimeError("view: GLFW could not create a window");
+    }
+    int code = kExitOk;
+    try {
+      code = loop();
+    } catch (...) {
+      cleanup();
+      throw;
+    }
+    cleanup();
+    return code;
+  }
+
+ private:
+  void cleanup() {
+    if (ImGui::GetCurrentContext()) {
+      if (presenter_) presenter_->shutdownImGui();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+    presenter_.reset();
+    if (window_) glfwDestroyWindow(window_);
+    window_ = nullptr;
+    glfwTerminate();
+  }
+
+  void readControls() {
+    controls_.utc = astro::parseUtc(unquote(sky_->get("/time/utc")));
+    controls_.dayHours = float(controls_.utc.hour + controls_.utc.minute / 60.0 + controls_.utc.second / 3600.0);
+    controls_.dayOfYear = dayOfYear(controls_.utc);
+    controls_.coverage.clear();
+    for (int i = 0; i < 8; ++i) {
+      const std::string v = sky_->get("/clouds/layers/" + std::to_string(i) + "/coverage");
+      if (v.empty()) break;
+      controls_.coverage.push_back(std::stof(v));
+    }
+    const std::string q = unquote(sky_->get("/clouds/quality"));
+    for (int i = 0; i < 3; ++i)
+      if (q == kQualities[i]) controls_.quality = i;
+    const std::string w = unquote(sky_->get("/weather/preset"));
+    controls_.weatherPreset = -1;
+    for (int i = 0; i < 6; ++i)
+      if (w == kWeatherPresets[i]) controls_.weatherPreset = i;
+    controls_.autoExposure = unquote(sky_->get("/camera/exposure/mode")) != "fixed";
+    controls_.ev100 = std::stof(sky_->get("/camera/exposure/ev100"));
+    controls_.compensation = std::stof(sky_->get("/camera/exposure/compensation_ev"));
+  }
+
+  // The controls' time: the date's year, the day of the year and the hour (UTC).
+  std::string controlsUtc() const {
+    astro::UtcTime t{controls_.utc.year, 1, 1, 0, 0, 0.0};
+    return astro::formatUtc(astro::addSeconds(t, (controls_.dayOfYear - 1) * 86400.0 + controls_.dayHours * 3600.0));
+  }
+
+  void applyView() {
+    sky_->setCamera(fly_.camera);
+    sky_->setLocation(fly_.latitude_deg, fly_.longitude_deg);
+  }
+
+  void advanceTime(double hours) {
+    sky_->setTime(astro::formatUtc(astro::addSeconds(astro::parseUtc(unquote(sky_->get("/time/utc"))), hours * 3600)));
+    readControls();
+  }
+
+  ExposureSettings exposure() const {
+    ExposureSettings e = exposureFromScene(Scene::parse(sky_->sceneJson(), "<view>"));
+    e.mode = controls_.autoExposure ? ExposureSettings::Mode::Auto : ExposureSettings::Mode::Fixed;
+    e.ev100 = controls_.ev100;
+    e.compensationEv = controls_.compensation;
+    return e;
+  }
+
+  Image toImage(const SkyFrame& f) const {
+    Image image(f.width, f.height, 4);
+    image.pixels = f.rgba;
+    image.metadata["firmament.device"] = sky_->deviceDescription();
+    image.metadata["firmament.source"] = "firmament view";
+    return image;
+  }
+
+  // A still of the view (every pixel marched, as `firmament render` of the saved view renders it):
+  // OUT.exr, OUT.png with the viewer's exposure, and the view as OUT.view.json, each written atomically.
+  void screenshot(const std::filesystem::path& out) {
+    sky_->restartSequence();
+    const SkyFrame f = sky_->render(renderWidth(), renderHeight());
+    const Image image = toImage(f);
+    writeExr(out, image);
+    const double ev = writePngPreview(std::filesystem::path(out).replace_extension(".png"), image, exposure(),
+                                      controls_.autoExposure ? &adaptedLuminance_ : nullptr);
+    writeTextFileAtomically(std::filesystem::path(out).replace_extension(".view.json"), sky_->sceneJson());
+    char line[300];
+    std::snprintf(line, sizeof(line), "screenshot %s (+ .png, EV100 %.2f; + .view.json): %dx%d, %.1f ms", out.c_str(),
+                  ev, f.width, f.height, f.gpuMilliseconds);
+    logInfo(line);
+    frame_ = f;
+  }
+
+  void save(const std::filesystem::path& out) {
+    writeTextFileAtomically(out, sky_->sceneJson());
+    logInfo("saved the view as " + out.string() + " (firmament render " + out.string() + " reproduces it)");
+  }
+
+  int renderWidth() const { return std::max(1, int(std::lround(framebufferWidth_ * renderScale_))); }
+  int renderHeight() const { return std::max(1, int(std::lround(framebufferHeight_ * renderScale_))); }
+
+  // One scripted command; false when the script ends the viewer.
+  bool runScriptCommand() {
+    if (waitFrames_ > 0) {
+      --waitFrames_;
+      return true;
+    }
+    if (next_ >= script_.size()) return false;
+    const viewer::ScriptCommand& c = script_[next_++];
+    using K = viewer::ScriptCommand::Kind;
+    switch (c.kind) {
+      case K::Key:
+        viewer::fly(fly_, viewer::parseKeys(c.text), c.a);
+        break;
+      case K::Drag:
+        viewer::drag(fly_, c.a, c.b);
+        break;
+      case K::Speed:
+        fly_.speed_m_s = c.a;
+        break;
+      case K::Advance:
+        advanceTime(c.a);
+        break;
+      case K::Set:
+        sky_->set(c.text);
+        readControls();
+        fly_.camera = sky_->camera();
+        fly_.latitude_deg = std::stod(sky_->get("/location/latitude_deg"));
+        fly_.longitude_deg = std::stod(sky_->get("/location/longitude_deg"));
+        break;
+      case K::Wait:
+        waitFrames_ = int(c.a) - 1;
+        break;
+      case K::Screenshot:
+        applyView();
+        screenshot(c.text);
+        break;
+      case K::Save:
+        applyView();
+        save(c.text);
+        break;
+      case K::Quit:
+        return false;
+    }
+    return true;
+  }
+
+  void interactiveInput(double seconds) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantCaptureKeyboard) {
+      viewer::FlyInput in;
+      auto down = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1 : 0; };
+      in.forward = down(GLFW_KEY_W) - down(GLFW_KEY_S);
+      in.right = down(GLFW_KEY_D) - down(GLFW_KEY_A);
+      in.up = down(GLFW_KEY_E) - down(GLFW_KEY_Q);
+      const double boost = down(GLFW_KEY_LEFT_SHIFT) ? 10.0 : 1.0;
+      fly_.speed_m_s *= boost;
+      viewer::fly(fly_, in, std::min(seconds, 0.5));
+      fly_.speed_m_s /= boost;
+    }
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_, &x, &y);
+    const bool pressed = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
+                         glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (pressed && dragging_) viewer::drag(fly_, x - lastX_, y - lastY_);
+    dragging_ = pressed && (dragging_ || !io.WantCaptureMouse);
+    lastX_ = x;
+    lastY_ = y;
+  }
+
+  void panel() {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+    ImGui::Begin("firmament");
+    ImGui::Text("frame %.1f ms (GPU %.1f ms)%s", frameWallMs_, frame_.gpuMilliseconds,
+                frame_.cloudsReprojected ? ", clouds reprojected" : "");
+    ImGui::Text("%dx%d, sun zenith %.1f deg", frame_.width, frame_.height, frame_.sunZenith_deg);
+    bool timeChanged = ImGui::SliderFloat("hour (UTC)", &controls_.dayHours, 0.0f, 23.99f, "%.2f");
+    timeChanged |= ImGui::SliderInt("day of year", &controls_.dayOfYear, 1, 365);
+    if (timeChanged) sky_->setTime(controlsUtc());
+    float lat = float(fly_.latitude_deg), lon = float(fly_.longitude_deg);
+    if (ImGui::SliderFloat("latitude", &lat, -89.9f, 89.9f, "%.3f")) fly_.latitude_deg = lat;
+    if (ImGui::SliderFloat("longitude", &lon, -180.0f, 180.0f, "%.3f")) fly_.longitude_deg = lon;
+    float height = float(fly_.camera.heightAboveGround_m);
+    if (ImGui::SliderFloat("height (m)", &height, float(viewer::kMinHeight_m), 1e7f, "%.1f",
+                           ImGuiSliderFlags_Logarithmic))
+      fly_.camera.heightAboveGround_m = height;
+    float speed = float(fly_.speed_m_s);
+    if (ImGui::SliderFloat("speed (m/s)", &speed, float(viewer::kMinSpeed_m_s), float(viewer::kMaxSpeed_m_s), "%.1f",
+                           ImGuiSliderFlags_Logarithmic))
+      fly_.speed_m_s = speed;
+    for (size_t i = 0; i < controls_.coverage.size(); ++i) {
+      const std::string label = "coverage, layer " + std::to_string(i);
+      if (ImGui::SliderFloat(label.c_str(), &controls_.coverage[i], 0.0f, 1.0f))
+        sky_->set("/clouds/layers/" + std::to_string(i) + "/coverage=" + std::to_string(controls_.coverage[i]));
+    }
+    if (!controls_.coverage.empty() && ImGui::Combo("cloud quality", &controls_.quality, kQualities, 3))
+      sky_->set(std::string("/clouds/quality=\"") + kQualities[controls_.quality] + "\"");
+    if (controls_.weatherPreset >= 0 && ImGui::Combo("weather", &controls_.weatherPreset, kWeatherPresets, 6))
+      sky_->set(std::string("/weather/preset=\"") + kWeatherPresets[controls_.weatherPreset] + "\"");
+    ImGui::Checkbox("auto exposure", &controls_.autoExposure);
+    if (!controls_.autoExposure) ImGui::SliderFloat("EV100", &controls_.ev100, -10.0f, 24.0f, "%.1f");
+    ImGui::SliderFloat("compensation (EV)", &controls_.compensation, -5.0f, 5.0f, "%.1f");
+    if (ImGui::Checkbox("temporal reprojection", &controls_.reprojection)) sky_->restartSequence();
+    if (ImGui::Button("screenshot")) {
+      applyView();
+      screenshot(nextPath("firmament-view", ".exr"));
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("save view")) {
+      applyView();
+      save(nextPath("firmament-view", ".json"));
+    }
+    ImGui::TextDisabled("WASD move, Q/E down/up, drag to turn, shift x10");
+    ImGui::End();
+  }
+
+  // OUT-NNN.ext in the current folder, the first that does not exist yet.
+  static std::filesystem::path nextPath(const std::string& stem, const std::string& extension) {
+    for (int i = 1;; ++i) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "%s-%03d%s", stem.c_str(), i, extension.c_str());
+      if (!std::filesystem::exists(name)) return name;
+    }
+  }
+
+  int loop() {
+    presenter_ = std::make_unique<viewer::Presenter>(window_, gpu::validationRequestedByEnvironment());
+    logInfo("view: renderer on " + sky_->deviceDescription() + "; window on " + presenter_->deviceName());
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // writes no imgui.ini
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForVulkan(window_, true);
+    presenter_->initImGui();
+
+    std::vector<double> wallMs, gpuMs;
+    auto last = std::chrono::steady_clock::now();
+    while (!glfwWindowShouldClose(window_)) {
+      glfwPollEvents();
+      glfwGetFramebufferSize(window_, &framebufferWidth_, &framebufferHeight_);
+      if (framebufferWidth_ == 0 || framebufferHeight_ == 0) {
+        glfwWaitEvents();
+        continue;
+      }
+      const auto now = std::chrono::steady_clock::now();
+      const double seconds = std::chrono::duration<double>(now - last).count();
+      last = now;
+      ImGui_ImplVulkan_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      if (scripted_) {
+        if (!runScriptCommand()) break;
+      } else {
+        interactiveInput(seconds);
+      }
+      panel();
+      ImGui::Render();
+      applyView();
+      if (!controls_.reprojection) sky_->restartSequence();
+      const auto start = std::chrono::steady_clock::now();
+      frame_ = sky_->render(renderWidth(), renderHeight());
+      const Image image = toImage(frame_);
+      const ExposureSettings e = exposure();
+      if (e.mode == ExposureSettings::Mode::Auto)
+        adaptedLuminance_ = adaptation_.update(logAverageLuminance(image), seconds, e);
+      std::vector<uint8_t> srgb =
+          toneMapToSrgb8(image, e, nullptr, e.mode == ExposureSettings::Mode::Auto ? &adaptedLuminance_ : nullptr);
+      std::vector<uint8_t> rgba(image.pixelCount() * 4, 255);
+      const int channels = int(srgb.size() / image.pixelCount());
+      for (size_t i = 0; i < image.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = srgb[i * channels + c];
+      presenter_->present(rgba.data(), image.width, image.height, ImGui::GetDrawData());
+      frameWallMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      wallMs.push_back(frameWallMs_);
+      gpuMs.push_back(frame_.gpuMilliseconds);
+    }
+    if (!wallMs.empty()) {
+      // The first frame computes the tables and compiles pipelines: the medians leave it out.
+      const size_t skip = wallMs.size() > 1 ? 1 : 0;
+      char line[300];
+      std::snprintf(line, sizeof(line),
+                    "view: %zu frames at %dx%d; after the first, median frame %.1f ms (render + tone map + present), "
+                    "median GPU %.1f ms",
+                    wallMs.size(), renderWidth(), renderHeight(),
+                    median(std::vector<double>(wallMs.begin() + skip, wallMs.end())),
+                    median(std::vector<double>(gpuMs.begin() + skip, gpuMs.end())));
+      logInfo(line);
+    }
+    std::vector<std::string> messages = sky_->validationMessages();
+    for (const auto& m : presenter_->validationMessages()) messages.push_back(m);
+    for (const auto& m : messages) logWarning("validation: " + m);
+    if (!messages.empty()) {
+      logWarning("view: " + std::to_string(messages.size()) + " validation messages");
+      return kExitRuntime;
+    }
+    return kExitOk;
+  }
+
+  std::unique_ptr<Sky> sky_;
+  GLFWwindow* window_ = nullptr;
+  std::unique_ptr<viewer::Presenter> presenter_;
+  FlyState fly_;
+  Controls controls_;
+  SkyFrame frame_;
+  ExposureAdaptation adaptation_;
+  double adaptedLuminance_ = 0.0;
+  double frameWallMs_ = 0.0;
+  int width_ = 960, height_ = 540;
+  int framebufferWidth_ = 0, framebufferHeight_ = 0;
+  float renderScale_ = 1.0f;
+  bool scripted_ = false;
+  std::vector<viewer::ScriptCommand> script_;
+  size_t next_ = 0;
+  int waitFrames_ = 0;
+  bool dragging_ = false;
+  double lastX_ = 0, lastY_ = 0;
+};
+
+int runView(const Args& args) {
+  Viewer viewer(args);
+  return viewer.run();
+}
+
+const CommandRegistration reg{
+    {"view",
+     "interactive viewer: fly through the sky (GLFW window, Dear ImGui controls)",
+     "view [SCENE] [--width W --height H] [--render-scale F] [--set /PATH=VALUE]... [--script FILE] "
+     "[--no-reprojection] [--device D]",
+     {{"width", "W", "window width (default 960)"},
+      {"height", "H", "window height (default 540)"},
+      {"render-scale", "F", "render at this fraction of the window's size, blit scaled (0.05 to 1, default 1)"},
+      setOption(),
+      {"script", "FILE", "replay the inputs in FILE (one command a line, docs/viewer.md) and quit at its end"},
+      {"no-reprojection", "", "render every frame as a still (no temporal reprojection of the clouds)"},
+      deviceOption()},
+     0,
+     1,
+     runView}};
+
+}  // namespace
+}  // namespace firmament::cli

@@ -1,0 +1,39 @@
+#pragma once
+// Which parts of the night a scene needs (docs/night.md, "The night in the frame"): only scenes whose sun,
+// from the scene's time and place, is below kNightSunAltitudeLimitDeg run any night pass.
+#include <string>
+
+#include "core/scene.h"
+
+namespace firmament {
+
+struct RenderPlan;
+
+// Above this sun altitude no night pass runs. The value is the suggestion; the measurement that
+// the night's light is below 1e-4 of the day sky's there is still to be made (docs/night.md).
+inline constexpr double kNightSunAltitudeLimitDeg = 10.0;
+// The Moon lights the sky while its apparent altitude is above this (a choice; the step it leaves in a
+// 24 h sweep is still to be measured).
+inline constexpr double kMoonSkyAltitudeLimitDeg = -5.0;
+
+// What the renderer's options say about the night.
+struct NightOptions {
+  bool enabled = true;                                                 // false: no night pass at all
+  double sunAltitudeLimitDeg = kNightSunAltitudeLimitDeg;              // the night runs below this sun altitude
+  bool moonSky = true, moonDisc = true, skyGlow = true, stars = true;  // each part (tests switch them)
+};
+
+// Which parts of the night a scene needs, and why (what `render --explain` prints).
+struct NightDecision {
+  bool run = false;  // any part
+  bool moonSky = false, moonDisc = false, skyGlow = false, stars = false;
+  std::string reason;                      // why the night runs or not
+  std::string moonSkyReason, starsReason;  // why those parts are left out, when they are
+  double sunAltitudeDeg = 0.0, moonAltitudeDeg = 0.0;
+};
+// `skyView`: the frame reads the sky-view table (the moonlit sky is a second such table).
+NightDecision decideNight(const Scene& scene, const NightOptions& options, bool skyView);
+// Adds the night's passes, or their omission with the reason, to a plan.
+void planNight(const NightDecision& night, RenderPlan& plan);
+
+}  // namespace firmament

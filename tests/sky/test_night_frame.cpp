@@ -1,0 +1,133 @@
+// The night in the frame (sky/night_pass.h): the point-light splat conserves each star's illuminance at
+// any resolution, the plan runs the night only below the sun-altitude limit, and a night frame is finite
+// and non-negative with the validation layer on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/color.h"
+#include "sky/night_pass.h"
+#include "sky/render_plan.h"
+#include "sky/sky_renderer.h"
+#include "tests/support/gpu_test.h"
+
+namespace firmament {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+shared::CameraParameters camera(int width, int height, int projection) {
+  shared::CameraParameters c{};
+  shared::cameraBasis(0.3, 0.4, 0.0, c.forward, c.right, c.up);
+  c.fov = 75.0 * kDegree;
+  c.yaw = 0.3;
+  c.projection = projection;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+// Sum of radiance x pixel solid angle over the image: the illuminance the splat put there.
+double splatIlluminance(const shared::CameraParameters& c, const std::vector<float>& image) {
+  double sum = 0.0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x)
+      sum += image[(size_t(y) * c.width + x) * 4 + 1] * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+  return sum;
+}
+
+TEST(NightFrame, StarSplatConservesIlluminanceAtTwoResolutions) {
+  for (int projection :
+       {shared::kProjectionPerspective, shared::kProjectionFisheye, shared::kProjectionEquirectangular}) {
+    for (int width : {64, 160}) {
+      const shared::CameraParameters c = camera(width, width * 9 / 16, projection);
+      bool valid = false;
+      // A star slightly off the image centre (not on a pixel centre).
+      const glm::dvec3 dir = shared::cameraRayDirection(c, glm::dvec2(0.37 * width, 0.61 * c.height), valid);
+      ASSERT_TRUE(valid);
+      const std::vector<float> image = splatPointLights(c, {{dir, glm::dvec3(2.5e-6)}});
+      // Float pixels: 1e-6 relative (measured 1e-7).
+      EXPECT_NEAR(splatIlluminance(c, image) / 2.5e-6, 1.0, 1e-5) << projection << " " << width;
+    }
+  }
+}
+
+TEST(NightFrame, PixelSolidAnglesTileTheEquirectangularSphere) {
+  const shared::CameraParameters c = camera(64, 32, shared::kProjectionEquirectangular);
+  double sum = 0.0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) sum += pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+  EXPECT_NEAR(sum / (4.0 * 3.14159265358979323846), 1.0, 1e-3);  // midpoint rule over latitude: 2e-4
+}
+
+TEST(NightFrame, PlanRunsTheNightOnlyBelowTheSunAltitudeLimit) {
+  const Scene day = Scene::parse(R"({"time": {"utc": "2026-06-21T12:00:00Z"}})", "<test>");
+  const Scene night = Scene::parse(R"({"time": {"utc": "2026-06-21T23:00:00Z"}})", "<test>");
+  const Scene sunSection = Scene::parse(R"({"sun": {"zenith_deg": 120}})", "<test>");
+  EXPECT_FALSE(planRender(day).has("night/night_sky"));
+  EXPECT_TRUE(planRender(night).has("night/night_sky"));
+  EXPECT_FALSE(planRender(sunSection).has("night/night_sky"));
+  bool omitted = false;
+  for (const auto& o : planRender(day).omitted)
+    omitted = omitted || o.name.find("night/night_sky") != std::string::npos;
+  EXPECT_TRUE(omitted);
+}
+
+class NightFrameTest : public test::GpuTest {};
+
+TEST_F(NightFrameTest, NightFramesAreFiniteNonNegativeAndDarkerThanDay) {
+  static SkyRenderer renderer(context());
+  for (const char* utc : {"2026-06-21T21:00:00Z", "2026-06-21T23:00:00Z", "2026-01-03T23:00:00Z"}) {
+    const Scene scene = Scene::parse(
+        R"({"time": {"utc": ")" + std::string(utc) + R"("}, "camera": {"width": 32, "height": 18, "pitch_deg": 30}})",
+        "<test>");
+    RenderResult r = renderer.render(scene);
+    ASSERT_TRUE(r.night.run) << utc;
+    size_t bad = 0;
+    double mean = 0.0;
+    for (size_t i = 0; i < r.image.pixels.size(); ++i) {
+      const float v = r.image.pixels[i];
+      bad += !(std::isfinite(v) && v >= 0.0f);
+      if (i % 4 == 1) mean += v;
+    }
+    mean /= double(r.image.pixelCount());
+    EXPECT_EQ(bad, 0u) << utc;
+    // A night sky: above the moonless dark sky's 2e-4 cd/m^2 (green channel ~ luminance), far below day.
+    EXPECT_GT(mean, 1e-4) << utc;
+    EXPECT_LT(mean, 10.0) << utc;
+  }
+}
+
+}  // namespace
+}  // namespace firmament
+
+namespace firmament {
+namespace {
+
+// Leinert et al. 1998: the moonless zenith at a dark site is 21.6-22.0 V mag/arcsec^2 at the ground
+// (1.0807e5 cd/m^2 at 0 mag/arcsec^2, docs/night.md "Units"). New Moon, the zenith near the galactic pole (April, 22:00
+// UTC), stars left out (the catalogue's stars are points, not the diffuse sky), a 10° view of the zenith from sea
+// level.
+TEST_F(NightFrameTest, MoonlessDarkSiteZenithIsInLeinertsRangeAtTheGround) {
+  static SkyRenderer renderer(context());
+  const Scene scene = Scene::parse(
+      R"({"location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 0},
+          "time": {"utc": "2026-04-17T22:00:00Z"},
+          "camera": {"width": 16, "height": 16, "pitch_deg": 90, "fov_deg": 10}})",
+      "<test>");
+  SkyRenderOptions options;
+  options.night.stars = false;
+  RenderResult r = renderer.render(scene, options);
+  ASSERT_TRUE(r.night.run);
+  EXPECT_FALSE(r.night.moonSky);  // the new Moon is below the horizon
+  double sum = 0.0;
+  for (size_t i = 0; i < r.image.pixelCount(); ++i) sum += luminanceRec709(r.image.pixels.data() + i * 4);
+  const double magnitude = -2.5 * std::log10(sum / double(r.image.pixelCount()) / 1.0807e5);
+  std::printf("dark-site zenith at the ground: %.3f mag/arcsec^2\n", magnitude);
+  EXPECT_GT(magnitude, 21.6);
+  EXPECT_LT(magnitude, 22.0);
+}
+
+}  // namespace
+}  // namespace firmament
