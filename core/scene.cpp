@@ -316,4 +316,10 @@ std::string sceneSchemaMarkdown() {
   return out;
 }
 
+std::string clearSkyDefaultSceneText() {
+  nlohmann::json document = nlohmann::json::parse(defaultSceneText());
+  for (const char* section : {"terrain", "clouds", "weather"}) document.erase(section);
+  return document.dump(2);
+}
+
 }  // namespace firmament

@@ -56,6 +56,10 @@ void validateScene(nlohmann::json& document, const std::string& source);
 std::string_view defaultSceneText();
 inline constexpr const char* kDefaultSceneName = "scenes/default.json (built in)";
 
+// The default scene's place, time, camera and atmosphere without its terrain, clouds and weather: the
+// clear sky that the atmosphere's validation and micro-benchmarks measure.
+std::string clearSkyDefaultSceneText();
+
 // The embedded schema and its Markdown rendering (docs/scene.md is generated from it).
 const nlohmann::json& sceneSchema();
 std::string sceneSchemaMarkdown();

@@ -247,7 +247,7 @@ KiderValidationResult runKiderValidation(const std::filesystem::path& dataDir, c
     overrides.push_back("/camera/pitch_deg=0");
     overrides.push_back("/camera/width=" + std::to_string(settings.gpuWidth));
     overrides.push_back("/camera/height=" + std::to_string(settings.gpuHeight));
-    const Scene scene = Scene::parse(defaultSceneText(), "validate kider " + capture.name, overrides);
+    const Scene scene = Scene::parse(clearSkyDefaultSceneText(), "validate kider " + capture.name, overrides);
     const SceneView view = makeSceneView(scene);
 
     const ReferenceRenderer renderer(kiderMedium(view.atmosphere, renderWavelengths), view.sunDirection,

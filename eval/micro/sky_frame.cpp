@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     const int repeats = argc > arg + 2 ? std::stoi(argv[arg + 2]) : 9;
     std::vector<std::string> overrides = {"/camera/width=" + width, "/camera/height=" + height};
     for (int i = arg + 3; i < argc; ++i) overrides.push_back(argv[i]);
-    const Scene scene = scenePath.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
+    const Scene scene = scenePath.empty() ? Scene::parse(clearSkyDefaultSceneText(), kDefaultSceneName, overrides)
                                           : Scene::load(scenePath, overrides);
 
     gpu::ContextOptions options;

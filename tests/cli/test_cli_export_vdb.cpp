@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -52,8 +53,10 @@ TEST(CliExportVdb, BadOptionsExitTwoNameTheOptionAndWriteNothing) {
 
 TEST(CliExportVdb, SceneWithoutCloudsWritesAnEmptyGrid) {
   const auto dir = test::scratchDir("cli_export_vdb_empty");
-  const CommandRun run = firmament("export-vdb " + (test::sourceDir() / "scenes" / "default.json").string() + " -o " +
-                                   (dir / "empty.vdb").string() + " --voxel-size 1000");
+  const auto scene = test::scratchDir("cli_export_vdb_empty_scene") / "clear.json";
+  std::ofstream(scene) << R"({"time": {"utc": "2026-06-21T12:00:00Z"}})";
+  const CommandRun run =
+      firmament("export-vdb " + scene.string() + " -o " + (dir / "empty.vdb").string() + " --voxel-size 1000");
   EXPECT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("0 active voxels"), std::string::npos) << run.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "empty.vdb"));

@@ -30,8 +30,15 @@ TEST(Scene, DefaultSceneIsValidAndFilled) {
   EXPECT_DOUBLE_EQ(scene.number("/camera/fov_deg"), 75.0);
   EXPECT_EQ(scene.string("/camera/exposure/tonemap"), "aces");
   EXPECT_DOUBLE_EQ(scene.number("/camera/roll_deg"), 0.0);  // defaulted
-  EXPECT_FALSE(scene.hasSection("clouds"));                 // optional sections stay out
+  EXPECT_TRUE(scene.hasSection("terrain"));                 // the open-world view: terrain,
+  EXPECT_TRUE(scene.hasSection("clouds"));                  // clouds
+  EXPECT_TRUE(scene.hasSection("weather"));                 // from the weather simulation
   EXPECT_TRUE(scene.hasSection("atmosphere"));
+  const Scene clear = Scene::parse(clearSkyDefaultSceneText(), "clear sky");
+  EXPECT_FALSE(clear.hasSection("terrain"));  // optional sections stay out
+  EXPECT_FALSE(clear.hasSection("clouds"));
+  EXPECT_FALSE(clear.hasSection("weather"));
+  EXPECT_EQ(clear.string("/time/utc"), scene.string("/time/utc"));
 }
 
 TEST(Scene, EmptyObjectGetsEveryDefault) {
