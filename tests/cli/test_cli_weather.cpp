@@ -145,7 +145,7 @@ TEST(CliWeather, BadInputExitsTwoWithAClearMessage) {
       {"weather " + scene + " --set /weather/preset=monsoon" + out, "/weather/preset"},
       {"weather " + scene + " --set /weather/grid/cells_x=2" + out, "/weather/grid/cells_x"},
       {"weather " + scene + " --set /weather/no_such_key=1" + out, "/weather/no_such_key"},
-      {"weather " + scene + " --set /weather/start_utc=2026-06-21T05:00:00Z" + out, "is after /time/utc"},
+      {"weather " + scene + " --set /weather/start_utc=2026-06-21T14:00:00Z" + out, "is after /time/utc"},
       {"weather " + scene + " --set /weather/start_utc=2026-06-01T00:00:00Z" + out, "at most 7 days"},
       {"weather " + scene + " --set /weather/start_utc=tomorrow" + out, "/weather/start_utc"},
       {"weather " + noWeather.string() + out, "weather"},
