@@ -346,10 +346,26 @@ TEST(Cli, RenderReadsTheCloudNoiseTheLastRunBaked) {
 }
 
 TEST(Cli, ExplainListsOnlyNeededPasses) {
-  CommandRun r = firmament("render --explain");
+  // The default scene is a landscape under cumulus: it needs the cloud and terrain passes.
+  CommandRun full = firmament("render --explain");
+  ASSERT_EQ(full.exitCode, 0) << full.output;
+  EXPECT_NE(full.output.find("clouds/render_clouds"), std::string::npos);
+  EXPECT_NE(full.output.find("terrain/cast_terrain"), std::string::npos);
+  // A clear daytime sky over no terrain runs neither, nor the night sky.
+  auto dir = test::scratchDir("cli_explain");
+  const std::string clear = writeScene(dir, "clear.json", R"({"camera": {"width": 32, "height": 16}})").string();
+  CommandRun r = firmament("render " + clear + " --explain");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("sky/render_sky"), std::string::npos);
-  EXPECT_EQ(r.output.find("clouds/"), std::string::npos);
+  const std::size_t leftOut = r.output.find("left out:");
+  ASSERT_NE(leftOut, std::string::npos) << r.output;
+  const std::string passes = r.output.substr(0, leftOut);
+  EXPECT_NE(passes.find("sky/render_sky"), std::string::npos);
+  EXPECT_EQ(passes.find("clouds/"), std::string::npos);
+  EXPECT_EQ(passes.find("terrain/"), std::string::npos);
+  EXPECT_EQ(passes.find("night/"), std::string::npos);
+  EXPECT_EQ(passes.find("aerial_perspective_volume"), std::string::npos);
+  // What was left out says why.
+  EXPECT_NE(r.output.find("the night runs below 10 deg", leftOut), std::string::npos) << r.output;
 }
 
 }  // namespace
