@@ -47,17 +47,28 @@ SHARED_INLINE vec3 terrainSurfacePoint(vec2 plane, Real height, Real planetRadiu
   return (planetRadius + height) * normalize(vec3(plane.x, plane.y, planetRadius));
 }
 
-// The distance t at which the ray crosses the grid line x = X of the plane (the plane through the
-// planet centre planetRadius p.x − X p.z = 0), kTerrainNever when the ray runs parallel to it.
+// The distance t at which the ray, moving along the plane's x axis in its direction of travel,
+// crosses the grid line x = X of the plane (the plane through the planet centre R p.x − X p.z = 0);
+// kTerrainNever when it never does. t = (X o.z − R o.x) / (R d.x − X d.z). The plane point of a rising
+// ray does not run off to infinity: R p.x / p.z tends to R d.x / d.z, so a line beyond that asymptote
+// is never reached, and the formula's t for it is negative. For a line ahead (or at the current point)
+// the crossing lies ahead exactly when the denominator has the sign of the travel (terrainPlaneStepX,
+// the sign of d.x o.z − o.x d.z); testing that sign, not t ≥ 0, keeps a line the ray is on (t rounded
+// a hair negative) crossed. A walk that took such a t as "now" would step across cells without moving
+// along the ray, and test far cells at the ray's start: the sky seen through a rising ray near an
+// axis (d.y ~ 0) would be the terrain kilometres away (tests/terrain/test_terrain_intersection.cpp,
+// RisingRayAlongAGridLineNeverReachesTheLinesBeyondItsAsymptote).
 SHARED_INLINE Real terrainCrossingX(vec3 origin, vec3 direction, Real lineX, Real planetRadius) {
   Real denominator = planetRadius * direction.x - lineX * direction.z;
-  if (denominator == 0.0) return kTerrainNever;
+  Real travel = direction.x * origin.z - origin.x * direction.z;
+  if (denominator == 0.0 || (denominator > 0.0) != (travel > 0.0)) return kTerrainNever;
   return (lineX * origin.z - planetRadius * origin.x) / denominator;
 }
 
 SHARED_INLINE Real terrainCrossingY(vec3 origin, vec3 direction, Real lineY, Real planetRadius) {
   Real denominator = planetRadius * direction.y - lineY * direction.z;
-  if (denominator == 0.0) return kTerrainNever;
+  Real travel = direction.y * origin.z - origin.y * direction.z;
+  if (denominator == 0.0 || (denominator > 0.0) != (travel > 0.0)) return kTerrainNever;
   return (lineY * origin.z - planetRadius * origin.y) / denominator;
 }
 

@@ -9,6 +9,7 @@
 
 #include "common/geometry.glsl"
 #include "core/color.h"
+#include "sky/scene_view.h"
 #include "sky/sky_renderer.h"
 #include "terrain/terrain_intersection.h"
 #include "tests/support/gpu_test.h"
@@ -215,6 +216,49 @@ TEST_F(TerrainPassTest, PlanListsTheTerrainPassesOnlyWithATerrainSection) {
   const RenderPlan without = planRender(scene("{}"));
   EXPECT_FALSE(without.has("terrain/cast_terrain"));
   EXPECT_FALSE(without.has("terrain/shade_terrain"));
+}
+
+// The default scene's view rays where the image crosses due west (a rising ray with d.y ~ 0 never
+// reaches the grid lines north of the camera: terrain_geometry.glsl, terrainCrossingX). The walk once
+// took those lines' negative crossings as "now" and hit the terrain kilometres away at t = 0: dark
+// green pixels in the clouds. From 700 m above the ground nothing lies nearer than 700 m; the GPU and
+// the CPU walks agree on every ray.
+TEST_F(TerrainPassTest, DefaultViewRaysAlongAGridLineHitNothingAtTheCamera) {
+  TerrainPass pass(context());
+  const Scene s = Scene::parse(defaultSceneText(), "<default>");
+  const double R = AtmosphereSettings::fromScene(s).bottomRadius;
+  pass.prepare(s, R);
+  terrain::TerrainIntersector cpu(pass.resolved().field, R);
+  const SceneView view = makeSceneView(s);
+  const glm::vec3 o(0.0f, 0.0f, float(view.cameraRadius));
+  std::vector<glm::vec4> rays;
+  std::vector<terrain::TerrainRay> cpuRays;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 690; x < 730; ++x) {
+      bool valid = false;
+      const glm::vec3 d = shared::cameraRayDirection(view.camera, glm::vec2(x + 0.5f, y + 0.5f), valid);
+      ASSERT_TRUE(valid);
+      double r = 0.0, mu = 0.0;
+      shared::rayRadiusAndCosine(glm::dvec3(o), glm::dvec3(d), r, mu);
+      rays.push_back(glm::vec4(o, float(r)));
+      rays.push_back(glm::vec4(d, float(mu)));
+      terrain::TerrainRay ray;
+      ray.origin = glm::dvec3(o);
+      ray.direction = glm::dvec3(d);
+      cpuRays.push_back(ray);
+    }
+  const std::vector<glm::vec4> gpu = pass.castRays(rays);
+  int nearCamera = 0, disagree = 0, hits = 0;
+  for (size_t i = 0; i < cpuRays.size(); ++i) {
+    const terrain::TerrainHit c = cpu.intersect(cpuRays[i]);
+    const float t = gpu[2 * i].w;
+    nearCamera += (t < 600.0f) + (c.hit && c.t < 600.0);
+    disagree += (t < 1e29f) != c.hit;
+    hits += c.hit;
+  }
+  EXPECT_EQ(nearCamera, 0);
+  EXPECT_LE(disagree, 3);
+  std::printf("%zu rays, %d hit, %d disagree\n", cpuRays.size(), hits, disagree);
 }
 
 }  // namespace

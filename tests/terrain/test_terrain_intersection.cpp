@@ -314,5 +314,29 @@ TEST(TerrainIntersection, NoNaNOrInfForAnyCameraAndGrazingShadowRays) {
   EXPECT_GT(hits, 1000);
 }
 
+// A rising ray's plane point tends to R d / d.z, so a ray heading almost due west (d.y ~ 1e-9) never
+// reaches the grid lines north of the camera's cell. A walk that read those lines' (negative)
+// crossings as "now" stepped north across the grid without moving along the ray and hit a ridge
+// 10 km away at t = 0 (single terrain pixels in the sky of the default scene). Ridge 3000 m high in
+// the north, the camera at 1900 m over flat 1200 m ground, rays rising 5 to 30 degrees: no hit.
+TEST(TerrainIntersection, RisingRayAlongAGridLineNeverReachesTheLinesBeyondItsAsymptote) {
+  const HeightField f = makeField(1024, 15000.0, [](double, double y) { return y > 8000.0 ? 3000.0 : 1200.0; });
+  const TerrainIntersector cast(f, kR);
+  int rays = 0;
+  for (double elevation = 5.0; elevation <= 30.0; elevation += 2.5)
+    for (double tiny : {1e-12, 1e-9, 1e-7, -1e-9}) {
+      glm::dvec3 d = direction(elevation, 270.0);
+      d.y = tiny;
+      const TerrainHit hit = cast.intersect({up(1900.0), glm::normalize(d)});
+      EXPECT_FALSE(hit.hit) << "elevation " << elevation << " d.y " << tiny << ": t " << hit.t;
+      ++rays;
+    }
+  // The same ray falling toward the ridge side still finds the flat ground where the sphere says.
+  const glm::dvec3 down = glm::normalize(glm::dvec3(-1.0, 1e-9, -0.2));
+  const TerrainHit hit = cast.intersect({up(1900.0), down});
+  ASSERT_TRUE(hit.hit);
+  EXPECT_NEAR(hit.t, sphereHit(up(1900.0), down, 1200.0), 1e-3);
+  EXPECT_EQ(rays, 44);
+}
 }  // namespace
 }  // namespace firmament::terrain
