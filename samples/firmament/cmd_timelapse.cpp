@@ -386,7 +386,8 @@ AssembleOptions assembleOptions(const Args& args) {
   return a;
 }
 
-// Weather statistics of a frame's map (coverage, cloudy fraction, precipitation, highest top).
+// Weather statistics of a frame's map (coverage, cloudy fraction, precipitation, highest top) and the
+// simulation's start and length (one run for the whole sequence: sequence_scene.h).
 nlohmann::json weatherStatistics(const Scene& scene) {
   if (!scene.hasSection("clouds") || !scene.hasSection("weather")) return nullptr;
   const CloudWeatherMap map = cloudWeatherMapForScene(scene);
@@ -404,7 +405,9 @@ nlohmann::json weatherStatistics(const Scene& scene) {
   return {{"mean_coverage", coverage / n},
           {"cloudy_fraction", double(cloudy) / n},
           {"mean_precipitation_mm_h", precipitation / n},
-          {"max_top_m", top}};
+          {"max_top_m", top},
+          {"start_utc", astro::formatUtc(sceneWeatherStart(scene))},
+          {"run_h", sceneWeatherRunSeconds(scene) / 3600.0}};
 }
 
 // Removes what a killed writer of this range's frames left (".frame_NNNNNN.tmp-PID-N.EXT", core/atomic_file.h).

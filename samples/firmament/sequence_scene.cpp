@@ -11,6 +11,7 @@
 #include "astro/time.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "sky/scene_weather.h"
 
 namespace firmament::cli {
 
@@ -40,6 +41,17 @@ Scene sequenceFrameScene(const SequenceSceneSource& source, const Scene& base, d
   if (!base.hasSection("sun"))
     o.push_back("/time/utc=" +
                 astro::formatUtc(astro::addSeconds(astro::parseUtc(base.string("/time/utc")), elapsed_s)));
+  // One weather simulation for the whole sequence: it runs from the solar midnight before the first
+  // frame (or the scene's own /weather/start_utc) to every frame, so a sequence that crosses a solar
+  // midnight runs on through the night instead of starting the day again.
+  if (base.hasSection("weather") && !base.at("/weather").contains("start_utc")) {
+    const double run_s = sceneWeatherRunSeconds(base) + elapsed_s;
+    if (run_s > kSceneWeatherMaxRun_s)
+      throw InputError(base.source() + ": a frame " + roundTripDecimal(elapsed_s / 3600.0) + " h after the first is " +
+                       roundTripDecimal(run_s / 86400.0) +
+                       " days of weather after the solar midnight before the first frame; allowed: at most 7 days");
+    o.push_back("/weather/start_utc=" + astro::formatUtc(sceneWeatherStart(base)));
+  }
   return source.load(o);
 }
 

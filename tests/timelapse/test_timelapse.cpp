@@ -223,5 +223,22 @@ TEST_F(Timelapse, BadInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(bytes(root_ / "reference" / "timelapse.json"), manifest);
 }
 
+// A time-lapse through the local solar midnight (7.98 deg E: 23:28:04.8 UTC) runs one weather simulation
+// on through it: the frame after midnight continues the run from the midnight before the first frame
+// (24.5 h long), instead of starting the day again (0.5 h).
+TEST_F(Timelapse, WeatherRunsOnThroughTheSolarMidnight) {
+  const fs::path dir = root_ / "midnight";
+  const CommandRun r =
+      firmament("timelapse " + (test::sourceDir() / "scenes/fair-weather.json").string() +
+                " --from 2026-06-21T23:00:00Z --to 2026-06-22T00:00:00Z --fps 1 --speed 3600 --width 16 --height 10"
+                " --set /weather/grid/cells_x=32 --set /weather/grid/cells_y=32 --no-video --out " +
+                dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto weather = [&](int i) { return nlohmann::json::parse(bytes(dir / frame(i, "json"))).at("weather"); };
+  EXPECT_EQ(weather(0).at("start_utc"), "2026-06-20T23:28:04.800Z");
+  EXPECT_EQ(weather(1).at("start_utc"), "2026-06-20T23:28:04.800Z");
+  EXPECT_NEAR(weather(0).at("run_h").get<double>(), 23.5 + 115.2 / 3600.0, 1e-6);
+  EXPECT_NEAR(weather(1).at("run_h").get<double>(), 24.5 + 115.2 / 3600.0, 1e-6);
+}
 }  // namespace
 }  // namespace firmament
