@@ -203,6 +203,7 @@ TEST_F(Timelapse, BadInputExitsTwoAndWritesNothing) {
            (root_ / "bad-path.json").string(),
        "/keys/1/time_s"},
       {"--from 2026-06-21T10:00:00Z --to 2026-06-21T10:25:00Z --out " + (root_ / "a-file" / "sub").string(), "--out"},
+      {"--from 2026-06-21T10:00:00Z --to 2026-06-29T10:00:00Z --width 64" + tail, "at most 7 days"},
   };
   for (const Case& c : cases) {
     CommandRun r = firmament("timelapse " + scene + " " + c.arguments);
