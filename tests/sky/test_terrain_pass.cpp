@@ -26,6 +26,19 @@ class TerrainPassTest : public test::GpuTest {
   static Scene scene(const std::string& json, std::vector<std::string> overrides = {}) {
     return Scene::parse(json, "<test>", overrides);
   }
+  // The ray from `origin` along `d` (unit) as the GPU cast takes it ((origin, r), (d, mu)) and as the
+  // CPU walk takes it, from the same floats.
+  static void addRay(const glm::vec3& origin, const glm::vec3& d, std::vector<glm::vec4>& gpu,
+                     std::vector<terrain::TerrainRay>& cpu) {
+    double r = 0.0, mu = 0.0;
+    shared::rayRadiusAndCosine(glm::dvec3(origin), glm::dvec3(d), r, mu);
+    gpu.push_back(glm::vec4(origin, float(r)));
+    gpu.push_back(glm::vec4(d, float(mu)));
+    terrain::TerrainRay ray;
+    ray.origin = glm::dvec3(origin);
+    ray.direction = glm::dvec3(d);
+    cpu.push_back(ray);
+  }
   static size_t nonFinite(const Image& image) {
     size_t bad = 0;
     for (float v : image.pixels) bad += !(std::isfinite(v) && v >= 0.0f);
@@ -68,14 +81,7 @@ TEST_F(TerrainPassTest, GpuCastMatchesTheCpuWalk) {
                            std::sin(elevation));
       if (height > 1e6) direction = glm::normalize(glm::dvec3(0.3 * direction.x, 0.3 * direction.y, -1.0));
       const glm::vec3 d = glm::vec3(glm::normalize(direction));
-      double r = 0.0, mu = 0.0;
-      shared::rayRadiusAndCosine(glm::dvec3(origin), glm::dvec3(d), r, mu);
-      rays.push_back(glm::vec4(origin, float(r)));
-      rays.push_back(glm::vec4(d, float(mu)));
-      terrain::TerrainRay ray;
-      ray.origin = glm::dvec3(origin);
-      ray.direction = glm::dvec3(d);
-      cpuRays.push_back(ray);
+      addRay(origin, d, rays, cpuRays);
     }
   }
   const std::vector<glm::vec4> gpu = pass.castRays(rays);
@@ -238,14 +244,7 @@ TEST_F(TerrainPassTest, DefaultViewRaysAlongAGridLineHitNothingAtTheCamera) {
       bool valid = false;
       const glm::vec3 d = shared::cameraRayDirection(view.camera, glm::vec2(x + 0.5f, y + 0.5f), valid);
       ASSERT_TRUE(valid);
-      double r = 0.0, mu = 0.0;
-      shared::rayRadiusAndCosine(glm::dvec3(o), glm::dvec3(d), r, mu);
-      rays.push_back(glm::vec4(o, float(r)));
-      rays.push_back(glm::vec4(d, float(mu)));
-      terrain::TerrainRay ray;
-      ray.origin = glm::dvec3(o);
-      ray.direction = glm::dvec3(d);
-      cpuRays.push_back(ray);
+      addRay(o, d, rays, cpuRays);
     }
   const std::vector<glm::vec4> gpu = pass.castRays(rays);
   int nearCamera = 0, disagree = 0, hits = 0;
