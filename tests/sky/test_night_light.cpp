@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "astro/moon_photometry.h"
+#include "astro/sun.h"
 #include "atmosphere/reference_optical_depth.h"
 #include "core/color.h"
 #include "core/spectrum.h"
@@ -286,6 +287,70 @@ TEST_F(NightLightTest, StarsDoNotShowInDaylight) {
   }
   EXPECT_LT(worst[0], 1e-3);  // the sun at +5 deg
   EXPECT_GT(worst[1], 1.0);   // the sun 20 deg below: the star outshines its pixel's sky
+}
+
+// The +10 deg limit above which no night pass runs (kNightSunAltitudeLimitDeg, docs/night.md "Where the
+// night starts"): the largest relative change of a pixel's luminance from adding the night's sky terms
+// (the moonlit sky, airglow, zodiacal light, faint stars and the catalogue's stars, the Moon's disc left out)
+// at sun altitudes +10, +5 and 0 deg, with a gibbous Moon (0.77 lit, 0.07 lx) 24 deg high in the view
+// (2026-06-24, the location of the scenes): measured 2.1e-6 / 3.9e-6 / 2.5e-5 (lavapipe), the stated
+// bound at +10 deg 1e-3 (a tenth of the eye's daylight contrast threshold, Blackwell 1946). The Moon's
+// disc is another matter: in daylight it is seen (the daytime Moon; its brightest pixel over the sky's
+// measured 0.98 / 1.44 / 4.66), so a frame above +10 deg leaves out a visible Moon (docs/night.md).
+TEST_F(NightLightTest, NightSkyTermsAboveTenDegreesChangeTheFrameByUnderOnePerMille) {
+  const astro::GeodeticLocation place = astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0);
+  double worstSky[3], disc[3];
+  const double altitudes[3] = {10.0, 5.0, 0.0};
+  for (int k = 0; k < 3; ++k) {
+    // The minute of the evening when the sun passes the altitude.
+    char utc[32] = "";
+    for (int minute = 17 * 60; minute < 20 * 60; ++minute) {
+      std::snprintf(utc, sizeof(utc), "2026-06-24T%02d:%02d:00Z", minute / 60, minute % 60);
+      if (astro::sunPosition(astro::makeAstroTime(utc), place).elevation() / kDegree <= altitudes[k]) break;
+    }
+    const astro::MoonLight moon = astro::moonLight(astro::makeAstroTime(utc), place);
+    char json[600];
+    std::snprintf(json, sizeof(json), R"({%s, "time": { "utc": "%s" }, "camera": { "height_above_ground_m": 2,
+      "yaw_deg": %.4f, "pitch_deg": 20, "fov_deg": 75, "width": 48, "height": 27 }})",
+                  kPlace, utc, moon.azimuth / kDegree);
+    SkyRenderOptions off, skyTerms;
+    off.night.enabled = false;
+    skyTerms.night.sunAltitudeLimitDeg = 90.0;  // run the night whatever the sun
+    skyTerms.night.moonDisc = false;
+    const RenderResult a = renderer().render(scene(json), skyTerms);
+    const RenderResult b = renderer().render(scene(json), off);
+    ASSERT_TRUE(a.night.run && a.night.moonSky);
+    double w = 0.0;
+    for (size_t i = 0; i < a.image.pixelCount(); ++i) {
+      const double la = luminanceRec709(a.image.pixels.data() + i * 4),
+                   lb = luminanceRec709(b.image.pixels.data() + i * 4);
+      w = std::max(w, std::fabs(la - lb) / lb);
+    }
+    worstSky[k] = w;
+    // The disc's contrast: a 2 deg view of the Moon, the disc's pixels over the sky's.
+    std::snprintf(json, sizeof(json), R"({%s, "time": { "utc": "%s" }, "camera": { "height_above_ground_m": 2,
+      "yaw_deg": %.6f, "pitch_deg": %.6f, "fov_deg": 2, "width": 24, "height": 24 }})",
+                  kPlace, utc, moon.azimuth / kDegree, 90.0 - moon.zenith / kDegree);
+    SkyRenderOptions withDisc = skyTerms;
+    withDisc.night.moonDisc = true;
+    const RenderResult d = renderer().render(scene(json), withDisc);
+    const RenderResult n = renderer().render(scene(json), off);
+    double c = 0.0;
+    for (size_t i = 0; i < d.image.pixelCount(); ++i) {
+      const double ld = luminanceRec709(d.image.pixels.data() + i * 4),
+                   ln = luminanceRec709(n.image.pixels.data() + i * 4);
+      c = std::max(c, (ld - ln) / ln);
+    }
+    disc[k] = c;
+    std::printf(
+        "sun %+.1f deg (%s, Moon %.1f deg high): sky terms change a pixel by at most %.3g; the disc's "
+        "contrast %.3g\n",
+        a.night.sunAltitudeDeg, utc, 90.0 - moon.zenith / kDegree, worstSky[k], disc[k]);
+  }
+  EXPECT_LT(worstSky[0], 1e-3);
+  EXPECT_LT(worstSky[0], worstSky[1]);  // the night's share grows as the sun sets
+  EXPECT_LT(worstSky[1], worstSky[2]);
+  EXPECT_GT(disc[0], 0.1);  // the daytime Moon: well above the eye's threshold at +10 deg
 }
 
 }  // namespace
