@@ -93,7 +93,7 @@ FrameLight chooseFrameLight(double sunGroundLux, double moonGroundLux, const glm
   const double other = light.moon ? light.sunGroundLux : light.moonGroundLux;
   if (chosen > 0.0 && other > kFrameLightNegligibleRatio * chosen) light.scale = (chosen + other) / chosen;
   char text[200];
-  std::snprintf(text, sizeof(text), "%s (ground illuminance: Sun %.3g lx, Moon %.3g lx; the %s carries x%.4g)",
+  std::snprintf(text, sizeof(text), "%s (ground illuminance: Sun %.3g lx, Moon %.3g lx; the %s carries x%.6g)",
                 light.moon ? "the Moon" : "the Sun", light.sunGroundLux, light.moonGroundLux,
                 light.moon ? "Moon" : "Sun", light.scale);
   light.reason = text;
