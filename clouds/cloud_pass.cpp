@@ -452,7 +452,7 @@ void CloudPass::bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& targe
                          const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                          gpu::CommandList& commands) {
   const AtmosphereLuts::Batch& lut = luts.batch(0);
-  commands.bind(pipeline, {lut.block,
+  commands.bind(pipeline, {lightBlock(luts, 0),
                            {lut.transmittance, luts.linearClamp()},
                            {lut.multipleScattering, luts.linearClamp()},
                            {*skyIrradiance[0], luts.linearClamp()},
@@ -559,6 +559,7 @@ void CloudPass::recordShadowMap(const CloudSettings& settings, const CloudView& 
   if (!settings.march.beerShadowMap) return;
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
+  lightBlocks_ = view.lightBlocks;
   uploadBlock(settings, view, luts, aerialDistance_m);
   for (gpu::Buffer& frame : cloudFrames_)  // bound (unused) by the bake
     if (!frame || frame.size() != skyFrame.size())
@@ -576,6 +577,9 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   if (settings.layers.size() > size_t(kMaxLayers))
     throw InputError("clouds: at most " + std::to_string(kMaxLayers) + " layers");
   if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("CloudPass: one irradiance table per batch");
+  if (!view.lightBlocks.empty() && view.lightBlocks.size() != luts.batchCount())
+    throw std::logic_error("CloudPass: one light block per batch");
+  lightBlocks_ = view.lightBlocks;
   const CloudMarchSettings& m = settings.march;
   const bool volume = m.aerialPerspective == AerialPerspective::Volume;
   if (volume && (!aerial || aerial->volumes.size() != luts.batchCount() || !(aerial->maxDistance_m > 0.0)))
@@ -720,7 +724,7 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
     const AtmosphereLuts::Batch& lut = luts.batch(batch);
     const gpu::Image& aerialImage = volume ? *aerial->volumes[batch] : aerialPlaceholder_;
-    commands.bind(*pipeline, {lut.block,
+    commands.bind(*pipeline, {lightBlock(luts, batch),
                               {lut.transmittance, luts.linearClamp()},
                               {lut.multipleScattering, luts.linearClamp()},
                               {*skyIrradiance[batch], luts.linearClamp()},

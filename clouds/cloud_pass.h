@@ -21,9 +21,13 @@
 namespace firmament {
 
 struct CloudView {
-  glm::dvec3 cameraPosition{0.0};  // planet-centred, m (the camera on +z of its ground point's ENU frame)
-  glm::dvec3 sunDirection{0.0, 0.0, 1.0};
+  glm::dvec3 cameraPosition{0.0};          // planet-centred, m (the camera on +z of its ground point's ENU frame)
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // the light's direction (the Sun's, or the Moon's at night)
   shared::CameraParameters camera{};
+  // Per spectral batch of the tables, the atmosphere block whose Rec.709 conversions carry the light's
+  // spectrum and irradiance (the tables are linear in the light: sky/frame_light.h); empty: each batch's
+  // own block, the Sun.
+  std::vector<const gpu::Buffer*> lightBlocks;
 };
 
 // Density evaluations per pixel of the last recorded march (after its commands ran).
@@ -153,7 +157,13 @@ class CloudPass {
   void recordBake(const AtmosphereLuts& luts, const std::vector<const gpu::Image*>& skyIrradiance,
                   gpu::Buffer& skyFrame, gpu::CommandList& commands);
 
+  // The block of batch b for the light of the view being recorded (CloudView::lightBlocks).
+  const gpu::Buffer& lightBlock(const AtmosphereLuts& luts, size_t b) const {
+    return b < lightBlocks_.size() ? *lightBlocks_[b] : luts.batch(b).block;
+  }
+
   gpu::Context& context_;
+  std::vector<const gpu::Buffer*> lightBlocks_;  // the view's, set by record() and recordShadowMap()
   CloudNoise noise_;
   // clouds/render_clouds (volume), render_clouds_ap_march, render_clouds_ap_off, each specialized for
   // the options a frame uses (cloudMarchFeatures): created on first use, keyed by AerialPerspective and

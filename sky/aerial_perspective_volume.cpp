@@ -45,7 +45,8 @@ AerialPerspectiveVolume::AerialPerspectiveVolume(gpu::Context& context)
 void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& settings, const glm::dvec3& cameraPosition,
                                      const glm::dvec3& sun, const shared::CameraParameters& camera,
                                      const AtmosphereLuts& luts, gpu::CommandList& commands,
-                                     const AerialCloudShadow* shadow) {
+                                     const AerialCloudShadow* shadow,
+                                     const std::vector<const gpu::Buffer*>& lightBlocks) {
   if (settings.columns < 2 || settings.rows < 2 || settings.slices < 2 || settings.columns > 1024 ||
       settings.rows > 1024 || settings.slices > 1024)
     throw InputError("aerial-perspective volume: columns, rows and slices must be 2..1024 (got " +
@@ -97,7 +98,7 @@ void AerialPerspectiveVolume::record(const AerialPerspectiveVolumeSettings& sett
     blocks_[b].upload(&block, sizeof(block));
     const AtmosphereLuts::Batch& batch = luts.batch(b);
     commands.bind(pipeline_,
-                  {batch.block,
+                  {b < lightBlocks.size() ? *lightBlocks[b] : batch.block,
                    {batch.transmittance, luts.linearClamp()},
                    {batch.multipleScattering, luts.linearClamp()},
                    {batch.multipleScatteringAnisotropy, luts.linearClamp()},

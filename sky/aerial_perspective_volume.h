@@ -52,10 +52,11 @@ class AerialPerspectiveVolume {
   // volume for a camera at cameraPosition (planet-centred, m) with `camera`'s pixel mapping, and the
   // sun direction `sun`. settings.maxDistance_m must be > 0 here (resolved by the caller). The tables
   // must be ready; a reader needs a barrier after.
-  // shadow: cloud shadows in the air (null: none; the alpha channels hold 0).
+  // shadow: cloud shadows in the air (null: none; the alpha channels hold 0). lightBlocks: per batch the
+  // atmosphere block carrying the light when it is not the Sun (the Moon at night, sky/frame_light.h).
   void record(const AerialPerspectiveVolumeSettings& settings, const glm::dvec3& cameraPosition, const glm::dvec3& sun,
               const shared::CameraParameters& camera, const AtmosphereLuts& luts, gpu::CommandList& commands,
-              const AerialCloudShadow* shadow = nullptr);
+              const AerialCloudShadow* shadow = nullptr, const std::vector<const gpu::Buffer*>& lightBlocks = {});
 
   // RGBA32F, 3C x R x N (three tiles), one per spectral batch of the last record() (valid after its commands ran).
   std::vector<const gpu::Image*> volumes() const;

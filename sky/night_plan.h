@@ -9,8 +9,9 @@ namespace firmament {
 
 struct RenderPlan;
 
-// Above this sun altitude no night pass runs. The value is the suggestion; the measurement that
-// the night's light is below 1e-4 of the day sky's there is still to be made (docs/night.md).
+// Above this sun altitude no night pass runs. Measured (docs/night.md, "Where the night starts"): the
+// night's sky terms change no pixel by more than 2.1e-6 there (2.5e-5 at 0 deg); the Moon's disc is not
+// negligible in daylight and is left out above it.
 inline constexpr double kNightSunAltitudeLimitDeg = 10.0;
 // The Moon lights the sky while its apparent altitude is above this (a choice; the step it leaves in a
 // 24 h sweep is still to be measured).

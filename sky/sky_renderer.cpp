@@ -64,7 +64,9 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
                      gpu::BindingType::StorageImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage},
                     4 * sizeof(float)}),
       skyPipeline_(context, renderSkyPipeline("sky/render_sky")),
-      frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block") {}
+      frameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host, "frame block"),
+      lightFrameBlock_(context, sizeof(FrameBlock), gpu::BufferUsage::Uniform, gpu::MemoryLocation::Host,
+                       "light frame block") {}
 
 PlanOptions planOptions(const SkyRenderOptions& options) {
   PlanOptions plan;
@@ -102,16 +104,21 @@ struct SkyRenderer::Frame {
   bool terrain = false;                   // the scene has a /terrain section (sky/terrain_pass.h)
   std::unique_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
   gpu::TileDispatch tiles{};
+  FrameBlock block{};                           // what frameBlock_ holds
+  std::vector<const gpu::Buffer*> lightBlocks;  // the light's blocks (empty: the tables' own, the Sun)
 };
 
 RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
   RenderResult result;
   Frame frame = plan(scene, options, result);
+  result.light.direction = result.view.sunDirection;  // the Sun, unless the night's light is the Moon
+  result.light.reason = "the Sun";
   prepareTables(frame, result);
   prepareClouds(scene, frame, result);
   gpu::CommandList commands(context_);
   recordSky(frame, result, commands);
   if (result.night.run) recordNight(scene, frame, result, commands);
+  if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
   if (frame.terrain && !frame.clouds) {
     commands.barrier();
     recordTerrain(frame, result, commands, nullptr);
@@ -243,6 +250,7 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
   result.methodUsed = useSkyView ? SkyMethod::SkyViewLut : SkyMethod::PerPixel;
   block.options[0] = useSkyView ? 1 : 0;
   frameBlock_.upload(&block, sizeof(block));
+  frame.block = block;
   if (!skyView_ || int(skyView_.width()) != options.skyViewWidth || int(skyView_.height()) != options.skyViewHeight) {
     skyView_ = gpu::Image(context_, {uint32_t(options.skyViewWidth), uint32_t(options.skyViewHeight), 1,
                                      gpu::Format::RGBA32F, true, true, "sky-view LUT"});
@@ -368,6 +376,31 @@ void SkyRenderer::recordNight(const Scene& scene, Frame& frame, RenderResult& re
   night_->record(in, commands);
 }
 
+// The light of the clouds and terrain at night (decision 0228): each light's horizontal ground illuminance
+// at the camera's ground point from the tables (read back), the brighter one carrying both. The Sun's
+// own blocks stay bound while it is the light (and its frame's pixels unchanged while the Moon is under
+// 1e-4 of it).
+void SkyRenderer::chooseLight(Frame& frame, RenderResult& result) {
+  const SceneView& view = result.view;
+  std::vector<const gpu::Image*> irradiance;
+  for (const auto& t : fmsSkyIrradiance_) irradiance.push_back(&t->irradiance());
+  const std::vector<SpectralBatch> spectra =
+      spectralBatches(frame.options.luts.spectralSamples, frame.options.luts.wavelengthsNm);
+  const TableGroundIlluminance ground(luts_, irradiance, spectra);
+  const double r = std::max(view.cameraRadius, luts_.parameters().bottom_radius);
+  const std::vector<glm::dvec3> sunScale(spectra.size(), glm::dvec3(1.0));
+  const astro::MoonLight& moon = night_->moon();
+  const std::vector<glm::dvec3> moonScale = moonChannelScale(moon, spectra, view.atmosphere.solarIrradianceScale);
+  const double sunLux = ground.lux(r, view.sunDirection.z, sunScale);
+  const double moonLux = ground.lux(r, moon.directionEnu.z, moonScale);
+  result.light = chooseFrameLight(sunLux, moonLux, view.sunDirection, moon.directionEnu);
+  result.light.channelScale = result.light.moon ? moonScale : sunScale;
+  frame.lightBlocks.clear();
+  if (!result.light.moon && result.light.scale == 1.0) return;  // the tables' own blocks
+  uploadLightBlocks(context_, luts_, spectra, result.light, lightBlocks_);
+  for (const gpu::Buffer& b : lightBlocks_) frame.lightBlocks.push_back(&b);
+}
+
 // Record the clouds: the Beer shadow map (when on), the aerial-perspective volume they read (with the
 // clouds' light shafts), then the cloud march composited over the sky.
 void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands) {
@@ -379,8 +412,9 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
   const CloudSettings& clouds = *frame.clouds;
   CloudView cloudView;
   cloudView.cameraPosition = glm::dvec3(0.0, 0.0, view.cameraRadius);
-  cloudView.sunDirection = view.sunDirection;
+  cloudView.sunDirection = result.light.direction;
   cloudView.camera = view.camera;
+  cloudView.lightBlocks = frame.lightBlocks;
   // The aerial-perspective volume (only when the clouds read it), over the clouds' march limit by
   // default; the barrier before the clouds covers it and the sky frame.
   CloudAerialVolume aerialVolume;
@@ -403,8 +437,8 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
       const CloudPass::ShadowPlacement& p = clouds_->shadowPlacement();
       shadow = {&clouds_->shadowMap(), &luts_.linearClamp(), p.centre, p.u, p.v, p.extent_m, p.start_m};
     }
-    aerial_->record(aerialSettings, cloudView.cameraPosition, view.sunDirection, view.camera, luts_, commands,
-                    shafts ? &shadow : nullptr);
+    aerial_->record(aerialSettings, cloudView.cameraPosition, cloudView.sunDirection, view.camera, luts_, commands,
+                    shafts ? &shadow : nullptr, frame.lightBlocks);
     aerialVolume.volumes = aerial_->volumes();
     aerialVolume.maxDistance_m = aerialSettings.maxDistance_m;
   }
@@ -421,8 +455,17 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
       float maxDistance;
       float pad[3];
     } push{tiles, float(aerialSettings.maxDistance_m), {0.0f, 0.0f, 0.0f}};
-    commands.bind(*lightShaftsPipeline_,
-                  {luts_.batch(0).block, {*aerial_->volumes()[0], luts_.linearClamp()}, output, frameBlock_});
+    // Under the Moon the shafts' phase angle is the Moon's: the frame block with its direction.
+    const bool moon = !frame.lightBlocks.empty();
+    if (moon) {
+      FrameBlock lightBlock = frame.block;
+      put(lightBlock.sunDirection, cloudView.sunDirection);
+      lightFrameBlock_.upload(&lightBlock, sizeof(lightBlock));
+    }
+    commands.bind(*lightShaftsPipeline_, {moon ? *frame.lightBlocks[0] : luts_.batch(0).block,
+                                          {*aerial_->volumes()[0], luts_.linearClamp()},
+                                          output,
+                                          moon ? lightFrameBlock_ : frameBlock_});
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "sky/cloud_light_shafts");
     commands.barrier();
@@ -441,8 +484,9 @@ void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::Command
   const SceneView& view = result.view;
   TerrainPassView terrainView;
   terrainView.cameraPosition = glm::dvec3(0.0, 0.0, double(float(view.cameraRadius)));
-  terrainView.sunDirection = view.sunDirection;
+  terrainView.sunDirection = result.light.direction;
   terrainView.camera = view.camera;
+  terrainView.lightBlocks = frame.lightBlocks;
   terrainView.airSteps = frame.options.viewSteps;
   std::vector<const gpu::Image*> irradiance;
   for (size_t b = 0; b < luts_.batchCount(); ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());

@@ -17,6 +17,7 @@
 #include "gpu/context.h"
 #include "gpu/dispatch.h"
 #include "sky/aerial_perspective_volume.h"
+#include "sky/frame_light.h"
 #include "sky/night_pass.h"
 #include "sky/render_plan.h"
 #include "sky/scene_view.h"
@@ -88,6 +89,9 @@ struct RenderResult {
   CloudSampleCounts cloudSamples;  // density evaluations per pixel of the cloud march
   bool cloudsReprojected = false;  // the clouds marched 1 in /clouds/temporal_update pixels, reprojected the rest
   NightDecision night;             // which night passes ran (sky/night_plan.h)
+  // The clouds', terrain's and aerial perspective's light (sky/frame_light.h): the Sun, or the Moon when
+  // it gives more ground illuminance. Chosen only for night frames with clouds or terrain.
+  FrameLight light;
 };
 
 class SkyRenderer {
@@ -111,6 +115,8 @@ class SkyRenderer {
   void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordNight(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  // The light of the clouds and terrain at night (sky/frame_light.h), its blocks uploaded.
+  void chooseLight(Frame& frame, RenderResult& result);
   // The terrain (sky/terrain_pass.h) over the sky, before the clouds; shadow: the clouds' Beer shadow map.
   void recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands, const TerrainCloudShadow* shadow);
   void resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result);
@@ -129,6 +135,8 @@ class SkyRenderer {
   std::unique_ptr<TerrainPass> terrain_;                       // created for the first scene with terrain
   std::unique_ptr<NightPass> night_;                           // created for the first night scene
   gpu::Buffer frameBlock_;
+  gpu::Buffer lightFrameBlock_;           // the frame block with the light's direction (light shafts under the Moon)
+  std::vector<gpu::Buffer> lightBlocks_;  // per batch, the atmosphere block of the Moon as the light
   gpu::Image skyView_;
   // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:
   // nothing). The table is in the sun's frame, so a camera that only turns keeps it.

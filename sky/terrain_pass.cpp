@@ -179,7 +179,7 @@ void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts
   const size_t batches = luts.batchCount();
   for (size_t b = 0; b < batches; ++b) {
     const AtmosphereLuts::Batch& batch = luts.batch(b);
-    commands.bind(shade_, {batch.block,
+    commands.bind(shade_, {b < view.lightBlocks.size() ? *view.lightBlocks[b] : batch.block,
                            block_,
                            heights_,
                            pyramid_,

@@ -25,9 +25,12 @@
 namespace firmament {
 
 struct TerrainPassView {
-  glm::dvec3 cameraPosition{0.0};  // planet-centred (the camera on +z of its ground point's ENU frame)
-  glm::dvec3 sunDirection{0.0, 0.0, 1.0};
+  glm::dvec3 cameraPosition{0.0};          // planet-centred (the camera on +z of its ground point's ENU frame)
+  glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // the light's direction (the Sun's, or the Moon's at night)
   shared::CameraParameters camera{};
+  // Per spectral batch, the atmosphere block whose conversions carry the light (sky/frame_light.h);
+  // empty: each batch's own block, the Sun.
+  std::vector<const gpu::Buffer*> lightBlocks;
   int airSteps = 32;       // the air march's steps to the ground (the sky's view steps)
   bool selfShadow = true;  // a shadow ray per pixel at the sun
 };

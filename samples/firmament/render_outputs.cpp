@@ -67,6 +67,11 @@ double writeRenderOutputs(const std::string& exrPath, const Scene& scene, const 
                    {"light_samples_per_pixel", result.cloudSamples.lightPerPixel},
                    {"reprojected", result.cloudsReprojected},
                    {"noise", result.cloudNoiseSource}};
+  if (result.night.run)
+    j["night"] = {
+        {"sun_altitude_deg", result.night.sunAltitudeDeg}, {"moon_altitude_deg", result.night.moonAltitudeDeg},
+        {"light", result.light.moon ? "moon" : "sun"},     {"light_reason", result.light.reason},
+        {"sun_ground_lux", result.light.sunGroundLux},     {"moon_ground_lux", result.light.moonGroundLux}};
   if (!result.timingNote.empty()) j["timing_note"] = result.timingNote;
   j["luminance_cd_m2"] = {{"mean", counted ? sum / double(counted) : 0.0},
                           {"max", maxY},
