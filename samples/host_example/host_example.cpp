@@ -1,0 +1,658 @@
+// An application embedding Firmament (docs/api.md, "Example host"). It owns its Vulkan instance and
+// device, an RGBA16F colour image and a D32 depth image; it draws triangles in front of the sky with
+// a tiny graphics pipeline, then calls firmament::Sky::record() to put the sky and the aerial
+// perspective into its own command buffer, submits, reads the colour back and writes an EXR.
+//
+//   host_example [--out FILE.exr] [--width W] [--height H] [--check]
+//
+// The triangles: two at 1 km and two at 8 km, each pair side by side. --check (the CTest entry
+// host_example) renders the frame twice, the triangles once bright and once black, and checks:
+//  - where no triangle is, the pixels equal Firmament's offline render of the same view (Sky::render)
+//    within 0.2 % (the RGBA16F image: a conversion may truncate, 2^-10 relative);
+//  - on the triangles, the black frame gives the in-scattered light L and the difference of the two the
+//    air's transmittance T (bright = C T + L): T matches the Beer-Lambert law along each pixel's ray
+//    through Bruneton 2017's Earth (Rayleigh and aerosol extinction with their scale heights) within
+//    1 %, and the far pair has the lower T and the higher L (more haze);
+//  - the validation layer (FIRMAMENT_VALIDATION=1) reports no message on the host's instance.
+// Exit code 0 when every check passes, 1 when one fails, 2 for bad arguments.
+#include <vulkan/vulkan.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "firmament/embed.h"
+#include "firmament/sky.h"
+#include "triangle_frag.h"
+#include "triangle_vert.h"
+
+namespace {
+
+void check(VkResult result, const char* what) {
+  if (result != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed: VkResult " + std::to_string(result));
+}
+
+std::vector<std::string> validationMessages;
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                         VkDebugUtilsMessageTypeFlagsEXT,
+                                         const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+  const bool loader = data->pMessageIdName && std::strcmp(data->pMessageIdName, "Loader Message") == 0;
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT && !loader) {
+    validationMessages.push_back(data->pMessage ? data->pMessage : "");
+    std::fprintf(stderr, "validation: %s\n", data->pMessage ? data->pMessage : "");
+  }
+  return VK_FALSE;
+}
+
+// The view: a clear sky, the sun high in the south-east, the camera 300 m above the ground looking east.
+const char* kScene = R"({
+  "location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 500},
+  "time": {"utc": "2026-06-21T09:00:00Z"},
+  "camera": {"height_above_ground_m": 300, "yaw_deg": 90, "pitch_deg": 2, "fov_deg": 60},
+  "atmosphere": {"preset": "earth"}
+})";
+
+struct Host {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkPhysicalDeviceMemoryProperties memory{};
+
+  uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const {
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+      if ((bits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    throw std::runtime_error("no memory type fits");
+  }
+};
+
+Host createHost(bool validation) {
+  Host h;
+  std::vector<const char*> layers, extensions;
+  if (validation) {
+    layers.push_back("VK_LAYER_KHRONOS_validation");
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "firmament host example";
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = uint32_t(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  check(vkCreateInstance(&info, nullptr, &h.instance), "vkCreateInstance");
+  if (validation) {
+    VkDebugUtilsMessengerCreateInfoEXT m{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    m.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    m.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    m.pfnUserCallback = onMessage;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(h.instance, "vkCreateDebugUtilsMessengerEXT"));
+    check(create(h.instance, &m, nullptr, &h.messenger), "vkCreateDebugUtilsMessengerEXT");
+  }
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(h.instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(h.instance, &count, devices.data());
+  if (devices.empty()) throw std::runtime_error("no Vulkan device");
+  h.physical = devices[0];
+  vkGetPhysicalDeviceMemoryProperties(h.physical, &h.memory);
+  vkGetPhysicalDeviceQueueFamilyProperties(h.physical, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(h.physical, &count, families.data());
+  const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  while (h.family < count && (families[h.family].queueFlags & wanted) != wanted) ++h.family;
+  if (h.family == count) throw std::runtime_error("no graphics + compute queue family");
+
+  // The host's own needs (dynamic rendering) plus what Firmament asks for.
+  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  features13.dynamicRendering = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &features13};
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features12};
+  firmament::enableEmbeddedDeviceFeatures(h.physical, features, features12, features13);
+  std::vector<const char*> deviceExtensions = firmament::embeddedDeviceExtensions();
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = h.family;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  deviceInfo.enabledExtensionCount = uint32_t(deviceExtensions.size());
+  deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
+  check(vkCreateDevice(h.physical, &deviceInfo, nullptr, &h.device), "vkCreateDevice");
+  vkGetDeviceQueue(h.device, h.family, 0, &h.queue);
+  return h;
+}
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+};
+
+Image createImage(const Host& h, int width, int height, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect) {
+  Image im;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {uint32_t(width), uint32_t(height), 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  check(vkCreateImage(h.device, &info, nullptr, &im.image), "vkCreateImage");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(h.device, im.image, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = h.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  check(vkAllocateMemory(h.device, &alloc, nullptr, &im.memory), "vkAllocateMemory");
+  check(vkBindImageMemory(h.device, im.image, im.memory, 0), "vkBindImageMemory");
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = im.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {aspect, 0, 1, 0, 1};
+  check(vkCreateImageView(h.device, &view, nullptr, &im.view), "vkCreateImageView");
+  return im;
+}
+
+void destroyImage(const Host& h, Image& im) {
+  vkDestroyImageView(h.device, im.view, nullptr);
+  vkDestroyImage(h.device, im.image, nullptr);
+  vkFreeMemory(h.device, im.memory, nullptr);
+}
+
+VkShaderModule shaderModule(const Host& h, const uint32_t* words, size_t bytes) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = bytes;
+  info.pCode = words;
+  VkShaderModule module = VK_NULL_HANDLE;
+  check(vkCreateShaderModule(h.device, &info, nullptr, &module), "vkCreateShaderModule");
+  return module;
+}
+
+struct TrianglePush {
+  float corners[3][4];  // clip space
+  float colour[4];
+};
+
+struct Pipeline {
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+};
+
+// A graphics pipeline with dynamic rendering: no vertex input, depth test and write (less), one colour.
+Pipeline createPipeline(const Host& h, VkFormat colourFormat, VkFormat depthFormat) {
+  Pipeline p;
+  VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TrianglePush)};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &range;
+  check(vkCreatePipelineLayout(h.device, &layoutInfo, nullptr, &p.layout), "vkCreatePipelineLayout");
+  VkShaderModule vert = shaderModule(h, triangle_vert, sizeof(triangle_vert));
+  VkShaderModule frag = shaderModule(h, triangle_frag, sizeof(triangle_frag));
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vert;
+  stages[0].pName = "main";
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = frag;
+  stages[1].pName = "main";
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = VK_TRUE;
+  depth.depthWriteEnable = VK_TRUE;
+  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState attachment{};
+  attachment.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = 1;
+  blend.pAttachments = &attachment;
+  VkDynamicState dynamics[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamics;
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &colourFormat;
+  rendering.depthAttachmentFormat = depthFormat;
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamic;
+  info.layout = p.layout;
+  check(vkCreateGraphicsPipelines(h.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline),
+        "vkCreateGraphicsPipelines");
+  vkDestroyShaderModule(h.device, vert, nullptr);
+  vkDestroyShaderModule(h.device, frag, nullptr);
+  return p;
+}
+
+void imageBarrier(VkCommandBuffer cb, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                  VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  b.srcStageMask = srcStage;
+  b.srcAccessMask = srcAccess;
+  b.dstStageMask = dstStage;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cb, &dependency);
+}
+
+// A triangle facing the camera at view-space depth z (m), centred on the ray through image point
+// (u, v) (fractions of the width and height), `size` m across, in clip space of Firmament's projection
+// (firmament::CameraFrame) with a standard depth range [near, far].
+TrianglePush triangleAt(double u, double v, double z, double size, const firmament::CameraFrame& camera, int width,
+                        int height, double near, double far, const float colour[4]) {
+  TrianglePush t{};
+  const double t2 = camera.tanHalfFovX;
+  // The centre's view-space x, y from its image point (the inverse of CameraFrame's mapping).
+  const double cx = (2.0 * u - 1.0) * z * t2;
+  const double cy = (1.0 - 2.0 * v) * z * t2 * double(height) / double(width);
+  const double corners[3][2] = {{cx - size, cy - size}, {cx + size, cy - size}, {cx, cy + size}};
+  for (int i = 0; i < 3; ++i) {
+    const double x = corners[i][0], y = corners[i][1];
+    t.corners[i][0] = float(x / t2);
+    t.corners[i][1] = float(-y * double(width) / double(height) / t2);
+    t.corners[i][2] = float(far * (z - near) / (far - near));
+    t.corners[i][3] = float(z);
+  }
+  std::memcpy(t.colour, colour, sizeof(t.colour));
+  return t;
+}
+
+struct Options {
+  std::string out = "host_example.exr";
+  int width = 64, height = 36;
+  bool check = false;
+};
+
+struct Frame {
+  std::vector<float> rgba;  // read back from the host's colour image
+  firmament::EmbeddedFrame info;
+};
+
+struct Triangle {
+  double u, v, z;  // image point of its centre and its view-space depth
+};
+// Two pairs: at 1 km (left), at 8 km (right); the second of each pair is lit the same (one colour).
+const Triangle kTriangles[4] = {{0.2, 0.5, 1000.0}, {0.35, 0.5, 1000.0}, {0.65, 0.5, 8000.0}, {0.8, 0.5, 8000.0}};
+constexpr double kNear = 1.0, kFar = 100000.0;
+constexpr float kBright = 2000.0f;  // cd/m^2: a sunlit grey wall
+
+Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth, int width,
+                  int height, float brightness) {
+  const VkFormat colourFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.queueFamilyIndex = h.family;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  check(vkCreateCommandPool(h.device, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cb = VK_NULL_HANDLE;
+  check(vkAllocateCommandBuffers(h.device, &alloc, &cb), "vkAllocateCommandBuffers");
+  const VkDeviceSize bytes = VkDeviceSize(width) * VkDeviceSize(height) * 8;
+  VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bufferInfo.size = bytes;
+  bufferInfo.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkBuffer readback = VK_NULL_HANDLE;
+  check(vkCreateBuffer(h.device, &bufferInfo, nullptr, &readback), "vkCreateBuffer");
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(h.device, readback, &req);
+  VkMemoryAllocateInfo memoryInfo{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  memoryInfo.allocationSize = req.size;
+  memoryInfo.memoryTypeIndex =
+      h.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  VkDeviceMemory readbackMemory = VK_NULL_HANDLE;
+  check(vkAllocateMemory(h.device, &memoryInfo, nullptr, &readbackMemory), "vkAllocateMemory");
+  check(vkBindBufferMemory(h.device, readback, readbackMemory, 0), "vkBindBufferMemory");
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  // 1. The host's geometry: clear, draw the triangles.
+  imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+               VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  imageBarrier(cb, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+               VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  VkRenderingAttachmentInfo colourAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  colourAttachment.imageView = colour.view;
+  colourAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colourAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  colourAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  colourAttachment.clearValue.color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depthAttachment.imageView = depth.view;
+  depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depthAttachment.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &colourAttachment;
+  rendering.pDepthAttachment = &depthAttachment;
+  vkCmdBeginRendering(cb, &rendering);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+  VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, {uint32_t(width), uint32_t(height)}};
+  vkCmdSetViewport(cb, 0, 1, &viewport);
+  vkCmdSetScissor(cb, 0, 1, &scissor);
+  const firmament::CameraFrame camera = firmament::cameraFrame(sky.camera());
+  const float lit[4] = {brightness, brightness, brightness, 1.0f};
+  for (const Triangle& t : kTriangles) {
+    // Half the width of a column of the image at that depth times 3: a few pixels across.
+    const double size = 3.0 * t.z * camera.tanHalfFovX / double(width) * 2.0;
+    TrianglePush push = triangleAt(t.u, t.v, t.z, size, camera, width, height, kNear, kFar, lit);
+    vkCmdPushConstants(cb, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    vkCmdDraw(cb, 3, 1, 0, 0);
+  }
+  vkCmdEndRendering(cb);
+  // 2. The layouts Firmament expects (docs/api.md): colour GENERAL, depth read-only.
+  imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  imageBarrier(cb, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  // 3. The sky, the aerial perspective over the triangles.
+  firmament::EmbeddedTargets targets;
+  targets.commandBuffer = cb;
+  targets.width = width;
+  targets.height = height;
+  targets.colour = colour.view;
+  targets.colourFormat = colourFormat;
+  targets.depth = depth.view;
+  targets.depthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  targets.near_m = kNear;
+  targets.far_m = kFar;
+  Frame frame;
+  frame.info = sky.record(targets);
+  // 4. Read back (Firmament's last command made its writes visible; the layout is still GENERAL).
+  imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {uint32_t(width), uint32_t(height), 1};
+  vkCmdCopyImageToBuffer(cb, colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1, &copy);
+  check(vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  check(vkCreateFence(h.device, &fenceInfo, nullptr, &fence), "vkCreateFence");
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cb;
+  check(vkQueueSubmit(h.queue, 1, &submit, fence), "vkQueueSubmit");
+  check(vkWaitForFences(h.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+
+  void* mapped = nullptr;
+  check(vkMapMemory(h.device, readbackMemory, 0, bytes, 0, &mapped), "vkMapMemory");
+  const uint16_t* halves = static_cast<const uint16_t*>(mapped);
+  frame.rgba.resize(size_t(width) * size_t(height) * 4);
+  for (size_t i = 0; i < frame.rgba.size(); ++i) {  // IEEE half to float
+    const uint16_t v = halves[i];
+    const int exponent = (v >> 10) & 31, mantissa = v & 1023;
+    const float magnitude = exponent == 0    ? std::ldexp(float(mantissa), -24)
+                            : exponent == 31 ? INFINITY
+                                             : std::ldexp(float(mantissa | 1024), exponent - 25);
+    frame.rgba[i] = (v & 0x8000) ? -magnitude : magnitude;
+  }
+  vkUnmapMemory(h.device, readbackMemory);
+  vkDestroyFence(h.device, fence, nullptr);
+  vkDestroyBuffer(h.device, readback, nullptr);
+  vkFreeMemory(h.device, readbackMemory, nullptr);
+  vkDestroyCommandPool(h.device, pool, nullptr);
+  return frame;
+}
+
+// Beer-Lambert transmittance of the air along a ray from the camera (height h0 above the ground sphere
+// of radius R) at elevation sin(elevation) = s, over distance d: Bruneton 2017's Earth ("Precomputed
+// Atmospheric Scattering: a New Implementation", its demo's constants): Rayleigh 5.802, 13.558,
+// 33.1 / Mm at 680, 550, 440 nm with scale height 8 km, aerosols' extinction 4.44 / Mm (beta 5.328e-3
+// over 1.2 km), no ozone below 10 km.
+void beerLambert(double h0, double s, double d, double R, double out[3]) {
+  const double rayleigh[3] = {5.802e-6, 13.558e-6, 33.1e-6};
+  const double mie = 5.328e-3 / 1200.0;
+  double tau[3] = {0.0, 0.0, 0.0};
+  const int steps = 256;
+  for (int i = 0; i <= steps; ++i) {
+    const double x = d * double(i) / steps;
+    const double r = std::sqrt(x * x + 2.0 * (R + h0) * s * x + (R + h0) * (R + h0));
+    const double h = r - R;
+    const double w = (i == 0 || i == steps ? 0.5 : 1.0) * d / steps;
+    for (int c = 0; c < 3; ++c) tau[c] += w * (rayleigh[c] * std::exp(-h / 8000.0) + mie * std::exp(-h / 1200.0));
+  }
+  for (int c = 0; c < 3; ++c) out[c] = std::exp(-tau[c]);
+}
+
+int run(const Options& options) {
+  const char* env = std::getenv("FIRMAMENT_VALIDATION");
+  const bool validation = env && *env && std::strcmp(env, "0") != 0;
+  Host h = createHost(validation);
+  const int width = options.width, height = options.height;
+  Image colour =
+      createImage(h, width, height, VK_FORMAT_R16G16B16A16_SFLOAT,
+                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                  VK_IMAGE_ASPECT_COLOR_BIT);
+  Image depth =
+      createImage(h, width, height, VK_FORMAT_D32_SFLOAT,
+                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  Pipeline pipeline = createPipeline(h, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_D32_SFLOAT);
+  int failures = 0;
+  {
+    auto sky = firmament::Sky::Builder()
+                   .sceneJson(kScene)
+                   .temporalReprojection(false)
+                   .embedded({h.instance, h.physical, h.device, h.family, h.queue})
+                   .build();
+    Frame bright = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright);
+    std::printf("frame 1: record %.1f ms, preparation submitted: %s\n", bright.info.recordMilliseconds,
+                bright.info.submittedPreparation ? "yes" : "no");
+    firmament::SkyFrame image{width, height, bright.rgba};
+    firmament::saveExr(image, options.out);
+    std::printf("wrote %s\n", options.out.c_str());
+
+    if (options.check) {
+      Frame black = renderFrame(h, *sky, pipeline, colour, depth, width, height, 0.0f);
+      std::printf("frame 2: record %.1f ms, preparation submitted: %s\n", black.info.recordMilliseconds,
+                  black.info.submittedPreparation ? "yes" : "no");
+      if (black.info.submittedPreparation) {
+        std::printf("FAIL: a second frame of the same view submitted preparation work\n");
+        ++failures;
+      }
+      // The offline render of the same view (its own device).
+      auto offline = firmament::Sky::Builder().sceneJson(kScene).temporalReprojection(false).build();
+      firmament::SkyFrame reference = offline->render(width, height);
+      // Which pixels the triangles cover: where the bright and the black frame differ.
+      double skyWorst = 0.0;
+      int skyPixels = 0, covered[2] = {0, 0};
+      double meanT[2][3] = {}, meanL[2][3] = {}, worstBeer = 0.0;
+      const firmament::CameraFrame camera = firmament::cameraFrame(sky->camera());
+      const double R = std::stod(sky->get("/atmosphere/bottom_radius_m"));
+      const double h0 = std::stod(sky->get("/location/height_m")) + sky->camera().heightAboveGround_m;
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const size_t i = (size_t(y) * width + x) * 4;
+          const bool triangle = std::fabs(bright.rgba[i + 1] - black.rgba[i + 1]) > 1.0f;
+          if (!triangle) {
+            for (int c = 0; c < 3; ++c) {
+              const double a = bright.rgba[i + c], b = reference.rgba[i + c];
+              skyWorst = std::max(skyWorst, std::fabs(a - b) / std::max(std::fabs(b), 1e-3));
+            }
+            ++skyPixels;
+            continue;
+          }
+          const int pair = x < width / 2 ? 0 : 1;
+          const double z = pair == 0 ? 1000.0 : 8000.0;
+          // The pixel's ray and its distance to the triangle's plane (view-space depth z).
+          const double px = (2.0 * (x + 0.5) / width - 1.0) * camera.tanHalfFovX;
+          const double py = (1.0 - 2.0 * (y + 0.5) / height) * camera.tanHalfFovX * double(height) / double(width);
+          double dir[3], length = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            dir[k] = camera.forward[k] + px * camera.right[k] + py * camera.up[k];
+            length += dir[k] * dir[k];
+          }
+          length = std::sqrt(length);
+          const double distance = z * length;  // z / cos(angle to the axis)
+          double expected[3];
+          beerLambert(h0, dir[2] / length, distance, R, expected);
+          ++covered[pair];
+          for (int c = 0; c < 3; ++c) {
+            const double T = (bright.rgba[i + c] - black.rgba[i + c]) / kBright;
+            meanT[pair][c] += T;
+            meanL[pair][c] += black.rgba[i + c];
+            worstBeer = std::max(worstBeer, std::fabs(T - expected[c]) / expected[c]);
+          }
+        }
+      for (int p = 0; p < 2; ++p)
+        for (int c = 0; c < 3; ++c) {
+          meanT[p][c] /= std::max(covered[p], 1);
+          meanL[p][c] /= std::max(covered[p], 1);
+        }
+      std::printf("sky: %d pixels, worst relative difference from the offline render %.2e (tolerance 2e-3)\n",
+                  skyPixels, skyWorst);
+      std::printf("triangles at 1 km: %d pixels, T %.4f %.4f %.4f, L %.1f %.1f %.1f cd/m^2\n", covered[0], meanT[0][0],
+                  meanT[0][1], meanT[0][2], meanL[0][0], meanL[0][1], meanL[0][2]);
+      std::printf("triangles at 8 km: %d pixels, T %.4f %.4f %.4f, L %.1f %.1f %.1f cd/m^2\n", covered[1], meanT[1][0],
+                  meanT[1][1], meanT[1][2], meanL[1][0], meanL[1][1], meanL[1][2]);
+      std::printf(
+          "transmittance vs Beer-Lambert through Bruneton's Earth: worst relative error %.2e (tolerance 1e-2)\n",
+          worstBeer);
+      if (!(skyWorst <= 2e-3) || skyPixels < width * height / 2) {
+        std::printf("FAIL: the sky differs from the offline render\n");
+        ++failures;
+      }
+      if (covered[0] < 4 || covered[1] < 4) {
+        std::printf("FAIL: a triangle pair is missing from the image (overwritten?)\n");
+        ++failures;
+      }
+      if (!(worstBeer <= 1e-2)) {
+        std::printf("FAIL: the transmittance over the triangles is not the air's\n");
+        ++failures;
+      }
+      for (int c = 0; c < 3; ++c)
+        if (!(meanT[1][c] < meanT[0][c]) || !(meanL[1][c] > meanL[0][c])) {
+          std::printf("FAIL: the far triangles are not hazier than the near ones (channel %d)\n", c);
+          ++failures;
+        }
+      if (!offline->validationMessages().empty()) {
+        std::printf("FAIL: %zu validation messages on the offline device\n", offline->validationMessages().size());
+        ++failures;
+      }
+    }
+    firmament::AtmosphereLookups lookups = sky->lookups();
+    std::printf("lookups: transmittance %s, aerial perspective %s, volume depth %.0f m\n",
+                lookups.transmittance ? "ok" : "missing", lookups.aerialPerspective ? "ok" : "missing",
+                lookups.parameters.radii[3]);
+  }  // the sky goes before the device (every frame it recorded has finished)
+  vkDestroyPipeline(h.device, pipeline.pipeline, nullptr);
+  vkDestroyPipelineLayout(h.device, pipeline.layout, nullptr);
+  destroyImage(h, colour);
+  destroyImage(h, depth);
+  vkDestroyDevice(h.device, nullptr);
+  if (h.messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(h.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(h.instance, h.messenger, nullptr);
+  }
+  vkDestroyInstance(h.instance, nullptr);
+  if (validation) std::printf("validation messages on the host's instance: %zu\n", validationMessages.size());
+  if (!validationMessages.empty()) ++failures;
+  if (options.check) std::printf(failures == 0 ? "all checks passed\n" : "%d checks failed\n", failures);
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "host_example: %s needs a value\n", arg.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (arg == "--out") {
+      options.out = value();
+    } else if (arg == "--width") {
+      options.width = std::atoi(value().c_str());
+    } else if (arg == "--height") {
+      options.height = std::atoi(value().c_str());
+    } else if (arg == "--check") {
+      options.check = true;
+    } else {
+      std::fprintf(stderr, "host_example: unknown option %s (allowed: --out FILE.exr --width W --height H --check)\n",
+                   arg.c_str());
+      return 2;
+    }
+  }
+  if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
+    std::fprintf(stderr, "host_example: size %dx%d: allowed: 16 to 8192 pixels a side\n", options.width,
+                 options.height);
+    return 2;
+  }
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "host_example: %s\n", e.what());
+    return 1;
+  }
+}
