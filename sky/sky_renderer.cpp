@@ -149,12 +149,12 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
     recordTerrain(frame, result, commands, nullptr);
   }
   if (frame.clouds) {
-    recordClouds(frame, result, commands);
+    recordClouds(frame, result, commands);  // the host's depth before the march
+    commands.barrier();
+    recordHostWrite(frame, commands);
   } else {
-    recordHostDepth(frame, result, commands, false);
+    recordHostDepth(frame, result, commands, false);  // and the host's image written in the same pass
   }
-  commands.barrier();
-  recordHostWrite(frame, commands);
   commands.finish();
   if (frame.clouds) result.cloudsReprojected = clouds_->lastFrameReprojected();
   return result;
@@ -220,7 +220,9 @@ void SkyRenderer::recordHostDepth(Frame& frame, RenderResult& result, gpu::Comma
     gpu::TileDispatch tiles;
     float depth[4];
     float atmosphere[4][4];
-  } push{frame.tiles, {float(targets.near_m), float(targets.far_m), targets.reversedDepth ? 1.0f : 0.0f, 0.0f}, {}};
+  } push{frame.tiles,
+         {float(targets.near_m), float(targets.far_m), targets.reversedDepth ? 1.0f : 0.0f, frame.clouds ? 0.0f : 2.0f},
+         {}};
   std::memcpy(push.atmosphere, parameters, sizeof(parameters));
   commands.pushConstants(push);
   commands.dispatchTiles(frame.tiles, "sky/embed_host_depth");

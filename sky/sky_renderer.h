@@ -145,9 +145,10 @@ class SkyRenderer {
   void recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands, const TerrainCloudShadow* shadow);
   void resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result);
   // Embedded mode: the aerial-perspective volume for the host's pixels (unless the clouds recorded one),
-  // then the host's depth and colour into the frame (sky/embed_composite.glsl, step 0).
+  // then the host's depth and colour into the frame (sky/embed_composite.glsl, mode 0), or, without
+  // clouds, straight to the host's image (mode 2).
   void recordHostDepth(Frame& frame, RenderResult& result, gpu::CommandList& commands, bool aerialRecorded);
-  void recordHostWrite(Frame& frame, gpu::CommandList& commands);  // step 1: the frame to the host's image
+  void recordHostWrite(Frame& frame, gpu::CommandList& commands);  // mode 1: the frame to the host's image
 
   gpu::Context& context_;
   AtmosphereLuts luts_;

@@ -58,9 +58,10 @@ enum class DepthConvention {
 // One frame's targets. The host's projection must be Firmament's camera (cameraFrame() below): a
 // perspective with the SkyCamera's orientation and horizontal field of view, square pixels, no jitter.
 struct EmbeddedTargets {
-  VkCommandBuffer commandBuffer = VK_NULL_HANDLE;         // recording, compute-capable queue family
-  int width = 0, height = 0;                              // of colour and depth
-  VkImageView colour = VK_NULL_HANDLE;                    // read where the host drew, written everywhere (alpha kept)
+  VkCommandBuffer commandBuffer = VK_NULL_HANDLE;  // recording, compute-capable queue family
+  int width = 0, height = 0;                       // of colour and depth
+  // Read where the host drew, written everywhere: RGB, and A the clouds' transmittance (1 without).
+  VkImageView colour = VK_NULL_HANDLE;
   VkFormat colourFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // or VK_FORMAT_R32G32B32A32_SFLOAT
   VkImageView depth = VK_NULL_HANDLE;
   VkImageLayout depthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;

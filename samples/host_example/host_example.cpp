@@ -3,7 +3,12 @@
 // a tiny graphics pipeline, then calls firmament::Sky::record() to put the sky and the aerial
 // perspective into its own command buffer, submits, reads the colour back and writes an EXR.
 //
-//   host_example [--out FILE.exr] [--width W] [--height H] [--check]
+//   host_example [--out FILE.exr] [--width W] [--height H] [--scene FILE] [--frames N]
+//                [--colour rgba16f|rgba32f] [--check]
+//
+// --scene: a scene file instead of the built-in clear view (the camera's orientation is the scene's);
+// --frames N: N frames more after the first, timed (the host's submit to fence, median) beside N
+// offline renders of the same view (Sky::render's GPU time and wall time, medians).
 //
 // The triangles: two at 1 km and two at 8 km, each pair side by side. --check (the CTest entry
 // host_example) renders the frame twice, the triangles once bright and once black, and checks:
@@ -18,6 +23,7 @@
 #include <vulkan/vulkan.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -308,14 +314,25 @@ TrianglePush triangleAt(double u, double v, double z, double size, const firmame
 
 struct Options {
   std::string out = "host_example.exr";
+  std::string scene;  // empty: kScene
   int width = 64, height = 36;
+  int frames = 0;
   bool check = false;
+  bool full = false;  // an RGBA32F colour image (else RGBA16F)
 };
 
 struct Frame {
   std::vector<float> rgba;  // read back from the host's colour image
   firmament::EmbeddedFrame info;
+  double submitMilliseconds = 0.0;  // the host's submit to its fence: the triangles, the sky, the copy
+  double skyMilliseconds = 0.0;     // GPU time between the host's timestamps around record()'s commands
 };
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
 
 struct Triangle {
   double u, v, z;  // image point of its centre and its view-space depth
@@ -326,8 +343,8 @@ constexpr double kNear = 1.0, kFar = 100000.0;
 constexpr float kBright = 2000.0f;  // cd/m^2: a sunlit grey wall
 
 Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth, int width,
-                  int height, float brightness) {
-  const VkFormat colourFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+                  int height, float brightness, VkFormat colourFormat) {
+  const bool full = colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT;
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.queueFamilyIndex = h.family;
   VkCommandPool pool = VK_NULL_HANDLE;
@@ -338,7 +355,7 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   alloc.commandBufferCount = 1;
   VkCommandBuffer cb = VK_NULL_HANDLE;
   check(vkAllocateCommandBuffers(h.device, &alloc, &cb), "vkAllocateCommandBuffers");
-  const VkDeviceSize bytes = VkDeviceSize(width) * VkDeviceSize(height) * 8;
+  const VkDeviceSize bytes = VkDeviceSize(width) * VkDeviceSize(height) * (full ? 16 : 8);
   VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bufferInfo.size = bytes;
   bufferInfo.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -357,6 +374,13 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  // Two timestamps around Firmament's commands: its GPU time inside the host's frame.
+  VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  queryInfo.queryCount = 2;
+  VkQueryPool queries = VK_NULL_HANDLE;
+  check(vkCreateQueryPool(h.device, &queryInfo, nullptr, &queries), "vkCreateQueryPool");
+  vkCmdResetQueryPool(cb, queries, 0, 2);
   // 1. The host's geometry: clear, draw the triangles.
   imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
@@ -421,7 +445,9 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   targets.near_m = kNear;
   targets.far_m = kFar;
   Frame frame;
+  vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
   frame.info = sky.record(targets);
+  vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
   // 4. Read back (Firmament's last command made its writes visible; the layout is still GENERAL).
   imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -437,14 +463,26 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cb;
+  const auto start = std::chrono::steady_clock::now();
   check(vkQueueSubmit(h.queue, 1, &submit, fence), "vkQueueSubmit");
   check(vkWaitForFences(h.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  frame.submitMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
+  uint64_t ticks[2] = {0, 0};
+  check(vkGetQueryPoolResults(h.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+        "vkGetQueryPoolResults");
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(h.physical, &properties);
+  frame.skyMilliseconds = double(ticks[1] - ticks[0]) * properties.limits.timestampPeriod * 1e-6;
+  vkDestroyQueryPool(h.device, queries, nullptr);
   void* mapped = nullptr;
   check(vkMapMemory(h.device, readbackMemory, 0, bytes, 0, &mapped), "vkMapMemory");
   const uint16_t* halves = static_cast<const uint16_t*>(mapped);
   frame.rgba.resize(size_t(width) * size_t(height) * 4);
-  for (size_t i = 0; i < frame.rgba.size(); ++i) {  // IEEE half to float
+  if (full) std::memcpy(frame.rgba.data(), mapped, bytes);
+  for (size_t i = 0; i < frame.rgba.size() && !full; ++i) {  // IEEE half to float
     const uint16_t v = halves[i];
     const int exponent = (v >> 10) & 31, mantissa = v & 1023;
     const float magnitude = exponent == 0    ? std::ldexp(float(mantissa), -24)
@@ -485,30 +523,63 @@ int run(const Options& options) {
   const bool validation = env && *env && std::strcmp(env, "0") != 0;
   Host h = createHost(validation);
   const int width = options.width, height = options.height;
+  const VkFormat colourFormat = options.full ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
   Image colour =
-      createImage(h, width, height, VK_FORMAT_R16G16B16A16_SFLOAT,
+      createImage(h, width, height, colourFormat,
                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                   VK_IMAGE_ASPECT_COLOR_BIT);
   Image depth =
       createImage(h, width, height, VK_FORMAT_D32_SFLOAT,
                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  Pipeline pipeline = createPipeline(h, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_D32_SFLOAT);
+  Pipeline pipeline = createPipeline(h, colourFormat, VK_FORMAT_D32_SFLOAT);
   int failures = 0;
   {
-    auto sky = firmament::Sky::Builder()
-                   .sceneJson(kScene)
-                   .temporalReprojection(false)
+    firmament::Sky::Builder builder;
+    if (options.scene.empty()) {
+      builder.sceneJson(kScene);
+    } else {
+      builder.sceneFile(options.scene);
+    }
+    auto sky = builder.temporalReprojection(options.frames > 0)
                    .embedded({h.instance, h.physical, h.device, h.family, h.queue})
                    .build();
-    Frame bright = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright);
+    Frame bright = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright, colourFormat);
     std::printf("frame 1: record %.1f ms, preparation submitted: %s\n", bright.info.recordMilliseconds,
                 bright.info.submittedPreparation ? "yes" : "no");
     firmament::SkyFrame image{width, height, bright.rgba};
     firmament::saveExr(image, options.out);
     std::printf("wrote %s\n", options.out.c_str());
 
+    if (options.frames > 0) {
+      std::vector<double> submit, record, skyGpu, gpu, wall;
+      for (int i = 0; i < options.frames; ++i) {
+        Frame f = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright, colourFormat);
+        submit.push_back(f.submitMilliseconds);
+        record.push_back(f.info.recordMilliseconds);
+        skyGpu.push_back(f.skyMilliseconds);
+      }
+      firmament::Sky::Builder offlineBuilder;
+      if (options.scene.empty()) {
+        offlineBuilder.sceneJson(kScene);
+      } else {
+        offlineBuilder.sceneFile(options.scene);
+      }
+      auto offline = offlineBuilder.build();
+      offline->setCamera(sky->camera());
+      offline->render(width, height);  // the first frame builds the tables, as the embedded one did
+      for (int i = 0; i < options.frames; ++i) {
+        firmament::SkyFrame f = offline->render(width, height);
+        gpu.push_back(f.gpuMilliseconds);
+        wall.push_back(f.wallMilliseconds);
+      }
+      std::printf(
+          "%dx%d, %d frames: embedded: Firmament's commands %.1f ms GPU, host submit to fence %.1f ms, "
+          "record() %.2f ms CPU; offline render(): GPU %.1f ms, wall %.1f ms (medians)\n",
+          width, height, options.frames, median(skyGpu), median(submit), median(record), median(gpu), median(wall));
+    }
+
     if (options.check) {
-      Frame black = renderFrame(h, *sky, pipeline, colour, depth, width, height, 0.0f);
+      Frame black = renderFrame(h, *sky, pipeline, colour, depth, width, height, 0.0f, colourFormat);
       std::printf("frame 2: record %.1f ms, preparation submitted: %s\n", black.info.recordMilliseconds,
                   black.info.submittedPreparation ? "yes" : "no");
       if (black.info.submittedPreparation) {
@@ -636,13 +707,34 @@ int main(int argc, char** argv) {
       options.width = std::atoi(value().c_str());
     } else if (arg == "--height") {
       options.height = std::atoi(value().c_str());
+    } else if (arg == "--scene") {
+      options.scene = value();
+    } else if (arg == "--frames") {
+      options.frames = std::atoi(value().c_str());
+    } else if (arg == "--colour") {
+      const std::string format = value();
+      if (format != "rgba16f" && format != "rgba32f") {
+        std::fprintf(stderr, "host_example: --colour %s: allowed: rgba16f, rgba32f\n", format.c_str());
+        return 2;
+      }
+      options.full = format == "rgba32f";
     } else if (arg == "--check") {
       options.check = true;
     } else {
-      std::fprintf(stderr, "host_example: unknown option %s (allowed: --out FILE.exr --width W --height H --check)\n",
+      std::fprintf(stderr,
+                   "host_example: unknown option %s (allowed: --out FILE.exr --width W --height H --scene FILE "
+                   "--frames N --colour rgba16f|rgba32f --check)\n",
                    arg.c_str());
       return 2;
     }
+  }
+  if (options.check && (!options.scene.empty() || options.frames > 0)) {
+    std::fprintf(stderr, "host_example: --check runs the built-in view only (without --scene and --frames)\n");
+    return 2;
+  }
+  if (options.frames < 0 || options.frames > 1000) {
+    std::fprintf(stderr, "host_example: --frames %d: allowed: 0 to 1000\n", options.frames);
+    return 2;
   }
   if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
     std::fprintf(stderr, "host_example: size %dx%d: allowed: 16 to 8192 pixels a side\n", options.width,
