@@ -11,13 +11,17 @@
 // offline renders of the same view (Sky::render's GPU time and wall time, medians).
 //
 // The triangles: two at 1 km and two at 8 km, each pair side by side. --check (the CTest entry
-// host_example) renders the frame twice, the triangles once bright and once black, and checks:
+// host_example) renders the frame three times: the triangles bright and black before record()
+// (Firmament composites them), then bright after record(), shaded by the host's own shader (lit.frag)
+// with Firmament's exported lookups (firmament/atmosphere_lookup.glsl), and checks:
 //  - where no triangle is, the pixels equal Firmament's offline render of the same view (Sky::render)
 //    within 0.2 % (the RGBA16F image: a conversion may truncate, 2^-10 relative);
 //  - on the triangles, the black frame gives the in-scattered light L and the difference of the two the
 //    air's transmittance T (bright = C T + L): T matches the Beer-Lambert law along each pixel's ray
 //    through Bruneton 2017's Earth (Rayleigh and aerosol extinction with their scale heights) within
 //    1 %, and the far pair has the lower T and the higher L (more haze);
+//  - the host's own shading equals Firmament's composite on the triangles within 0.2 % (RGBA16F);
+//  - the second frame submits no preparation work;
 //  - the validation layer (FIRMAMENT_VALIDATION=1) reports no message on the host's instance.
 // Exit code 0 when every check passes, 1 when one fails, 2 for bad arguments.
 #include <vulkan/vulkan.h>
@@ -34,6 +38,8 @@
 
 #include "firmament/embed.h"
 #include "firmament/sky.h"
+#include "lit_frag.h"
+#include "lit_vert.h"
 #include "triangle_frag.h"
 #include "triangle_vert.h"
 
@@ -203,16 +209,21 @@ struct Pipeline {
   VkPipeline pipeline = VK_NULL_HANDLE;
 };
 
-// A graphics pipeline with dynamic rendering: no vertex input, depth test and write (less), one colour.
-Pipeline createPipeline(const Host& h, VkFormat colourFormat, VkFormat depthFormat) {
+// A graphics pipeline with dynamic rendering: no vertex input, one colour, and with a depth format a
+// depth test and write (less). set: the descriptor set layout of lit.vert and lit.frag, or none.
+template <size_t V, size_t F>
+Pipeline createPipeline(const Host& h, const uint32_t (&vertWords)[V], const uint32_t (&fragWords)[F],
+                        VkFormat colourFormat, VkFormat depthFormat, VkDescriptorSetLayout set) {
   Pipeline p;
   VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(TrianglePush)};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = set ? 1 : 0;
+  layoutInfo.pSetLayouts = &set;
   layoutInfo.pushConstantRangeCount = 1;
   layoutInfo.pPushConstantRanges = &range;
   check(vkCreatePipelineLayout(h.device, &layoutInfo, nullptr, &p.layout), "vkCreatePipelineLayout");
-  VkShaderModule vert = shaderModule(h, triangle_vert, sizeof(triangle_vert));
-  VkShaderModule frag = shaderModule(h, triangle_frag, sizeof(triangle_frag));
+  VkShaderModule vert = shaderModule(h, vertWords, sizeof(vertWords));
+  VkShaderModule frag = shaderModule(h, fragWords, sizeof(fragWords));
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -234,8 +245,8 @@ Pipeline createPipeline(const Host& h, VkFormat colourFormat, VkFormat depthForm
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = VK_TRUE;
+  depth.depthTestEnable = depthFormat != VK_FORMAT_UNDEFINED;
+  depth.depthWriteEnable = depthFormat != VK_FORMAT_UNDEFINED;
   depth.depthCompareOp = VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState attachment{};
   attachment.colorWriteMask =
@@ -337,13 +348,88 @@ double median(std::vector<double> values) {
 struct Triangle {
   double u, v, z;  // image point of its centre and its view-space depth
 };
+// What the host's own shading with Firmament's air needs (lit.vert, lit.frag): a uniform buffer with the
+// lookups' parameters and the camera's axes, a sampler, a descriptor set, the pipeline.
+struct LitBlock {
+  firmament::AtmosphereLookupParameters atmosphere;
+  float forward[4], right[4], up[4];
+};
+
+struct Lit {
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VkBuffer block = VK_NULL_HANDLE;
+  VkDeviceMemory blockMemory = VK_NULL_HANDLE;
+  void* mapped = nullptr;
+  Pipeline pipeline;
+};
+
+Lit createLit(const Host& h, VkFormat colourFormat) {
+  Lit l;
+  VkDescriptorSetLayoutBinding bindings[3] = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.bindingCount = 3;
+  setInfo.pBindings = bindings;
+  check(vkCreateDescriptorSetLayout(h.device, &setInfo, nullptr, &l.setLayout), "vkCreateDescriptorSetLayout");
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = sizes;
+  check(vkCreateDescriptorPool(h.device, &poolInfo, nullptr, &l.pool), "vkCreateDescriptorPool");
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = l.pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &l.setLayout;
+  check(vkAllocateDescriptorSets(h.device, &alloc, &l.set), "vkAllocateDescriptorSets");
+  // Linear filtering, clamp to edge: what the lookups expect (docs/api.md, "Atmosphere lookups").
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_LINEAR;
+  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  check(vkCreateSampler(h.device, &samplerInfo, nullptr, &l.sampler), "vkCreateSampler");
+  VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bufferInfo.size = sizeof(LitBlock);
+  bufferInfo.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+  check(vkCreateBuffer(h.device, &bufferInfo, nullptr, &l.block), "vkCreateBuffer");
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(h.device, l.block, &req);
+  VkMemoryAllocateInfo memoryInfo{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  memoryInfo.allocationSize = req.size;
+  memoryInfo.memoryTypeIndex =
+      h.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  check(vkAllocateMemory(h.device, &memoryInfo, nullptr, &l.blockMemory), "vkAllocateMemory");
+  check(vkBindBufferMemory(h.device, l.block, l.blockMemory, 0), "vkBindBufferMemory");
+  check(vkMapMemory(h.device, l.blockMemory, 0, sizeof(LitBlock), 0, &l.mapped), "vkMapMemory");
+  l.pipeline = createPipeline(h, lit_vert, lit_frag, colourFormat, VK_FORMAT_UNDEFINED, l.setLayout);
+  return l;
+}
+
+void destroyLit(const Host& h, Lit& l) {
+  vkDestroyPipeline(h.device, l.pipeline.pipeline, nullptr);
+  vkDestroyPipelineLayout(h.device, l.pipeline.layout, nullptr);
+  vkDestroyBuffer(h.device, l.block, nullptr);
+  vkFreeMemory(h.device, l.blockMemory, nullptr);
+  vkDestroySampler(h.device, l.sampler, nullptr);
+  vkDestroyDescriptorPool(h.device, l.pool, nullptr);
+  vkDestroyDescriptorSetLayout(h.device, l.setLayout, nullptr);
+}
+
 // Two pairs: at 1 km (left), at 8 km (right); the second of each pair is lit the same (one colour).
 const Triangle kTriangles[4] = {{0.2, 0.5, 1000.0}, {0.35, 0.5, 1000.0}, {0.65, 0.5, 8000.0}, {0.8, 0.5, 8000.0}};
 constexpr double kNear = 1.0, kFar = 100000.0;
 constexpr float kBright = 2000.0f;  // cd/m^2: a sunlit grey wall
 
+// One frame: the triangles drawn before record() (Firmament composites them), or with `lit` after it,
+// shaded by the host with Firmament's lookups (lit.frag).
 Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth, int width,
-                  int height, float brightness, VkFormat colourFormat) {
+                  int height, float brightness, VkFormat colourFormat, Lit* lit = nullptr) {
   const bool full = colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT;
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.queueFamilyIndex = h.family;
@@ -414,15 +500,18 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   vkCmdSetViewport(cb, 0, 1, &viewport);
   vkCmdSetScissor(cb, 0, 1, &scissor);
   const firmament::CameraFrame camera = firmament::cameraFrame(sky.camera());
-  const float lit[4] = {brightness, brightness, brightness, 1.0f};
-  for (const Triangle& t : kTriangles) {
-    // Half the width of a column of the image at that depth times 3: a few pixels across.
-    const double size = 3.0 * t.z * camera.tanHalfFovX / double(width) * 2.0;
-    TrianglePush push = triangleAt(t.u, t.v, t.z, size, camera, width, height, kNear, kFar, lit);
-    vkCmdPushConstants(cb, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
-                       &push);
-    vkCmdDraw(cb, 3, 1, 0, 0);
-  }
+  const float shade[4] = {brightness, brightness, brightness, 1.0f};
+  auto drawTriangles = [&](const Pipeline& with) {
+    for (const Triangle& t : kTriangles) {
+      // Half the width of a column of the image at that depth times 3: a few pixels across.
+      const double size = 3.0 * t.z * camera.tanHalfFovX / double(width) * 2.0;
+      TrianglePush push = triangleAt(t.u, t.v, t.z, size, camera, width, height, kNear, kFar, shade);
+      vkCmdPushConstants(cb, with.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                         &push);
+      vkCmdDraw(cb, 3, 1, 0, 0);
+    }
+  };
+  if (!lit) drawTriangles(pipeline);
   vkCmdEndRendering(cb);
   // 2. The layouts Firmament expects (docs/api.md): colour GENERAL, depth read-only.
   imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -448,10 +537,55 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
   frame.info = sky.record(targets);
   vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
+  VkImageLayout colourLayout = VK_IMAGE_LAYOUT_GENERAL;
+  if (lit) {
+    // 3b. The host shades its own triangles with Firmament's air, over the sky: the lookups of this
+    // record() (written by its commands, which come first in this command buffer).
+    const firmament::AtmosphereLookups lookups = sky.lookups();
+    LitBlock block{};
+    block.atmosphere = lookups.parameters;
+    for (int i = 0; i < 3; ++i) {
+      block.forward[i] = float(camera.forward[i]);
+      block.right[i] = float(camera.right[i]);
+      block.up[i] = float(camera.up[i]);
+    }
+    block.forward[3] = float(camera.tanHalfFovX);
+    std::memcpy(lit->mapped, &block, sizeof(block));
+    VkDescriptorBufferInfo blockInfo{lit->block, 0, sizeof(LitBlock)};
+    VkDescriptorImageInfo tables[2] = {{lit->sampler, lookups.transmittance, lookups.layout},
+                                       {lit->sampler, lookups.aerialPerspective, lookups.layout}};
+    VkWriteDescriptorSet writes[3] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+    for (uint32_t i = 0; i < 3; ++i) {
+      writes[i].dstSet = lit->set;
+      writes[i].dstBinding = i;
+      writes[i].descriptorCount = 1;
+      writes[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      if (i == 0) writes[i].pBufferInfo = &blockInfo;
+      if (i > 0) writes[i].pImageInfo = &tables[i - 1];
+    }
+    vkUpdateDescriptorSets(h.device, 3, writes, 0, nullptr);
+    imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+    colourAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    rendering.pDepthAttachment = nullptr;
+    vkCmdBeginRendering(cb, &rendering);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, lit->pipeline.pipeline);
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, lit->pipeline.layout, 0, 1, &lit->set, 0, nullptr);
+    vkCmdSetViewport(cb, 0, 1, &viewport);
+    vkCmdSetScissor(cb, 0, 1, &scissor);
+    drawTriangles(lit->pipeline);
+    vkCmdEndRendering(cb);
+    colourLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  }
   // 4. Read back (Firmament's last command made its writes visible; the layout is still GENERAL).
-  imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-               VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, colourLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               lit ? VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT : VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+               lit ? VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT : VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {uint32_t(width), uint32_t(height), 1};
@@ -531,7 +665,9 @@ int run(const Options& options) {
   Image depth =
       createImage(h, width, height, VK_FORMAT_D32_SFLOAT,
                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  Pipeline pipeline = createPipeline(h, colourFormat, VK_FORMAT_D32_SFLOAT);
+  Pipeline pipeline =
+      createPipeline(h, triangle_vert, triangle_frag, colourFormat, VK_FORMAT_D32_SFLOAT, VK_NULL_HANDLE);
+  Lit lit = createLit(h, colourFormat);
   int failures = 0;
   {
     firmament::Sky::Builder builder;
@@ -584,6 +720,25 @@ int run(const Options& options) {
                   black.info.submittedPreparation ? "yes" : "no");
       if (black.info.submittedPreparation) {
         std::printf("FAIL: a second frame of the same view submitted preparation work\n");
+        ++failures;
+      }
+      // The host's own shading with the exported lookups: the same triangles drawn after record().
+      Frame shaded = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright, colourFormat, &lit);
+      double worstShaded = 0.0;
+      int shadedPixels = 0;
+      for (size_t i = 0; i < shaded.rgba.size(); i += 4) {
+        if (!(std::fabs(bright.rgba[i + 1] - black.rgba[i + 1]) > 1.0f)) continue;  // not a triangle
+        ++shadedPixels;
+        for (int c = 0; c < 3; ++c)
+          worstShaded = std::max(worstShaded, double(std::fabs(shaded.rgba[i + c] - bright.rgba[i + c])) /
+                                                  std::max(double(std::fabs(bright.rgba[i + c])), 1e-3));
+      }
+      std::printf(
+          "the host's own shading with the lookups vs Firmament's composite: %d pixels, worst relative "
+          "difference %.2e (tolerance 2e-3)\n",
+          shadedPixels, worstShaded);
+      if (shadedPixels < 8 || !(worstShaded <= 2e-3)) {
+        std::printf("FAIL: the host's shading with the exported lookups differs from the composite\n");
         ++failures;
       }
       // The offline render of the same view (its own device).
@@ -671,6 +826,7 @@ int run(const Options& options) {
                 lookups.transmittance ? "ok" : "missing", lookups.aerialPerspective ? "ok" : "missing",
                 lookups.parameters.radii[3]);
   }  // the sky goes before the device (every frame it recorded has finished)
+  destroyLit(h, lit);
   vkDestroyPipeline(h.device, pipeline.pipeline, nullptr);
   vkDestroyPipelineLayout(h.device, pipeline.layout, nullptr);
   destroyImage(h, colour);
