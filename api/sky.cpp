@@ -256,6 +256,8 @@ EmbeddedFrame Sky::record(const EmbeddedTargets& t) {
   frame.recordMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.submittedPreparation = m.context->submissionCount() != submissions;
+  for (const gpu::PassTiming& t : result.timings) frame.previousFramePasses.push_back({t.label, t.milliseconds});
+  frame.previousFrameGpuMilliseconds = result.frameMilliseconds;
   frame.continued = options.continueSequence;
   frame.cloudsReprojected = result.cloudsReprojected;
   frame.sunZenith_deg = result.view.sunZenith * 180.0 / M_PI;

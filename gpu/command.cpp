@@ -51,8 +51,8 @@ void CommandList::finish() {
 
 CommandList::~CommandList() {
   VkDevice device = context_.device();
-  if (external_) return;
   for (VkQueryPool queries : queryPools_) vkDestroyQueryPool(device, queries, nullptr);
+  if (external_) return;
   if (fence_) vkDestroyFence(device, fence_, nullptr);
   vkDestroyCommandPool(device, pool_, nullptr);  // frees the command buffer
 }
@@ -211,7 +211,7 @@ uint32_t CommandList::beginRange(std::string_view label) {
 
 void CommandList::endRange(uint32_t rangeIndex) {
   // Bottom of pipe: written once every earlier command has finished.
-  if (context_.timestampsSupported() && !external_)
+  if (context_.timestampsSupported())
     ranges_[rangeIndex].endQuery = writeTimestamp(VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
 }
 
@@ -239,12 +239,25 @@ void CommandList::submitAndWait() {
     passTimings_.push_back({"submit (wall clock)", submitMilliseconds_, 1});
     return;
   }
+  collectTimings(true);
+}
+
+bool CommandList::readTimings() {
+  if (!external_) throw RuntimeError("CommandList::readTimings is for a host's command buffer");
+  passTimings_.clear();
+  return context_.timestampsSupported() && collectTimings(false);
+}
+
+bool CommandList::collectTimings(bool wait) {
+  VkDevice device = context_.device();
   std::vector<uint64_t> ticks(queryCount_);
   for (uint32_t first = 0; first < queryCount_; first += kQueriesPerPool) {
     uint32_t count = std::min(kQueriesPerPool, queryCount_ - first);
-    FIRMAMENT_VK(vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count, count * sizeof(uint64_t),
-                                       ticks.data() + first, sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const VkResult r = vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count,
+                                             count * sizeof(uint64_t), ticks.data() + first, sizeof(uint64_t),
+                                             VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
+    if (r == VK_NOT_READY) return false;
+    FIRMAMENT_VK(r);
   }
   uint32_t bits = context_.timestampValidBits();
   uint64_t mask = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
@@ -260,6 +273,7 @@ void CommandList::submitAndWait() {
       ++found->count;
     }
   }
+  return true;
 }
 
 void CommandList::reset() {

@@ -74,10 +74,14 @@ class CommandList {
  public:
   explicit CommandList(Context& context);
   // Records into a host's command buffer, in the recording state (embedded mode): a full memory
-  // barrier first, no timestamps, and no submission (submitAndWait() throws; the host submits).
-  // finish() ends Firmament's part with a full memory barrier; the buffer stays the host's.
+  // barrier first, and no submission (submitAndWait() throws; the host submits). finish() ends
+  // Firmament's part with a full memory barrier; the buffer stays the host's. Its timestamps are read
+  // by readTimings() once the host's submission has finished (the list must live until then).
   CommandList(Context& context, VkCommandBuffer external);
   void finish();
+  // A host's command buffer: reads the timings without waiting; false (and no timings) when the
+  // queries are not all available (the buffer was not submitted, or has not finished).
+  bool readTimings();
   ~CommandList();
   CommandList(const CommandList&) = delete;
   CommandList& operator=(const CommandList&) = delete;
@@ -128,6 +132,9 @@ class CommandList {
   uint32_t writeTimestamp(VkPipelineStageFlagBits stage);
   uint32_t beginRange(std::string_view label);
   void endRange(uint32_t rangeIndex);
+  // The timestamps into passTimings_; wait: block until they are available. False when not waiting
+  // and some are not.
+  bool collectTimings(bool wait);
 
   static constexpr uint32_t kQueriesPerPool = 64;
 

@@ -141,7 +141,15 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   frame.embedded = &targets;
   prepareTables(frame, result);
   prepareClouds(scene, frame, result);
-  gpu::CommandList commands(context_, targets.commands);
+  // The previous frame's pass timings (its commands have finished: one frame in flight), then this
+  // frame's list, kept until the next record() (its queries are read then).
+  if (embeddedCommands_ && embeddedCommands_->readTimings())
+    for (const gpu::PassTiming& t : embeddedCommands_->passTimings()) {
+      result.timings.push_back(t);
+      result.frameMilliseconds += t.milliseconds;
+    }
+  embeddedCommands_ = std::make_unique<gpu::CommandList>(context_, targets.commands);
+  gpu::CommandList& commands = *embeddedCommands_;
   recordSky(frame, result, commands);
   if (result.night.run) recordNight(scene, frame, result, commands);
   if (frame.terrain && !frame.clouds) {

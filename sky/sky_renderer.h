@@ -122,6 +122,8 @@ class SkyRenderer {
   // map, first-use resources) is submitted to the context's queue and waited for here, before anything
   // is recorded; a frame needing none submits nothing (Context::submissionCount). Three wavelengths
   // (one spectral batch) always. The resources the recording uses stay until the next record().
+  // result.timings and frameMilliseconds are the previous record()'s passes (timestamps in the host's
+  // command buffer, read without waiting; empty when they are not available).
   RenderResult record(const Scene& scene, const SkyRenderOptions& options, const EmbeddedRecording& targets);
   const EmbeddedLookups& lookups() const { return lookups_; }
   gpu::Context& context() { return context_; }
@@ -170,6 +172,7 @@ class SkyRenderer {
   std::string skyViewKey_;
   // Embedded mode: the frame and the host's distances kept past record() (the host runs them later).
   std::shared_ptr<gpu::Buffer> embeddedOutput_;
+  std::unique_ptr<gpu::CommandList> embeddedCommands_;  // the last record()'s, for its timestamps
   gpu::Buffer hostDistance_;
   gpu::Buffer farPlaceholder_;                               // one float, 1e30: no terrain
   std::unique_ptr<gpu::ComputePipeline> embedPipelines_[2];  // RGBA16F, RGBA32F host image

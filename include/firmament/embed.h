@@ -28,6 +28,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "firmament/sky.h"
@@ -69,11 +70,20 @@ struct EmbeddedTargets {
   DepthConvention depthConvention = DepthConvention::Standard;
 };
 
+struct PassTime {
+  std::string label;  // "sky/render_sky", "sky/embed_host_depth", ...
+  double milliseconds = 0.0;
+};
+
 struct EmbeddedFrame {
   bool submittedPreparation = false;  // record() submitted preparation work and waited for it
   bool continued = false;             // the frame continued the previous one (temporal reprojection)
   bool cloudsReprojected = false;
   double recordMilliseconds = 0.0;  // CPU time of record(), preparation included
+  // The previous record()'s passes, GPU time from timestamps Firmament wrote into that frame's command
+  // buffer, read without waiting (empty when the host has not submitted it or it has not finished).
+  std::vector<PassTime> previousFramePasses;
+  double previousFrameGpuMilliseconds = 0.0;
   double sunZenith_deg = 0.0, sunAzimuth_deg = 0.0;
 };
 

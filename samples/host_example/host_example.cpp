@@ -693,12 +693,26 @@ int run(const Options& options) {
 
     if (options.frames > 0) {
       std::vector<double> submit, record, skyGpu, gpu, wall;
+      std::vector<std::vector<double>> passes;  // per pass label of the first timed frame
+      std::vector<std::string> labels;
       for (int i = 0; i < options.frames; ++i) {
         Frame f = renderFrame(h, *sky, pipeline, colour, depth, width, height, kBright, colourFormat);
         submit.push_back(f.submitMilliseconds);
         record.push_back(f.info.recordMilliseconds);
         skyGpu.push_back(f.skyMilliseconds);
+        // Firmament's own timestamps of the frame before (read at this record(), without waiting).
+        for (const firmament::PassTime& p : f.info.previousFramePasses) {
+          auto at = std::find(labels.begin(), labels.end(), p.label);
+          if (at == labels.end()) {
+            labels.push_back(p.label);
+            passes.emplace_back();
+            at = labels.end() - 1;
+          }
+          passes[size_t(at - labels.begin())].push_back(p.milliseconds);
+        }
       }
+      for (size_t i = 0; i < labels.size(); ++i)
+        std::printf("  pass %s: %.1f ms GPU (median)\n", labels[i].c_str(), median(passes[i]));
       firmament::Sky::Builder offlineBuilder;
       if (options.scene.empty()) {
         offlineBuilder.sceneJson(kScene);
@@ -725,6 +739,18 @@ int run(const Options& options) {
                   black.info.submittedPreparation ? "yes" : "no");
       if (black.info.submittedPreparation) {
         std::printf("FAIL: a second frame of the same view submitted preparation work\n");
+        ++failures;
+      }
+      // Firmament's timestamps of frame 1, read at frame 2's record() (frame 1 had finished).
+      uint32_t familyCount = 0;
+      vkGetPhysicalDeviceQueueFamilyProperties(h.physical, &familyCount, nullptr);
+      std::vector<VkQueueFamilyProperties> families(familyCount);
+      vkGetPhysicalDeviceQueueFamilyProperties(h.physical, &familyCount, families.data());
+      std::printf("frame 1's passes, read at frame 2: %zu, %.1f ms GPU\n", black.info.previousFramePasses.size(),
+                  black.info.previousFrameGpuMilliseconds);
+      if (families[h.family].timestampValidBits > 0 &&
+          (black.info.previousFramePasses.empty() || !(black.info.previousFrameGpuMilliseconds > 0.0))) {
+        std::printf("FAIL: no pass timings of the previous frame\n");
         ++failures;
       }
       // Equal values through the image: an RGBA16F store may truncate (2^-10 relative), RGBA32F keeps floats.
