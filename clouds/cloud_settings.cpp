@@ -273,6 +273,8 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
   s.windSpeed_m_s = scene.number("/clouds/wind_m_s");
   s.windFromDeg = scene.number("/clouds/wind_from_deg");
   s.time_s = scene.number("/clouds/time_s");
+  s.offsetEast_m = scene.number("/clouds/offset_east_m");
+  s.offsetNorth_m = scene.number("/clouds/offset_north_m");
   s.skew = scene.number("/clouds/skew");
   CloudLightingSettings& light = s.lighting;
   light.gForward = scene.number("/clouds/lighting/phase_g_forward");
@@ -341,8 +343,10 @@ std::vector<shared::CloudLayer> sharedCloudLayers(const CloudSettings& settings,
     c.detail_strength = settings.detailStrength;
     c.curl_period = settings.shapeScale_m * 0.5;
     c.curl_strength = settings.curlStrength_m;
-    // Positions move against the wind in the noise frame: the field drifts with it.
-    const glm::dvec2 offset = -windDirection * settings.windSpeed_m_s * settings.time_s;
+    // Positions move against the wind in the noise frame: the field drifts with it. A camera offset
+    // (east, north) reads the field that far from the location.
+    const glm::dvec2 offset = -windDirection * settings.windSpeed_m_s * settings.time_s +
+                              glm::dvec2(settings.offsetEast_m, settings.offsetNorth_m);
     c.wind_offset = glm::dvec3(offset.x, offset.y, 0.0);
     c.skew = -windDirection * settings.skew;
     c.kind = l.kind;

@@ -260,6 +260,9 @@ struct CloudSettings {
   double windSpeed_m_s = 0.0;
   double windFromDeg = 270.0;
   double time_s = 0.0;
+  // The camera's horizontal offset over the clouds (m, east and north; /clouds/offset_east_m, _north_m):
+  // added to the wind's offset, as if the camera stood this far from the location.
+  double offsetEast_m = 0.0, offsetNorth_m = 0.0;
   double skew = 0.2;
   CloudLightingSettings lighting;
   CloudMarchSettings march;

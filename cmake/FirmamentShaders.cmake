@@ -19,7 +19,7 @@ function(firmament_compile_shaders)
     add_custom_command(
       OUTPUT ${header}
       COMMAND ${CMAKE_COMMAND} -E make_directory ${header_dir}
-      COMMAND Vulkan::glslangValidator --target-env vulkan1.3 -Os -I${ARG_ROOT}
+      COMMAND Vulkan::glslangValidator --target-env vulkan1.3 -Os -I${ARG_ROOT} -I${PROJECT_SOURCE_DIR}/include
               --depfile ${header}.d --vn ${var} -o ${header} ${src}
       DEPENDS ${src}
       DEPFILE ${header}.d

@@ -36,9 +36,23 @@ CommandList::CommandList(Context& context) : context_(context) {
                   " has no timestamps; timings are wall clock for the whole submission";
 }
 
+CommandList::CommandList(Context& context, VkCommandBuffer external) : context_(context), external_(true) {
+  if (!external) throw RuntimeError("CommandList: no command buffer given");
+  commands_ = external;
+  state_ = State::Recording;
+  fullMemoryBarrier(commands_);  // the host's writes before (its colour and depth) are visible
+}
+
+void CommandList::finish() {
+  if (!external_) throw RuntimeError("CommandList::finish is for a host's command buffer");
+  if (openGroup_ >= 0) throw RuntimeError("CommandList::finish with an open beginTiming group");
+  fullMemoryBarrier(commands_);  // Firmament's writes are visible to the host's commands after
+}
+
 CommandList::~CommandList() {
   VkDevice device = context_.device();
   for (VkQueryPool queries : queryPools_) vkDestroyQueryPool(device, queries, nullptr);
+  if (external_) return;
   if (fence_) vkDestroyFence(device, fence_, nullptr);
   vkDestroyCommandPool(device, pool_, nullptr);  // frees the command buffer
 }
@@ -87,6 +101,12 @@ void CommandList::bind(const ComputePipeline& pipeline, std::initializer_list<Re
         break;
       }
       case BindingType::StorageImage:
+        if (resource.external_.view && !resource.sampler_) {
+          imageInfos[binding] = {VK_NULL_HANDLE, resource.external_.view, resource.external_.layout};
+          write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+          write.pImageInfo = &imageInfos[binding];
+          break;
+        }
         if (!resource.image_ || resource.sampler_) throw mismatch(resource.buffer_ ? "a buffer" : "a sampled image");
         if (!resource.image_->desc().storage) throw mismatch("an image without storage usage");
         imageInfos[binding] = {VK_NULL_HANDLE, resource.image_->storageView(resource.level_), VK_IMAGE_LAYOUT_GENERAL};
@@ -94,6 +114,12 @@ void CommandList::bind(const ComputePipeline& pipeline, std::initializer_list<Re
         write.pImageInfo = &imageInfos[binding];
         break;
       case BindingType::SampledImage:
+        if (resource.external_.view && resource.sampler_) {
+          imageInfos[binding] = {resource.sampler_->handle(), resource.external_.view, resource.external_.layout};
+          write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+          write.pImageInfo = &imageInfos[binding];
+          break;
+        }
         if (!resource.image_ || !resource.sampler_) throw mismatch("no sampler");
         if (!resource.image_->desc().sampled) throw mismatch("an image without sampled usage");
         imageInfos[binding] = {resource.sampler_->handle(), resource.image_->view(), VK_IMAGE_LAYOUT_GENERAL};
@@ -177,7 +203,8 @@ uint32_t CommandList::beginRange(std::string_view label) {
   TimedRange range;
   range.label = std::string(label);
   // Top of pipe: the time the range's first command starts, once earlier work (and barriers) allow.
-  if (context_.timestampsSupported()) range.beginQuery = writeTimestamp(VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+  if (context_.timestampsSupported() && !external_)
+    range.beginQuery = writeTimestamp(VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
   ranges_.push_back(std::move(range));
   return uint32_t(ranges_.size() - 1);
 }
@@ -189,6 +216,7 @@ void CommandList::endRange(uint32_t rangeIndex) {
 }
 
 void CommandList::submitAndWait() {
+  if (external_) throw RuntimeError("CommandList: a host's command buffer is submitted by the host");
   if (state_ == State::Initial) ensureRecording();  // an empty list still submits (and times) nothing
   if (state_ == State::Recording) {
     if (openGroup_ >= 0) throw RuntimeError("CommandList::submitAndWait with an open beginTiming group");
@@ -211,12 +239,25 @@ void CommandList::submitAndWait() {
     passTimings_.push_back({"submit (wall clock)", submitMilliseconds_, 1});
     return;
   }
+  collectTimings(true);
+}
+
+bool CommandList::readTimings() {
+  if (!external_) throw RuntimeError("CommandList::readTimings is for a host's command buffer");
+  passTimings_.clear();
+  return context_.timestampsSupported() && collectTimings(false);
+}
+
+bool CommandList::collectTimings(bool wait) {
+  VkDevice device = context_.device();
   std::vector<uint64_t> ticks(queryCount_);
   for (uint32_t first = 0; first < queryCount_; first += kQueriesPerPool) {
     uint32_t count = std::min(kQueriesPerPool, queryCount_ - first);
-    FIRMAMENT_VK(vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count, count * sizeof(uint64_t),
-                                       ticks.data() + first, sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const VkResult r = vkGetQueryPoolResults(device, queryPools_[first / kQueriesPerPool], 0, count,
+                                             count * sizeof(uint64_t), ticks.data() + first, sizeof(uint64_t),
+                                             VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
+    if (r == VK_NOT_READY) return false;
+    FIRMAMENT_VK(r);
   }
   uint32_t bits = context_.timestampValidBits();
   uint64_t mask = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
@@ -232,6 +273,7 @@ void CommandList::submitAndWait() {
       ++found->count;
     }
   }
+  return true;
 }
 
 void CommandList::reset() {

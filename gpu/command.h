@@ -32,6 +32,12 @@ class Context;
 class Image;
 class Sampler;
 
+// An image view that is not a gpu::Image (a host application's, embedded mode), in the given layout.
+struct ExternalView {
+  VkImageView view = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
 // One mip level of an image, for a storage binding: {image, MipLevel{k}}.
 struct MipLevel {
   uint32_t level = 0;
@@ -46,6 +52,8 @@ class Resource {
   Resource(const Image& image) : image_(&image) {}      // NOLINT
   Resource(const Image& image, MipLevel level) : image_(&image), level_(level.level) {}
   Resource(const Image& image, const Sampler& sampler) : image_(&image), sampler_(&sampler) {}
+  Resource(ExternalView view) : external_(view) {}  // NOLINT: a storage image
+  Resource(ExternalView view, const Sampler& sampler) : sampler_(&sampler), external_(view) {}
 
  private:
   friend class CommandList;
@@ -53,6 +61,7 @@ class Resource {
   const Image* image_ = nullptr;
   const Sampler* sampler_ = nullptr;
   uint32_t level_ = 0;
+  ExternalView external_;
 };
 
 struct PassTiming {
@@ -64,6 +73,15 @@ struct PassTiming {
 class CommandList {
  public:
   explicit CommandList(Context& context);
+  // Records into a host's command buffer, in the recording state (embedded mode): a full memory
+  // barrier first, and no submission (submitAndWait() throws; the host submits). finish() ends
+  // Firmament's part with a full memory barrier; the buffer stays the host's. Its timestamps are read
+  // by readTimings() once the host's submission has finished (the list must live until then).
+  CommandList(Context& context, VkCommandBuffer external);
+  void finish();
+  // A host's command buffer: reads the timings without waiting; false (and no timings) when the
+  // queries are not all available (the buffer was not submitted, or has not finished).
+  bool readTimings();
   ~CommandList();
   CommandList(const CommandList&) = delete;
   CommandList& operator=(const CommandList&) = delete;
@@ -114,6 +132,9 @@ class CommandList {
   uint32_t writeTimestamp(VkPipelineStageFlagBits stage);
   uint32_t beginRange(std::string_view label);
   void endRange(uint32_t rangeIndex);
+  // The timestamps into passTimings_; wait: block until they are available. False when not waiting
+  // and some are not.
+  bool collectTimings(bool wait);
 
   static constexpr uint32_t kQueriesPerPool = 64;
 
@@ -127,6 +148,7 @@ class CommandList {
   int openGroup_ = -1;  // index into ranges_ of the open beginTiming, or -1
   const ComputePipeline* boundPipeline_ = nullptr;
   enum class State { Initial, Recording, Executable } state_ = State::Initial;
+  bool external_ = false;
   std::vector<PassTiming> passTimings_;
   double submitMilliseconds_ = 0.0;
   std::string timingNote_;

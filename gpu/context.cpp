@@ -168,15 +168,54 @@ Context::Context(const ContextOptions& options) {
   logVerbose("gpu: " + description());
 }
 
+Context::Context(const AdoptedDevice& adopted, const ContextOptions& options) : adopted_(true) {
+  if (!adopted.instance || !adopted.physicalDevice || !adopted.device || !adopted.queue)
+    throw InputError("embedded mode: the host's VkInstance, VkPhysicalDevice, VkDevice and VkQueue must all be given");
+  if (std::string why = deviceIncompatibility(adopted.physicalDevice); !why.empty())
+    throw InputError("embedded mode: the host's Vulkan device cannot run Firmament: " + why);
+  instance_ = adopted.instance;
+  physicalDevice_ = adopted.physicalDevice;
+  device_ = adopted.device;
+  queue_ = adopted.queue;
+  queueFamily_ = adopted.queueFamily;
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+  if (queueFamily_ >= familyCount || !(families[queueFamily_].queueFlags & VK_QUEUE_COMPUTE_BIT))
+    throw InputError("embedded mode: queue family " + std::to_string(queueFamily_) + " has no compute queue");
+  info_ = describe(physicalDevice_, 0);
+  vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  try {
+    readDevice();
+    if (options.persistentPipelineCache) cacheDir_ = options.cacheDir.empty() ? defaultCacheDir() : options.cacheDir;
+    pipelineCache_ = std::make_unique<PipelineCache>(device_, properties_, cacheDir_);
+  } catch (...) {
+    release();
+    throw;
+  }
+  logVerbose("gpu (the host's device): " + description());
+}
+
 Context::~Context() { release(); }
 
 void Context::release() {
   pipelineCache_.reset();
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    // An adopted device's other work is the host's: only this context's objects go, and the host has
+    // waited for the frames that used them (docs/api.md, "Synchronisation").
+    if (!adopted_) vkDeviceWaitIdle(device_);
     if (oneShotFence_) vkDestroyFence(device_, oneShotFence_, nullptr);
     if (oneShotPool_) vkDestroyCommandPool(device_, oneShotPool_, nullptr);
-    vkDestroyDevice(device_, nullptr);
+    if (!adopted_) vkDestroyDevice(device_, nullptr);
+  }
+  if (adopted_) {
+    oneShotFence_ = VK_NULL_HANDLE;
+    oneShotPool_ = VK_NULL_HANDLE;
+    device_ = VK_NULL_HANDLE;
+    instance_ = VK_NULL_HANDLE;
+    return;
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -330,6 +369,32 @@ void Context::pickPhysicalDevice(const std::string& selector) {
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
 }
 
+void enableSupportedFeatures(VkPhysicalDevice physicalDevice, VkPhysicalDeviceFeatures2& enable,
+                             VkPhysicalDeviceVulkan12Features& enable12, VkPhysicalDeviceVulkan13Features& enable13) {
+  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &supported13};
+  VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
+  vkGetPhysicalDeviceFeatures2(physicalDevice, &supported);
+  // Nothing here costs speed (robustBufferAccess does, so it stays off). maintenance4 is mandatory in
+  // Vulkan 1.3 and needed: glslang's vulkan1.3 target emits LocalSizeId.
+  enable13.maintenance4 = VK_TRUE;
+  enable13.synchronization2 |= supported13.synchronization2;
+  enable12.scalarBlockLayout |= supported12.scalarBlockLayout;
+  enable12.hostQueryReset |= supported12.hostQueryReset;
+  enable.features.shaderInt64 |= supported.features.shaderInt64;
+  enable.features.shaderFloat64 |= supported.features.shaderFloat64;
+  const bool withoutFormat =
+      supported.features.shaderStorageImageReadWithoutFormat && supported.features.shaderStorageImageWriteWithoutFormat;
+  enable.features.shaderStorageImageReadWithoutFormat |= withoutFormat;
+  enable.features.shaderStorageImageWriteWithoutFormat |= withoutFormat;
+}
+
+std::vector<const char*> requiredDeviceExtensions() { return {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME}; }
+
+std::string deviceIncompatibility(VkPhysicalDevice physicalDevice) {
+  return incompatibility(physicalDevice, describe(physicalDevice, 0)).value_or("");
+}
+
 void Context::createDevice() {
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
@@ -343,50 +408,51 @@ void Context::createDevice() {
   }
   if (!family) throw RuntimeError("Vulkan device " + info_.name + " has no compute queue");
   queueFamily_ = *family;
-  timestampValidBits_ = families[queueFamily_].timestampValidBits;
 
-  // Enable the optional features the device has; nothing here costs speed (robustBufferAccess does,
-  // so it stays off).
-  VkPhysicalDeviceVulkan13Features supported13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &supported13};
-  VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
-  vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported);
-  features_.scalarBlockLayout = supported12.scalarBlockLayout;
-  features_.shaderInt64 = supported.features.shaderInt64;
-  features_.shaderFloat64 = supported.features.shaderFloat64;
-  features_.storageImageWithoutFormat =
-      supported.features.shaderStorageImageReadWithoutFormat && supported.features.shaderStorageImageWriteWithoutFormat;
-
-  // maintenance4 is mandatory in Vulkan 1.3 and needed: glslang's vulkan1.3 target emits LocalSizeId.
   VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  enable13.maintenance4 = VK_TRUE;
-  enable13.synchronization2 = supported13.synchronization2;
   VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable13};
-  enable12.scalarBlockLayout = supported12.scalarBlockLayout;
-  enable12.hostQueryReset = supported12.hostQueryReset;
   VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable12};
-  enable.features.shaderInt64 = supported.features.shaderInt64;
-  enable.features.shaderFloat64 = supported.features.shaderFloat64;
-  enable.features.shaderStorageImageReadWithoutFormat = features_.storageImageWithoutFormat;
-  enable.features.shaderStorageImageWriteWithoutFormat = features_.storageImageWithoutFormat;
+  enableSupportedFeatures(physicalDevice_, enable, enable12, enable13);
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = queueFamily_;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
-  const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  const std::vector<const char*> extensions = requiredDeviceExtensions();
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &enable};
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
-  info.enabledExtensionCount = 1;
-  info.ppEnabledExtensionNames = extensions;
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   FIRMAMENT_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+  readDevice();
+}
+
+// What the rest of gpu/ needs from a device, created here or adopted: the queue family's timestamps,
+// the features in use (those enableSupportedFeatures() turns on), the push-descriptor entry point and
+// the one-shot pool and fence.
+void Context::readDevice() {
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+  timestampValidBits_ = families.at(queueFamily_).timestampValidBits;
+  VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable13};
+  VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable12};
+  enableSupportedFeatures(physicalDevice_, enable, enable12, enable13);
+  features_.scalarBlockLayout = enable12.scalarBlockLayout;
+  features_.shaderInt64 = enable.features.shaderInt64;
+  features_.shaderFloat64 = enable.features.shaderFloat64;
+  features_.storageImageWithoutFormat = enable.features.shaderStorageImageReadWithoutFormat;
 
   cmdPushDescriptorSet =
       reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
-  if (!cmdPushDescriptorSet) throw RuntimeError("vkCmdPushDescriptorSetKHR is missing on " + info_.name);
+  if (!cmdPushDescriptorSet)
+    throw RuntimeError("vkCmdPushDescriptorSetKHR is missing on " + info_.name +
+                       (adopted_ ? " (enable VK_KHR_push_descriptor on the host's device)" : ""));
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -431,6 +497,7 @@ VkMemoryPropertyFlags Context::memoryTypeFlags(uint32_t typeIndex) const {
 void Context::submit(const VkSubmitInfo& info, VkFence fence) {
   std::lock_guard lock(queueMutex_);
   FIRMAMENT_VK(vkQueueSubmit(queue_, 1, &info, fence));
+  ++submissions_;
 }
 
 void Context::submitOneShot(const std::function<void(VkCommandBuffer)>& record) {

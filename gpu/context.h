@@ -54,9 +54,33 @@ struct ContextOptions {
   bool persistentPipelineCache = true;
 };
 
+// A host application's Vulkan objects, adopted by a Context instead of creating its own (embedded mode,
+// include/firmament/embed.h). The host created the device with requiredDeviceExtensions() and the
+// features enableSupportedFeatures() turns on; it keeps every object alive longer than the Context.
+struct AdoptedDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;        // must have compute
+  VkQueue queue = VK_NULL_HANDLE;  // of queueFamily: preparation work (tables, uploads) is submitted here
+};
+
+// The device extensions Firmament needs (VK_KHR_push_descriptor).
+std::vector<const char*> requiredDeviceExtensions();
+// Turns on, in the given structures, the features Firmament uses that `physicalDevice` supports (what
+// the Context's own device enables); the host chains them into its VkDeviceCreateInfo.
+void enableSupportedFeatures(VkPhysicalDevice physicalDevice, VkPhysicalDeviceFeatures2& features,
+                             VkPhysicalDeviceVulkan12Features& features12,
+                             VkPhysicalDeviceVulkan13Features& features13);
+// Why `physicalDevice` cannot run Firmament ("needs Vulkan 1.3, has 1.2.0"), or "".
+std::string deviceIncompatibility(VkPhysicalDevice physicalDevice);
+
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
+  // Adopts the host's objects: destroys none of them, records no validation messages of its own (the
+  // host's messenger sees them), and submits only to adopted.queue (preparation, never the frames).
+  Context(const AdoptedDevice& adopted, const ContextOptions& options);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -95,6 +119,10 @@ class Context {
   void submitOneShot(const std::function<void(VkCommandBuffer)>& record);
   // Submits already-recorded command buffers and signals `fence`; serialised on the queue.
   void submit(const VkSubmitInfo& info, VkFence fence);
+  // Submissions so far (one-shot and CommandList ones): an embedded frame reports whether it submitted.
+  uint64_t submissionCount() const { return submissions_; }
+  // The device and instance belong to a host (the adopting constructor).
+  bool adopted() const { return adopted_; }
 
   PipelineCache& pipelineCache() { return *pipelineCache_; }
   // The folder for files cached across runs (pipelines, precomputed tables); empty = keep nothing.
@@ -114,6 +142,7 @@ class Context {
   void createInstance(bool validation);
   void pickPhysicalDevice(const std::string& selector);
   void createDevice();
+  void readDevice();  // queue family properties, features, the push-descriptor entry point, the one-shot pool
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -129,6 +158,8 @@ class Context {
   DeviceFeatures features_;
   uint32_t timestampValidBits_ = 0;
   bool validationEnabled_ = false;
+  bool adopted_ = false;
+  uint64_t submissions_ = 0;
   PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
   std::unique_ptr<PipelineCache> pipelineCache_;
   std::filesystem::path cacheDir_;

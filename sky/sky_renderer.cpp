@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
+#include "atmosphere/atmosphere_spectra.h"
 #include "core/error.h"
 #include "sky/scene_cloud_medium.h"
 #include "sky/scene_weather.h"
@@ -102,7 +104,8 @@ struct SkyRenderer::Frame {
   bool lutsComputed = false;              // the atmosphere LUTs were computed (not from memory or disk)
   std::unique_ptr<CloudSettings> clouds;  // null without cloud layers
   bool terrain = false;                   // the scene has a /terrain section (sky/terrain_pass.h)
-  std::unique_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
+  std::shared_ptr<gpu::Buffer> output;    // RGBA32F pixels, row-major
+  const EmbeddedRecording* embedded = nullptr;  // embedded mode: the host's targets
   gpu::TileDispatch tiles{};
   FrameBlock block{};                           // what frameBlock_ holds
   std::vector<const gpu::Buffer*> lightBlocks;  // the light's blocks (empty: the tables' own, the Sun)
@@ -126,6 +129,137 @@ RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& opt
   if (frame.clouds) recordClouds(frame, result, commands);
   resolve(scene, frame, commands, result);
   return result;
+}
+
+RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& requested,
+                                 const EmbeddedRecording& targets) {
+  if (!targets.commands || !targets.colour || !targets.depth)
+    throw InputError("embedded mode: a command buffer, a colour view and a depth view are all needed");
+  SkyRenderOptions options = requested;
+  options.downloadImages = false;
+  // One spectral batch: the exported lookups and the composite read batch 0 (clouds need it too).
+  if (options.luts.spectralSamples == kSpectralSamplesAuto) options.luts.spectralSamples = 3;
+  if (options.luts.spectralSamples != 3)
+    throw InputError("embedded mode renders three wavelengths (spectral samples 3)");
+  if (options.multipleScattering != MultipleScattering::HillaireFms)
+    throw InputError("embedded mode needs the f_ms path (--multiple-scattering fms)");
+  RenderResult result;
+  Frame frame = plan(scene, options, result);
+  frame.embedded = &targets;
+  prepareTables(frame, result);
+  prepareClouds(scene, frame, result);
+  // The previous frame's pass timings (its commands have finished: one frame in flight), then this
+  // frame's list, kept until the next record() (its queries are read then).
+  if (embeddedCommands_ && embeddedCommands_->readTimings())
+    for (const gpu::PassTiming& t : embeddedCommands_->passTimings()) {
+      result.timings.push_back(t);
+      result.frameMilliseconds += t.milliseconds;
+    }
+  embeddedCommands_ = std::make_unique<gpu::CommandList>(context_, targets.commands);
+  gpu::CommandList& commands = *embeddedCommands_;
+  recordSky(frame, result, commands);
+  if (result.night.run) recordNight(scene, frame, result, commands);
+  if (frame.terrain && !frame.clouds) {
+    commands.barrier();
+    recordTerrain(frame, result, commands, nullptr);
+  }
+  if (frame.clouds) {
+    recordClouds(frame, result, commands);  // the host's depth before the march
+    commands.barrier();
+    recordHostWrite(frame, commands);
+  } else {
+    recordHostDepth(frame, result, commands, false);  // and the host's image written in the same pass
+  }
+  commands.finish();
+  if (frame.clouds) result.cloudsReprojected = clouds_->lastFrameReprojected();
+  return result;
+}
+
+void SkyRenderer::recordHostDepth(Frame& frame, RenderResult& result, gpu::CommandList& commands, bool aerialRecorded) {
+  const SceneView& view = result.view;
+  const EmbeddedRecording& targets = *frame.embedded;
+  if (!aerialRecorded) {
+    // The volume over the clouds' march limit when they march, else 80 km (Hillaire 2020's 32 slices
+    // over it: the first ends at 78 m); the host's far plane beyond it reads the last slice.
+    AerialPerspectiveVolumeSettings settings = frame.options.aerialPerspective;
+    if (!(settings.maxDistance_m > 0.0))
+      settings.maxDistance_m = frame.clouds ? frame.clouds->march.maxDistance_m : 80000.0;
+    if (!aerial_) aerial_ = std::make_unique<AerialPerspectiveVolume>(context_);
+    commands.barrier();
+    aerial_->record(settings, glm::dvec3(0.0, 0.0, view.cameraRadius), view.sunDirection, view.camera, luts_, commands);
+    embeddedAerialDistance_m_ = settings.maxDistance_m;
+  }
+  commands.barrier();
+  const int width = view.camera.width, height = view.camera.height;
+  const VkDeviceSize distanceBytes = VkDeviceSize(width) * VkDeviceSize(height) * sizeof(float);
+  if (!hostDistance_ || hostDistance_.size() != distanceBytes)
+    hostDistance_ =
+        gpu::Buffer(context_, distanceBytes, gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "host distance");
+  if (!farPlaceholder_) {
+    farPlaceholder_ = gpu::Buffer(context_, sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+                                  "no terrain depth");
+    const float far = 1.0e30f;
+    farPlaceholder_.upload(&far, sizeof(far));
+  }
+  if (!nearestClamp_)
+    nearestClamp_ = std::make_unique<gpu::Sampler>(context_, gpu::Filter::Nearest, gpu::AddressMode::Clamp);
+  const int variant = targets.colourHalf ? 0 : 1;
+  if (!embedPipelines_[variant])
+    embedPipelines_[variant] = std::make_unique<gpu::ComputePipeline>(
+        context_, gpu::PipelineDesc{
+                      variant == 0 ? "sky/embed_composite_rgba16f" : "sky/embed_composite_rgba32f",
+                      {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::StorageImage,
+                       gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
+                       gpu::BindingType::StorageBuffer},
+                      sizeof(gpu::TileDispatch) + 5 * 4 * sizeof(float)});
+  // The lookups a host's shader reads (firmament/atmosphere_lookup.glsl's FirmamentAtmosphere).
+  const shared::AtmosphereParameters& a = luts_.batch(0).parameters;
+  const glm::dvec3 sunTop = threeWavelengthRadianceToRgb(frame.options.luts.wavelengthsNm, kSunLambdaPower) *
+                            glm::dvec3(a.solar_irradiance.x, a.solar_irradiance.y, a.solar_irradiance.z);
+  lookups_.transmittance = &luts_.batch(0).transmittance;
+  lookups_.aerialPerspective = &aerial_->volume(0);
+  const float parameters[4][4] = {
+      {float(a.bottom_radius), float(a.top_radius), float(view.cameraRadius), float(embeddedAerialDistance_m_)},
+      {float(view.sunDirection.x), float(view.sunDirection.y), float(view.sunDirection.z), float(a.mie_phase_g)},
+      {float(sunTop.x), float(sunTop.y), float(sunTop.z), 0.0f},
+      {float(width), float(height), 0.0f, 0.0f}};
+  std::memcpy(lookups_.parameters, parameters, sizeof(parameters));
+  commands.bind(*embedPipelines_[variant], {frameBlock_,
+                                            {gpu::ExternalView{targets.depth, targets.depthLayout}, *nearestClamp_},
+                                            gpu::ExternalView{targets.colour, VK_IMAGE_LAYOUT_GENERAL},
+                                            {aerial_->volume(0), luts_.linearClamp()},
+                                            *frame.output,
+                                            hostDistance_,
+                                            frame.terrain ? terrain_->depth() : farPlaceholder_});
+  struct {
+    gpu::TileDispatch tiles;
+    float depth[4];
+    float atmosphere[4][4];
+  } push{frame.tiles,
+         {float(targets.near_m), float(targets.far_m), targets.reversedDepth ? 1.0f : 0.0f, frame.clouds ? 0.0f : 2.0f},
+         {}};
+  std::memcpy(push.atmosphere, parameters, sizeof(parameters));
+  commands.pushConstants(push);
+  commands.dispatchTiles(frame.tiles, "sky/embed_host_depth");
+}
+
+void SkyRenderer::recordHostWrite(Frame& frame, gpu::CommandList& commands) {
+  const EmbeddedRecording& targets = *frame.embedded;
+  const int variant = targets.colourHalf ? 0 : 1;
+  commands.bind(*embedPipelines_[variant], {frameBlock_,
+                                            {gpu::ExternalView{targets.depth, targets.depthLayout}, *nearestClamp_},
+                                            gpu::ExternalView{targets.colour, VK_IMAGE_LAYOUT_GENERAL},
+                                            {aerial_->volume(0), luts_.linearClamp()},
+                                            *frame.output,
+                                            hostDistance_,
+                                            farPlaceholder_});
+  struct {
+    gpu::TileDispatch tiles;
+    float depth[4];
+    float atmosphere[4][4];
+  } push{frame.tiles, {0.0f, 0.0f, 0.0f, 1.0f}, {}};
+  commands.pushConstants(push);
+  commands.dispatchTiles(frame.tiles, "sky/embed_write");
 }
 
 // Plan: the scene's view, the options' automatic choices, the passes the scene needs (render_plan.h).
@@ -259,8 +393,16 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
 
   // The frame is a storage buffer of RGBA32F pixels, row-major, not a storage image: on lavapipe an
   // image store costs ~4x a buffer store (eval/micro/output_write.cpp, docs/gpu.md), and it is read back as is.
-  frame.output = std::make_unique<gpu::Buffer>(context_, VkDeviceSize(width) * VkDeviceSize(height) * 4 * sizeof(float),
-                                               gpu::BufferUsage::Storage, gpu::MemoryLocation::Device, "sky frame");
+  const VkDeviceSize frameBytes = VkDeviceSize(width) * VkDeviceSize(height) * 4 * sizeof(float);
+  if (frame.embedded) {  // kept past record(): the host runs the commands later
+    if (!embeddedOutput_ || embeddedOutput_->size() != frameBytes)
+      embeddedOutput_ = std::make_shared<gpu::Buffer>(context_, frameBytes, gpu::BufferUsage::Storage,
+                                                      gpu::MemoryLocation::Device, "sky frame");
+    frame.output = embeddedOutput_;
+  } else {
+    frame.output = std::make_shared<gpu::Buffer>(context_, frameBytes, gpu::BufferUsage::Storage,
+                                                 gpu::MemoryLocation::Device, "sky frame");
+  }
   gpu::Buffer& output = *frame.output;
   frame.tiles = gpu::tileDispatch(context_, uint32_t(width), uint32_t(height), options.dispatchOrder);
   const gpu::TileDispatch& tiles = frame.tiles;
@@ -475,8 +617,16 @@ void SkyRenderer::recordClouds(Frame& frame, RenderResult& result, gpu::CommandL
     const TerrainCloudShadow shadow{&clouds_->shadowMap(), p.centre, p.u, p.v, p.extent_m, p.start_m};
     recordTerrain(frame, result, commands, &shadow);
   }
+  // Embedded mode: the host's pixels enter the frame before the march, which stops at their distance.
+  const gpu::Buffer* stopAt = frame.terrain ? &terrain_->depth() : nullptr;
+  if (frame.embedded) {
+    if (volume) embeddedAerialDistance_m_ = aerialSettings.maxDistance_m;
+    recordHostDepth(frame, result, commands, volume);
+    commands.barrier();
+    stopAt = &hostDistance_;
+  }
   clouds_->record(clouds, cloudView, luts_, irradiance, output, tiles, commands, &aerialVolume,
-                  options.continueSequence, frame.terrain ? &terrain_->depth() : nullptr);
+                  options.continueSequence, stopAt);
 }
 
 void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands,

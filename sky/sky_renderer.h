@@ -94,10 +94,42 @@ struct RenderResult {
   FrameLight light;
 };
 
+// Embedded mode (include/firmament/embed.h, docs/api.md): one frame's targets, the host's. colour: a
+// storage view of an RGBA16F or RGBA32F image in VK_IMAGE_LAYOUT_GENERAL (read where the host drew, then
+// written everywhere); depth: a sampled view (depth aspect) of the host's depth buffer in depthLayout, a
+// perspective projection with the scene camera's orientation and horizontal field of view.
+struct EmbeddedRecording {
+  VkCommandBuffer commands = VK_NULL_HANDLE;  // recording; submitted by the host
+  VkImageView colour = VK_NULL_HANDLE;
+  bool colourHalf = true;  // RGBA16F (else RGBA32F)
+  VkImageView depth = VK_NULL_HANDLE;
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  double near_m = 0.1;
+  double far_m = 1.0e5;
+  bool reversedDepth = false;
+};
+
+// What a host's shader needs to read the atmosphere like Firmament (include/firmament/atmosphere_lookup.glsl),
+// as of the last record(): the views stay valid until the next record().
+struct EmbeddedLookups {
+  const gpu::Image* transmittance = nullptr;
+  const gpu::Image* aerialPerspective = nullptr;
+  float parameters[4][4] = {};  // FirmamentAtmosphere: radii, sun, sunIlluminance, image
+};
+
 class SkyRenderer {
  public:
   explicit SkyRenderer(gpu::Context& context);
   RenderResult render(const Scene& scene, const SkyRenderOptions& options = {});
+  // Embedded mode: the frame's passes recorded into targets.commands (not submitted), composited with
+  // the host's depth and written to its colour image. Preparation (tables, cloud noise, a new weather
+  // map, first-use resources) is submitted to the context's queue and waited for here, before anything
+  // is recorded; a frame needing none submits nothing (Context::submissionCount). Three wavelengths
+  // (one spectral batch) always. The resources the recording uses stay until the next record().
+  // result.timings and frameMilliseconds are the previous record()'s passes (timestamps in the host's
+  // command buffer, read without waiting; empty when they are not available).
+  RenderResult record(const Scene& scene, const SkyRenderOptions& options, const EmbeddedRecording& targets);
+  const EmbeddedLookups& lookups() const { return lookups_; }
   gpu::Context& context() { return context_; }
   // The clouds' Beer shadow map of the last render with it enabled (RGBA floats; empty otherwise).
   std::vector<float> cloudShadowMap() const;
@@ -120,6 +152,11 @@ class SkyRenderer {
   // The terrain (sky/terrain_pass.h) over the sky, before the clouds; shadow: the clouds' Beer shadow map.
   void recordTerrain(Frame& frame, RenderResult& result, gpu::CommandList& commands, const TerrainCloudShadow* shadow);
   void resolve(const Scene& scene, Frame& frame, gpu::CommandList& commands, RenderResult& result);
+  // Embedded mode: the aerial-perspective volume for the host's pixels (unless the clouds recorded one),
+  // then the host's depth and colour into the frame (sky/embed_composite.glsl, mode 0), or, without
+  // clouds, straight to the host's image (mode 2).
+  void recordHostDepth(Frame& frame, RenderResult& result, gpu::CommandList& commands, bool aerialRecorded);
+  void recordHostWrite(Frame& frame, gpu::CommandList& commands);  // mode 1: the frame to the host's image
 
   gpu::Context& context_;
   AtmosphereLuts luts_;
@@ -141,6 +178,15 @@ class SkyRenderer {
   // What skyView_ holds: the tables' key, the camera radius, the sun's zenith cosine, the steps (empty:
   // nothing). The table is in the sun's frame, so a camera that only turns keeps it.
   std::string skyViewKey_;
+  // Embedded mode: the frame and the host's distances kept past record() (the host runs them later).
+  std::shared_ptr<gpu::Buffer> embeddedOutput_;
+  std::unique_ptr<gpu::CommandList> embeddedCommands_;  // the last record()'s, for its timestamps
+  gpu::Buffer hostDistance_;
+  gpu::Buffer farPlaceholder_;                               // one float, 1e30: no terrain
+  std::unique_ptr<gpu::ComputePipeline> embedPipelines_[2];  // RGBA16F, RGBA32F host image
+  std::unique_ptr<gpu::Sampler> nearestClamp_;
+  double embeddedAerialDistance_m_ = 0.0;
+  EmbeddedLookups lookups_;
 };
 
 }  // namespace firmament

@@ -1,8 +1,9 @@
 #pragma once
 // Firmament's public C++ API (docs/api.md): a sky built from a scene file or scene JSON, then per frame
 // a camera, a time and a size in, a linear HDR image and its frame time out. This header includes no
-// other Firmament header, nor Vulkan: today the sky owns a headless Vulkan context of its own and
-// returns the image on the CPU (embedding into a host's VkDevice and command buffer is a later phase).
+// other Firmament header, nor Vulkan. Two ways to run: offline, the sky owns a headless Vulkan context
+// and render() returns the image on the CPU; embedded (firmament/embed.h), it adopts a host's Vulkan
+// device and record() records into the host's command buffer.
 //
 //   auto sky = firmament::Sky::Builder().sceneFile("scenes/cumulus.json").build();
 //   sky->setCamera({.heightAboveGround_m = 2, .yaw_deg = 180, .pitch_deg = 10});
@@ -16,6 +17,12 @@
 #include <vector>
 
 namespace firmament {
+
+// Embedded mode's types, defined in firmament/embed.h (which includes Vulkan).
+struct EmbeddedDevice;
+struct EmbeddedTargets;
+struct EmbeddedFrame;
+struct AtmosphereLookups;
 
 // The camera, in the local frame of the scene's ground point (/location).
 struct SkyCamera {
@@ -39,6 +46,9 @@ struct SkyFrame {
   double sunAzimuth_deg = 0.0;
 };
 
+// Writes frame.rgba to an OpenEXR file (linear, 32-bit float RGBA).
+void saveExr(const SkyFrame& frame, const std::string& path);
+
 class Sky {
  public:
   class Builder {
@@ -53,6 +63,9 @@ class Sky {
     // True (default): consecutive render() calls form a sequence: the clouds reproject the previous frame
     // (/clouds/temporal_update) and unchanged tables are kept. False: every frame is a still.
     Builder& temporalReprojection(bool enabled);
+    // Embedded mode (firmament/embed.h): adopt the host's Vulkan objects instead of creating a context.
+    // device() is then ignored; render() is unavailable, record() is the frame.
+    Builder& embedded(const EmbeddedDevice& device);
     std::unique_ptr<class Sky> build();
 
    private:
@@ -78,6 +91,12 @@ class Sky {
   // size continues it; restartSequence() makes the next frame a still (every pixel marched).
   SkyFrame render(int width, int height);
   void restartSequence();
+
+  // Embedded mode (firmament/embed.h): records the frame into targets.commandBuffer, compositing over
+  // the host's colour at its depth. Throws InputError for bad targets or in offline mode.
+  EmbeddedFrame record(const EmbeddedTargets& targets);
+  // The transmittance and aerial-perspective tables of the last record(), for the host's shaders.
+  AtmosphereLookups lookups() const;
 
   // The current view as a scene file (camera, time, place and every other field): `firmament render` of
   // it reproduces a still of this view.

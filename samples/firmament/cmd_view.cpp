@@ -81,10 +81,17 @@ class Viewer {
     if (auto s = args.get("script")) script_ = viewer::loadScript(*s);
     scripted_ = args.has("script");
     readControls();
-    SkyCamera c = sky_->camera();
-    fly_.camera = c;
+    readFly();
+  }
+
+  // The fly camera from the view: its camera, place and cloud offset (0 without clouds).
+  void readFly() {
+    fly_.camera = sky_->camera();
     fly_.latitude_deg = std::stod(sky_->get("/location/latitude_deg"));
     fly_.longitude_deg = std::stod(sky_->get("/location/longitude_deg"));
+    const std::string east = sky_->get("/clouds/offset_east_m"), north = sky_->get("/clouds/offset_north_m");
+    fly_.cloudOffsetEast_m = east.empty() ? 0.0 : std::stod(east);
+    fly_.cloudOffsetNorth_m = north.empty() ? 0.0 : std::stod(north);
   }
 
   int run() {
@@ -153,6 +160,11 @@ class Viewer {
   void applyView() {
     sky_->setCamera(fly_.camera);
     sky_->setLocation(fly_.latitude_deg, fly_.longitude_deg);
+    // The clouds pass by: they are placed relative to the location, which the flight moved too.
+    if (!sky_->get("/clouds/offset_east_m").empty()) {
+      sky_->set("/clouds/offset_east_m=" + std::to_string(fly_.cloudOffsetEast_m));
+      sky_->set("/clouds/offset_north_m=" + std::to_string(fly_.cloudOffsetNorth_m));
+    }
   }
 
   void advanceTime(double hours) {
@@ -226,9 +238,7 @@ class Viewer {
       case K::Set:
         sky_->set(c.text);
         readControls();
-        fly_.camera = sky_->camera();
-        fly_.latitude_deg = std::stod(sky_->get("/location/latitude_deg"));
-        fly_.longitude_deg = std::stod(sky_->get("/location/longitude_deg"));
+        readFly();
         break;
       case K::Wait:
         waitFrames_ = int(c.a) - 1;

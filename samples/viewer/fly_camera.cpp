@@ -18,6 +18,8 @@ void fly(FlyState& s, const FlyInput& input, double seconds) {
   s.latitude_deg = std::clamp(s.latitude_deg + north / radius * 180.0 / M_PI, -89.9, 89.9);
   const double lon = s.longitude_deg + east / (radius * std::cos(s.latitude_deg * M_PI / 180.0)) * 180.0 / M_PI;
   s.longitude_deg = std::remainder(lon, 360.0);
+  s.cloudOffsetEast_m += east;
+  s.cloudOffsetNorth_m += north;
   s.camera.heightAboveGround_m = std::clamp(s.camera.heightAboveGround_m + d * input.up, kMinHeight_m, kMaxHeight_m);
 }
 

@@ -20,6 +20,11 @@ struct FlyState {
   double latitude_deg = 0.0;
   double longitude_deg = 0.0;
   double speed_m_s = 10.0;
+  // The horizontal distance flown (m, east and north), for the clouds (/clouds/offset_east_m, _north_m):
+  // the clouds are placed relative to the ground point, so a flight that only moved the location would
+  // carry them along; with the offset they pass by.
+  double cloudOffsetEast_m = 0.0;
+  double cloudOffsetNorth_m = 0.0;
 };
 
 // Movement for held keys, each -1, 0 or 1: forward (W +, S -), right (D +, A -), up (E +, Q -).
@@ -31,8 +36,8 @@ struct FlyInput {
 
 // Moves the camera for `seconds` of the held keys at state.speed_m_s. Horizontal moves follow the yaw
 // (north = yaw 0) along the ground and change the latitude and longitude (longitude wrapped to
-// [-180, 180], latitude clamped to +-89.9); vertical ones the height, clamped to
-// [kMinHeight_m, kMaxHeight_m].
+// [-180, 180], latitude clamped to +-89.9) and add the distance to the cloud offset; vertical ones the
+// height, clamped to [kMinHeight_m, kMaxHeight_m].
 void fly(FlyState& state, const FlyInput& input, double seconds);
 
 // Turns the camera for a mouse drag of (dx, dy) pixels: right turns clockwise, up pitches up (to +-90).

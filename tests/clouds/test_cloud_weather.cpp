@@ -141,6 +141,39 @@ TEST_F(CloudWeather, TheWindCarriesTheMapWithTheNoise) {
   EXPECT_LT(worst, 0.01);
 }
 
+// A camera offset (/clouds/offset_east_m, the viewer's horizontal flight) reads the field from there:
+// 10 km east of a 3 km disc the GPU looking straight up sees no cloud, and on the CPU the column 10 km
+// west of the camera holds what the column overhead held without the offset (the curvature's few metres
+// as in the wind test above).
+TEST_F(CloudWeather, TheCameraOffsetSeesTheFieldFromThere) {
+  SkyRenderOptions o = test::smallCloudOptions();
+  auto at = [&](double east_m) {
+    return test::cloudScene({"/clouds/layers/0/coverage=1", "/camera/pitch_deg=90", "/camera/fov_deg=30",
+                             "/camera/width=16", "/camera/height=16",
+                             "/clouds/offset_east_m=" + std::to_string(east_m)});
+  };
+  o.cloudWeather = std::make_shared<CloudWeatherMap>(discMap({0.0, 0.0}, 3000.0));
+  const RenderResult above = test::cloudRenderer().render(at(0.0), o);
+  const RenderResult away = test::cloudRenderer().render(at(10000.0), o);
+  const double tAbove = meanTransmittance(above.clouds), tAway = meanTransmittance(away.clouds);
+  std::printf("overhead: mean T %.4f above the disc, %.4f 10 km east of it\n", tAbove, tAway);
+  EXPECT_LT(tAbove, 0.5);
+  EXPECT_EQ(tAway, 1.0);
+
+  const double ground = above.view.cameraRadius - 2.0;
+  const CloudMedium here = mediumFor(at(0.0), discMap({0.0, 0.0}, 3000.0), ground);
+  const CloudMedium there = mediumFor(at(10000.0), discMap({0.0, 0.0}, 3000.0), ground);
+  double worst = 0.0;
+  for (double north : {-1500.0, 0.0, 1500.0}) {
+    const double overhead = verticalOpticalDepth(here, ground, 0.0, north);
+    const double west = verticalOpticalDepth(there, ground, -10000.0, north);
+    ASSERT_GT(overhead, 1.0);
+    worst = std::max(worst, std::abs(west / overhead - 1.0));
+    EXPECT_EQ(verticalOpticalDepth(there, ground, 0.0, north), 0.0) << north;
+  }
+  EXPECT_LT(worst, 0.01);
+}
+
 // The procedural map: deterministic per seed, with clear gaps and fully covered areas.
 TEST(CloudWeatherMapTest, ProceduralMapHasGapsAndCover) {
   const CloudWeatherMap a = proceduralCloudWeatherMap(1), b = proceduralCloudWeatherMap(1),

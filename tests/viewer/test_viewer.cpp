@@ -100,6 +100,9 @@ TEST(Viewer, FlyCameraMovesAlongTheYaw) {
   firmament::viewer::fly(s, firmament::viewer::parseKeys("w"), 10.0);  // 10 km east at the equator
   EXPECT_NEAR(s.latitude_deg, 0.0, 1e-9);
   EXPECT_NEAR(s.longitude_deg, 10000.0 / (6371002.0) * 180.0 / M_PI, 1e-9);
+  // The clouds' offset follows the flight, so they pass by (/clouds/offset_east_m).
+  EXPECT_NEAR(s.cloudOffsetEast_m, 10000.0, 1e-9);
+  EXPECT_NEAR(s.cloudOffsetNorth_m, 0.0, 1e-9);
   firmament::viewer::fly(s, firmament::viewer::parseKeys("e"), 1.0);
   EXPECT_NEAR(s.camera.heightAboveGround_m, 1002.0, 1e-9);
   firmament::viewer::drag(s, 50.0, 1000.0);  // 10 deg clockwise; pitch clamps at -90
