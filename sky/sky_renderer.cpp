@@ -146,6 +146,8 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   RenderResult result;
   Frame frame = plan(scene, options, result);
   frame.embedded = &targets;
+  result.light.direction = result.view.sunDirection;  // the Sun, unless the night's light is the Moon
+  result.light.reason = "the Sun";
   prepareTables(frame, result);
   prepareClouds(scene, frame, result);
   // The previous frame's pass timings (its commands have finished: one frame in flight), then this
@@ -159,6 +161,7 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   gpu::CommandList& commands = *embeddedCommands_;
   recordSky(frame, result, commands);
   if (result.night.run) recordNight(scene, frame, result, commands);
+  if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
   if (frame.terrain && !frame.clouds) {
     commands.barrier();
     recordTerrain(frame, result, commands, nullptr);
