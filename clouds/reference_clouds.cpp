@@ -59,13 +59,22 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   const double ph = shared::cloudHeightFraction(column, r);
   if (ph <= 0.0 || ph >= 1.0) return 0.0;
   const glm::dvec3 local = shared::cloudLocalPosition(column, p);
-  const double base =
-      shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)), weather.x);
-  if (base <= 0.0) return 0.0;
   const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(column, local));
+  const double base = shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)),
+                                                weather.x, curl.z);
+  if (base <= 0.0) return 0.0;
   const glm::dvec4 detail =
       detail_.sample(shared::cloudDetailCoordinate(column, local, glm::dvec2(curl.x, curl.y), ph));
   return column.extinction * shared::cloudDensity(column, ph, base, detail);
+}
+
+double CloudMedium::mapCoverage(size_t i, glm::dvec3 p) const {
+  const shared::CloudLayer& layer = layers_[i];
+  const glm::dvec4 weather = weather_.sample(shared::cloudWeatherCoordinate(
+      p, groundRadius_m_, glm::dvec2(weather_.width_m, weather_.height_m), weather_.skew, layer.wind_offset));
+  bool empty = false;
+  shared::cloudColumnLayer(layer, weather, groundRadius_m_, empty);
+  return empty ? 0.0 : shared::cloudSaturate(layer.coverage * weather.x);
 }
 
 double CloudMedium::extinction(glm::dvec3 p) const {
