@@ -24,7 +24,7 @@ namespace firmament {
 struct CloudNoiseSettings {
   int shapeSize = 128;     // shape texture: size³ RGBA (Perlin-Worley, Worley x3)
   int detailSize = 32;     // detail texture: size³ RGBA (Worley x4)
-  int curlSize = 512;      // curl texture: size² (RG curl, B the cumulus population: 12 m texels)
+  int curlSize = 128;      // curl texture: size² (RG)
   int blueNoiseSize = 64;  // blue-noise mask: size² (R)
   std::string key(uint32_t seed) const;
 };

@@ -59,10 +59,10 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   const double ph = shared::cloudHeightFraction(column, r);
   if (ph <= 0.0 || ph >= 1.0) return 0.0;
   const glm::dvec3 local = shared::cloudLocalPosition(column, p);
-  const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(column, local));
-  const double base = shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)),
-                                                weather.x, curl.z);
+  const double base =
+      shared::cloudShapeDensity(column, ph, shape_.sample(shared::cloudShapeCoordinate(column, local)), weather.x);
   if (base <= 0.0) return 0.0;
+  const glm::dvec4 curl = curl_.sample(shared::cloudCurlCoordinate(column, local));
   const glm::dvec4 detail =
       detail_.sample(shared::cloudDetailCoordinate(column, local, glm::dvec2(curl.x, curl.y), ph));
   return column.extinction * shared::cloudDensity(column, ph, base, detail);

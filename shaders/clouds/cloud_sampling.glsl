@@ -132,8 +132,7 @@ float shapeSignedDensityAt(CloudLayer layer, vec3 p, vec2 lod, out CloudLayer co
   if (ph <= 0.0 || ph >= 1.0) return -1.0;
   local = cloudLocalPosition(column, p);
   vec4 shape = textureLod(shapeNoise, cloudShapeCoordinate(column, local), lod.x);
-  float population = textureLod(curlNoise, cloudCurlCoordinate(column, local), 0.0).z;  // cloudPopulationNoise
-  return cloudShapeSignedDensity(column, ph, shape, weather.x, population);
+  return cloudShapeSignedDensity(column, ph, shape, weather.x);
 }
 
 // The shape-only density SN_nd at p (0 outside the shell or where the weather map has no cloud).

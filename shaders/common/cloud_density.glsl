@@ -162,58 +162,24 @@ SHARED_INLINE vec3 cloudDetailCoordinate(CloudLayer layer, vec3 local, vec2 curl
   return q / layer.detail_period;
 }
 
-// The local coverage of a convective column: a weather cell's coverage c = g_c WM_c becomes a
-// population of cumuli. The population field P (cloud_noise.glsl, cloudPopulationNoise: a fractional
-// Brownian surface of H = 0.65 between 47 m and 1.5 km, close to uniform in [0, 1]) exceeds 1 - c on
-// about the fraction c of the cell, in islands whose boundaries have the fractal dimension 2 - H and
-// whose sizes spread over the octaves; the local coverage rises from 0 at an island's edge to 1 over
-// kCloudPopulationEdge of P, so that an island's cloud grows from a thin base at its edge to the
-// layer's top inside it (eq. 15's threshold then lowers the top with the local coverage: the small
-// clouds are shallow and the large ones deep). Stratiform columns (the map's type, the layer's kind)
-// keep the cell's coverage: the weight of the population is 1 - stratiform for cumulus and
-// cumulonimbus, 0 for the other kinds.
-const Real kCloudPopulationEdge = 0.08;
-SHARED_INLINE Real cloudPopulationWeight(CloudLayer layer) {
-  bool convective = layer.kind == kCloudCumulus || layer.kind == kCloudCumulonimbus;
-  return convective ? 1.0 - cloudSaturate(layer.stratiform) : 0.0;
-}
-// How far inside a population island P is (P-units; < 0 outside), for coverage c.
-SHARED_INLINE Real cloudPopulationExcess(Real coverage, Real population) { return population - (1.0 - coverage); }
-SHARED_INLINE Real cloudPopulationCoverage(CloudLayer layer, Real coverage, Real population) {
-  Real local = cloudSaturate(cloudPopulationExcess(coverage, population) / kCloudPopulationEdge);
-  return mix(coverage, local, cloudPopulationWeight(layer));
-}
-
 // SN_nd (eqs. 11 and 15): the shape-only density in [0, 1], before the detail erosion and DA; 0 outside
-// the shell. weatherCoverage = WM_c in [0, 1] (1 where no weather map drives the layer); population = P
-// (the curl texture's B channel) at the point.
+// the shell. weatherCoverage = WM_c in [0, 1] (1 where no weather map drives the layer).
 //
 // cloudShapeSignedDensity is eq. 15 before its clamp: <= 0 outside the cloud, and how far below 0 says
 // how far the point is from the shape's edge (-1 outside the shell or without coverage). The march's
-// empty-space test uses it with a margin (docs/clouds.md, "Empty-space skipping"). The population's
-// islands change over 47 m, faster than the shape noise, so below 0 the value is at least
-// kCloudPopulationSkipSlope times the population's excess: a point is taken as far from the shape only
-// where it is also well outside every island (inside an island nothing is skipped).
-const Real kCloudPopulationSkipSlope = 0.25;
-SHARED_INLINE Real cloudShapeSignedDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage,
-                                           Real population) {
+// empty-space test uses it with a margin (docs/clouds.md, "Empty-space skipping").
+SHARED_INLINE Real cloudShapeSignedDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage) {
   if (ph <= 0.0 || ph >= 1.0) return -1.0;
-  Real cellCoverage = cloudSaturate(layer.coverage * weatherCoverage);
-  if (cellCoverage <= 0.0) return -1.0;  // R(x, 1, 1, 0, 1) is 0/0: no coverage, no cloud
-  Real weight = cloudPopulationWeight(layer);
-  Real bound =
-      weight > 0.0 ? max(kCloudPopulationSkipSlope * cloudPopulationExcess(cellCoverage, population), -1.0) : -1.0;
-  Real coverage = cloudPopulationCoverage(layer, cellCoverage, population);
-  if (coverage <= 0.0) return min(bound, 0.0);
+  Real coverage = cloudSaturate(layer.coverage * weatherCoverage);
+  if (coverage <= 0.0) return -1.0;  // R(x, 1, 1, 0, 1) is 0/0: no coverage, no cloud
   Real fbm = 0.625 * shape.y + 0.25 * shape.z + 0.125 * shape.w;
-  Real shapeSample = cloudSaturate(cloudRemap(shape.x, fbm - 1.0, 1.0, 0.0, 1.0));  // eq. 11
+  Real shapeSample = cloudSaturate(cloudRemap(shape.x, fbm - 1.0, 1.0, 0.0, 1.0));                   // eq. 11
   Real sa = cloudLayerShapeProfile(layer, ph);
   // eq. 15 with the threshold 1 - c: R(x, 1 - c, 1, 0, 1) = (x - 1 + c) / c.
-  Real v = min((shapeSample * sa - 1.0 + coverage) / coverage, 1.0);
-  return v > 0.0 ? v : min(max(v, bound), 0.0);
+  return min((shapeSample * sa - 1.0 + coverage) / coverage, 1.0);
 }
-SHARED_INLINE Real cloudShapeDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage, Real population) {
-  return max(cloudShapeSignedDensity(layer, ph, shape, weatherCoverage, population), 0.0);
+SHARED_INLINE Real cloudShapeDensity(CloudLayer layer, Real ph, vec4 shape, Real weatherCoverage) {
+  return max(cloudShapeSignedDensity(layer, ph, shape, weatherCoverage), 0.0);
 }
 
 // d (eqs. 13, 14, 16): the final density, 0 <= d <= shapeDensity * density_scale.

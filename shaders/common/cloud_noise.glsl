@@ -147,71 +147,11 @@ SHARED_INLINE Real curlPotential(vec2 uv, uint seed) {
   return perlinNoise(p, 4.0, seed) + 0.5 * perlinNoise(p * 2.0, 8.0, seed ^ 0x21u);
 }
 
-// The cumulus population field (the curl texture's B channel): where in a weather cell's coverage the
-// clouds stand (cloud_density.glsl, cloudPopulationCoverage; docs/clouds/shapes.md).
-// - A periodic Perlin fbm of kCloudPopulationOctaves octaves from 4 cells per period (1.5 km at the
-//   default 6 km curl period: the 1-2 km scale break of shallow cumulus sizes, Neggers et al. 2003) down
-//   to 128 cells (47 m), each octave's amplitude 2^-H of the one before: a fractional Brownian surface
-//   of Hurst exponent H between those scales, whose level sets have the fractal dimension D = 2 - H
-//   (Mandelbrot 1982, "The fractal geometry of nature", ch. 28); H = 0.65 for the D = 1.35 of observed
-//   cloud fields (Lovejoy 1982).
-// - The sum mapped through the logistic approximation of the normal distribution function,
-//   Phi(x) ~ 1 / (1 + e^-1.702x) (Bowling et al. 2009, within 0.0095), with the sum's standard deviation
-//   kCloudPopulationSigma measured over 512^2 texels of seeds 1-3 (0.32-0.38): close to uniform in
-//   [0, 1], so the area where it exceeds 1 - c is about c.
-// - Times a ramp from 0 on the edges of 2D Worley cells (kCloudPopulationCells per period: 3 km) to 1 at
-//   kCloudPopulationLane cells from them ((F2 - F1) / 2, the distance to the bisector), the cells warped
-//   by two Perlin octaves (8 and 16 per period, kCloudPopulationWarp cells): clear lanes that keep a
-//   cell's clouds from merging with the next cell's into one sheet where the coverage is high.
-const int kCloudPopulationOctaves = 6;
-const Real kCloudPopulationHurst = 0.65;
-const Real kCloudPopulationSigma = 0.35;
-const Real kCloudPopulationCells = 2.0;
-const Real kCloudPopulationLane = 0.04;  // cells
-const Real kCloudPopulationWarp = 0.15;  // cells
-SHARED_INLINE Real cloudPopulationNoise(vec2 uv, uint seed) {
-  Real sum = 0.0;
-  Real amplitude = 1.0;
-  Real cells = 4.0;
-  Real gain = exp2(-kCloudPopulationHurst);
-  for (int o = 0; o < kCloudPopulationOctaves; ++o) {
-    sum += amplitude * perlinNoise(vec3(uv.x * cells, uv.y * cells, 0.5), cells, seed + uint(o) * 0x2545F491u);
-    amplitude *= gain;
-    cells *= 2.0;
-  }
-  Real u = 1.0 / (1.0 + exp(-1.702 * sum / kCloudPopulationSigma));
-  // The lanes: the Worley cells at the warped position q (cells).
-  vec2 q = uv * kCloudPopulationCells;
-  for (int o = 0; o < 2; ++o) {
-    Real cells = 8.0 * exp2(Real(o));
-    Real a = kCloudPopulationWarp * exp2(-Real(o));
-    q.x += a * perlinNoise(vec3(uv.x * cells, uv.y * cells, 0.25), cells, seed ^ (0x91u + uint(o)));
-    q.y += a * perlinNoise(vec3(uv.x * cells, uv.y * cells, 0.75), cells, seed ^ (0xA3u + uint(o)));
-  }
-  Real x0 = floor(q.x);
-  Real y0 = floor(q.y);
-  Real f1 = 9.0;
-  Real f2 = 9.0;
-  for (int k = 0; k < 9; ++k) {
-    Real cx = x0 + Real(k % 3 - 1);
-    Real cy = y0 + Real(k / 3 - 1);
-    uint h = noiseLatticeHash(cx, cy, 0.0, kCloudPopulationCells, seed ^ 0x77u);
-    Real dx = cx + noiseUnit(h) - q.x;
-    Real dy = cy + noiseUnit(noiseHash(h ^ 0x68E31DA4u)) - q.y;
-    Real d = sqrt(dx * dx + dy * dy);
-    f2 = d < f1 ? f1 : min(f2, d);
-    f1 = min(f1, d);
-  }
-  return u * clamp(0.5 * (f2 - f1) / kCloudPopulationLane, 0.0, 1.0);
-}
-
-// R, G: the curl; B: the population field (cloudPopulationNoise); A: 1.
 SHARED_INLINE vec4 cloudCurlNoise(vec2 uv, uint seed, Real h) {
   Real dy = (curlPotential(vec2(uv.x, uv.y + h), seed) - curlPotential(vec2(uv.x, uv.y - h), seed)) / (2.0 * h);
   Real dx = (curlPotential(vec2(uv.x + h, uv.y), seed) - curlPotential(vec2(uv.x - h, uv.y), seed)) / (2.0 * h);
   Real scale = 1.0 / (2.0 * kPi * 4.0);
-  return vec4(clamp(0.5 + 0.5 * dy * scale, 0.0, 1.0), clamp(0.5 - 0.5 * dx * scale, 0.0, 1.0),
-              cloudPopulationNoise(uv, seed ^ 0x5Du), 1.0);
+  return vec4(clamp(0.5 + 0.5 * dy * scale, 0.0, 1.0), clamp(0.5 - 0.5 * dx * scale, 0.0, 1.0), 0.5, 1.0);
 }
 
 SHARED_END
