@@ -68,6 +68,15 @@ double CloudMedium::extinction(size_t i, glm::dvec3 p) const {
   return column.extinction * shared::cloudDensity(column, ph, base, detail);
 }
 
+double CloudMedium::mapCoverage(size_t i, glm::dvec3 p) const {
+  const shared::CloudLayer& layer = layers_[i];
+  const glm::dvec4 weather = weather_.sample(shared::cloudWeatherCoordinate(
+      p, groundRadius_m_, glm::dvec2(weather_.width_m, weather_.height_m), weather_.skew, layer.wind_offset));
+  bool empty = false;
+  shared::cloudColumnLayer(layer, weather, groundRadius_m_, empty);
+  return empty ? 0.0 : shared::cloudSaturate(layer.coverage * weather.x);
+}
+
 double CloudMedium::extinction(glm::dvec3 p) const {
   double sum = 0.0;
   for (size_t i = 0; i < layers_.size(); ++i) sum += extinction(i, p);

@@ -49,6 +49,9 @@ class CloudMedium {
   double extinction(size_t layer, glm::dvec3 p) const;
   // Extinction (m^-1) of all layers at p: their sum (layers do not overlap, so at most one is non-zero).
   double extinction(glm::dvec3 p) const;
+  // The coverage g_c WM_c the weather map asks of layer i in p's column (0 where the column holds none
+  // of the layer): the cloud fraction the map means, which the clouds' field is measured against.
+  double mapCoverage(size_t layer, glm::dvec3 p) const;
 
  private:
   std::vector<shared::CloudLayer> layers_;

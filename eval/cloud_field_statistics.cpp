@@ -28,11 +28,18 @@ CloudColumnField sampleCloudColumns(const CloudMedium& medium, const CloudVolume
   const int workers =
       std::max(1, std::min(threads > 0 ? threads : int(std::thread::hardware_concurrency()), field.height));
   std::atomic<int> nextRow{0};
+  std::vector<double> rowCoverage(field.height, 0.0);
   auto work = [&] {
     for (int j = nextRow++; j < field.height; j = nextRow++) {
       const double y = field.south_m + (j + 0.5) * field.pixel_m;
       for (int i = 0; i < field.width; ++i) {
         const double x = field.west_m + (i + 0.5) * field.pixel_m;
+        double cover = 0.0;
+        for (size_t l = 0; l < medium.layers().size(); ++l) {
+          const double base = medium.layers()[l].bottom_radius - medium.groundRadius() + 1.0;
+          cover = std::max(cover, medium.mapCoverage(l, cloudFrameFromLocalEnu({x, y, base}, medium.groundRadius())));
+        }
+        rowCoverage[j] += cover;
         double tau = 0.0, top = 0.0;
         for (int k = 0; k < steps; ++k) {
           const double z = region.bottom_m + (k + 0.5) * h;
@@ -50,6 +57,8 @@ CloudColumnField sampleCloudColumns(const CloudMedium& medium, const CloudVolume
   for (int t = 1; t < workers; ++t) pool.emplace_back(work);
   work();
   for (auto& t : pool) t.join();
+  for (double c : rowCoverage) field.mapCoverage += c;
+  field.mapCoverage /= double(field.opticalDepth.size());
   return field;
 }
 

@@ -27,6 +27,9 @@ struct CloudColumnField {
   double west_m = 0.0, south_m = 0.0;  // the south-west corner of pixel (0, 0), local ENU (m)
   std::vector<float> opticalDepth;     // vertical optical depth of all layers at 550 nm
   std::vector<float> top_m;            // highest height with cloud in the column (m above the ground); 0 if none
+  // The mean over the columns of the coverage the weather map asks (CloudMedium::mapCoverage at each
+  // layer's base, the largest of the layers): the cloud fraction the map means.
+  double mapCoverage = 0.0;
 };
 
 // Samples the medium's columns over the region's horizontal box, one per pixel of size

@@ -102,6 +102,7 @@ int runAnalyze(const Args& args) {
   j["columns"] = {field.width, field.height};
   j["optical_depth_threshold"] = statistics.opticalDepthThreshold;
   j["cloud_fraction"] = s.cloudFraction;
+  j["map_coverage"] = field.mapCoverage;
   j["clouds"] = s.clouds;
   j["fractal_dimension"] = {{"D", s.fractalDimension},
                             {"standard_error", s.fractalDimensionError},
@@ -142,11 +143,12 @@ int runAnalyze(const Args& args) {
 
   char line[400];
   std::snprintf(line, sizeof(line),
-                "analyze clouds: fraction %.3f, %d clouds, D %.3f +- %.3f (%d clouds), beta %.2f +- %.2f (%d "
+                "analyze clouds: fraction %.3f (the map's coverage %.3f), %d clouds, D %.3f +- %.3f (%d clouds), beta "
+                "%.2f +- %.2f (%d "
                 "clouds above %.0f m), largest %.2f km across, tops mean %.0f m, max %.0f m; wrote %s",
-                s.cloudFraction, s.clouds, s.fractalDimension, s.fractalDimensionError, s.cloudsInDimensionFit,
-                s.sizeExponent, s.sizeExponentError, s.cloudsInSizeFit, s.sizeFitMin_m, s.largestSize_m * 1e-3,
-                s.meanTop_m, s.maxTop_m, dir.string().c_str());
+                s.cloudFraction, field.mapCoverage, s.clouds, s.fractalDimension, s.fractalDimensionError,
+                s.cloudsInDimensionFit, s.sizeExponent, s.sizeExponentError, s.cloudsInSizeFit, s.sizeFitMin_m,
+                s.largestSize_m * 1e-3, s.meanTop_m, s.maxTop_m, dir.string().c_str());
   logInfo(line);
   return kExitOk;
 }

@@ -49,6 +49,10 @@ TEST(CliAnalyzeClouds, WeatherSceneWritesStatisticsThatAgreeWithTheFields) {
   }
   EXPECT_DOUBLE_EQ(stats["cloud_fraction"].get<double>(), double(cloudy) / double(depth.values.size()));
   EXPECT_GT(cloudy, 0u) << "the cumulus scene has cloud over the camera's 8 x 6 km";
+  // The map's coverage (CloudMedium::mapCoverage): cloud is asked where the field has some.
+  const double asked = stats["map_coverage"].get<double>();
+  EXPECT_GT(asked, 0.0);
+  EXPECT_LE(asked, 1.0);
 
   // clouds.csv: one row per cloud, whose areas add up to the cloudy columns' area.
   std::ifstream csv(dir / "out" / "clouds.csv");
