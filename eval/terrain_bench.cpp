@@ -24,7 +24,9 @@ struct Knob {
 
 std::vector<Knob> knobs(bool quick) {
   std::vector<Knob> k;
-  k.push_back({"default", "shadow map 256 over 40 km, deck sky light, self-shadow", [](SkyRenderOptions&) {}});
+  k.push_back(
+      {"default", "shadow map 256 over 40 km, penumbra, deck sky light, self-shadow", [](SkyRenderOptions&) {}});
+  k.push_back({"penumbra", "off", [](SkyRenderOptions& o) { o.terrain.penumbra = false; }});
   k.push_back({"self_shadow", "off", [](SkyRenderOptions& o) { o.terrain.selfShadow = false; }});
   k.push_back(
       {"sky_light", "clear-sky table", [](SkyRenderOptions& o) { o.terrain.skyLight = TerrainSkyLight::Clear; }});

@@ -146,6 +146,7 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   b.heights[0] = f.hasOutside() ? float(f.outsideHeight) : 0.0f;
   b.heights[1] = fieldTop_;
   b.heights[2] = view.skyLight == TerrainSkyLight::Clear ? 1.0f : 0.0f;
+  b.heights[3] = float(std::tan(std::max(view.sunAngularRadius, 0.0)));
   if (shadow && shadow->map) {
     put(b.shadowCentre, shadow->centre, shadow->extent_m);
     put(b.shadowU, shadow->u, shadow->start_m);
@@ -163,10 +164,8 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   block_.upload(&b, sizeof(b));
 }
 
-void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts,
-                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& frame,
-                         const gpu::TileDispatch& tiles, gpu::CommandList& commands, const TerrainCloudShadow* shadow) {
-  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("TerrainPass: one irradiance table per batch");
+void TerrainPass::recordCast(const TerrainPassView& view, const gpu::TileDispatch& tiles, gpu::CommandList& commands,
+                             const TerrainCloudShadow* shadow) {
   uploadBlock(view, shadow);
   const VkDeviceSize pixels = VkDeviceSize(view.camera.width) * VkDeviceSize(view.camera.height);
   if (!hits_ || hits_.size() != pixels * 8 * sizeof(float))
@@ -181,6 +180,13 @@ void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts
   commands.pushConstants(castPush);
   commands.dispatchTiles(tiles, "terrain/cast_terrain");
   commands.barrier();
+}
+
+void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts,
+                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& frame,
+                         const gpu::TileDispatch& tiles, gpu::CommandList& commands, const TerrainCloudShadow* shadow) {
+  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("TerrainPass: one irradiance table per batch");
+  recordCast(view, tiles, commands, shadow);
   const size_t batches = luts.batchCount();
   for (size_t b = 0; b < batches; ++b) {
     const AtmosphereLuts::Batch& batch = luts.batch(b);

@@ -35,6 +35,9 @@ enum class TerrainSkyLight {
 struct TerrainPassOptions {
   bool selfShadow = true;  // a shadow ray per pixel at the sun
   TerrainSkyLight skyLight = TerrainSkyLight::Deck;
+  // Soft cloud-shadow edges from the sun's disc: the shadow map read over the disc's footprint
+  // (shaders/terrain/cast_terrain.comp); off: one lookup at the sun's centre.
+  bool penumbra = true;
   // The ground's own radiance at the surface, without the air between camera and ground (eval's ground
   // reference compares this); the sky's pixels stay.
   bool groundOnly = false;
@@ -48,6 +51,8 @@ struct TerrainPassView {
   bool selfShadow = true;  // a shadow ray per pixel at the sun
   TerrainSkyLight skyLight = TerrainSkyLight::Deck;
   bool groundOnly = false;  // TerrainPassOptions::groundOnly
+  // The sun's angular radius (rad) for the cloud shadows' penumbrae; 0: no penumbra.
+  double sunAngularRadius = 0.0;
   // The mean cosine of the clouds' phase function, for the deck's diffuse transmission (Eddington's
   // (1 - g) tau): cloudPhaseMeanCosine of the scene's lighting.
   double deckAsymmetry = 0.85;
@@ -93,6 +98,11 @@ class TerrainPass {
   // Per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun, height,
   // surface) (shaders/terrain/cast_terrain.comp).
   const gpu::Buffer& hits() const { return hits_; }
+
+  // Records the cast alone (the pixels' hits and depth: hits(), depth()) and a barrier; record() runs it
+  // before the shading. For tests: a shadow map made by hand.
+  void recordCast(const TerrainPassView& view, const gpu::TileDispatch& tiles, gpu::CommandList& commands,
+                  const TerrainCloudShadow* shadow = nullptr);
 
   // The GPU cast on given rays, for tests: per ray (origin, r) and (direction, mu) in; per ray
   // (normal, t) and (height, surface, 0, 0) out. Submits and waits.
