@@ -56,7 +56,9 @@ std::vector<std::string> scenarioNames(const TerrainBenchConfig& config) {
 
 std::vector<std::string> overridesFor(const std::string& name, const TerrainBenchConfig& config) {
   std::vector<std::string> o;
-  if (name.rfind("dem_", 0) == 0) o.push_back("/terrain/file=" + (config.demDir / "terra" / "elev.tif").string());
+  // Absolute: a relative path in a scene is taken from the scene file's folder.
+  if (name.rfind("dem_", 0) == 0)
+    o.push_back("/terrain/file=" + std::filesystem::absolute(config.demDir / "terra" / "elev.tif").string());
   if (config.quick) {
     const nlohmann::json index = evalScenarioIndex("terrain");
     const nlohmann::json& size = index.at("quick_size");
