@@ -372,8 +372,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
       std::max(m.lowTransmittanceStepMax, 1.0), std::max(m.otherLayerLightStepsScale, 0.0));
   // Beer shadow map placement (common/cloud_shadow.glsl): centred above the camera's ground point at
   // the layers' mid-height, axes perpendicular to the sun; the march starts L above C along the sun,
-  // L = (top - mid) / max(mu_s, 0.05) + 1 km (past every layer's top for any sun above the horizon),
-  // and runs 2 L.
+  // L = (top - mid) / max(mu_s, 0.05) + 1 km + the square's half diagonal x tan(theta_s) (past every
+  // layer's top over the square for any sun above the horizon), and runs at most 2 L.
   {
     const double ground = luts.parameters().bottom_radius;
     double lowest = 1e30, highest = 0.0;
@@ -383,7 +383,13 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     const glm::dvec3 sun = glm::normalize(view.sunDirection);
     const glm::dvec3 u = perpendicularAxis(sun);
     const glm::dvec3 v = glm::cross(sun, u);
-    const double start = (highest - mid) / std::max(sun.z, 0.05) + 1000.0;
+    // L also allows for the square's extent: a texel at distance e from the centre along the sun's
+    // azimuth meets the layers e tan(theta_s) deeper or shallower along the sun, so with the half
+    // diagonal e = extent / sqrt(2) the start plane lies sunward of every layer over the square (the
+    // bake marches only each texel's stretch inside the layers, so a long march costs no resolution).
+    const double muS = std::max(sun.z, 0.05);
+    const double tanS = std::sqrt(std::max(1.0 - muS * muS, 0.0)) / muS;
+    const double start = (highest - mid) / muS + 1000.0 + m.shadowMapExtent_m / std::sqrt(2.0) * tanS;
     put(b.shadowCentre, centre, m.shadowMapExtent_m);
     put(b.shadowAxisU, u, start);
     put(b.shadowAxisV, v, 2.0 * start);

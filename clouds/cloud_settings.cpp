@@ -204,6 +204,8 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (uniformSteps) march.uniformSteps = *uniformSteps;
   if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
   if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
+  if (shadowMapSize) march.shadowMapSize = *shadowMapSize;
+  if (shadowMapExtent) march.shadowMapExtent_m = *shadowMapExtent;
   if (lightShafts) march.lightShafts = *lightShafts;
   if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
   if (aerialPerspectiveSteps) march.aerialPerspectiveSteps = *aerialPerspectiveSteps;

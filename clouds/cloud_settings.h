@@ -286,6 +286,8 @@ struct CloudOverrides {
   std::optional<bool> uniformSteps;
   std::optional<double> maxStepFactor;
   std::optional<bool> beerShadowMap;
+  std::optional<int> shadowMapSize;
+  std::optional<double> shadowMapExtent;
   std::optional<bool> lightShafts;
   std::optional<AerialPerspective> aerialPerspective;
   std::optional<int> aerialPerspectiveSteps;

@@ -641,6 +641,11 @@ void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::Command
   terrainView.camera = view.camera;
   terrainView.lightBlocks = frame.lightBlocks;
   terrainView.airSteps = frame.options.viewSteps;
+  terrainView.selfShadow = frame.options.terrain.selfShadow;
+  terrainView.skyLight = frame.options.terrain.skyLight;
+  terrainView.groundOnly = frame.options.terrain.groundOnly;
+  if (frame.options.terrain.penumbra) terrainView.sunAngularRadius = luts_.parameters().sun_angular_radius;
+  if (frame.clouds) terrainView.deckAsymmetry = cloudPhaseMeanCosine(frame.clouds->lighting);
   std::vector<const gpu::Image*> irradiance;
   for (size_t b = 0; b < luts_.batchCount(); ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
   terrain_->record(terrainView, luts_, irradiance, *frame.output, frame.tiles, commands, shadow);

@@ -63,7 +63,8 @@ struct SkyRenderOptions {
   // renders this way: downloading two 1920x1080 float images per frame kept an H100 busy 13-37 % of
   // the time, and its driver lowered the clocks from 1980 to 615 MHz in about 2 s (docs/gpu.md).
   bool downloadImages = true;
-  NightOptions night;  // the Moon, stars and the sky's own light (sky/night_plan.h)
+  NightOptions night;          // the Moon, stars and the sky's own light (sky/night_plan.h)
+  TerrainPassOptions terrain;  // the terrain pass's knobs (sky/terrain_pass.h)
 };
 
 // The plan options that follow from the render options (what `render --explain` prints).

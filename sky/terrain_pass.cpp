@@ -11,9 +11,6 @@ namespace firmament {
 namespace {
 
 constexpr int kMaxLevels = 16;  // kTerrainMaxLevels in shaders/terrain/terrain_block.glsl
-// The clouds' phase asymmetry the deck's diffuse transmission takes (shaders/terrain/shade_terrain.comp):
-// the mean cosine of water clouds' scattering at visible wavelengths (Hansen & Travis 1974: 0.85).
-constexpr double kDeckAsymmetry = 0.85;
 
 // std140 mirror of TerrainBlock in shaders/terrain/terrain_block.glsl.
 struct TerrainBlock {
@@ -53,10 +50,17 @@ struct ShadePush {
   gpu::TileDispatch tiles;
   int32_t accumulate;
   int32_t last;
-  int32_t pad[2];
+  int32_t groundOnly;
+  int32_t pad;
 };
 
 }  // namespace
+
+double cloudPhaseMeanCosine(const CloudLightingSettings& l) {
+  const double g = l.gBack, a = l.alpha;
+  const double draine = g * (1.0 + a * (3.0 + 2.0 * g * g) / 5.0) / (1.0 + a * (1.0 + 2.0 * g * g) / 3.0);
+  return (1.0 - l.backWeight) * l.gForward + l.backWeight * draine;
+}
 
 TerrainPass::TerrainPass(gpu::Context& context)
     : context_(context),
@@ -141,12 +145,14 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   b.gridSize[0] = f.nx, b.gridSize[1] = f.ny, b.gridSize[2] = int(levels_.size()), b.gridSize[3] = f.hasOutside();
   b.heights[0] = f.hasOutside() ? float(f.outsideHeight) : 0.0f;
   b.heights[1] = fieldTop_;
+  b.heights[2] = view.skyLight == TerrainSkyLight::Clear ? 1.0f : 0.0f;
+  b.heights[3] = float(std::tan(std::max(view.sunAngularRadius, 0.0)));
   if (shadow && shadow->map) {
     put(b.shadowCentre, shadow->centre, shadow->extent_m);
     put(b.shadowU, shadow->u, shadow->start_m);
     put(b.shadowV, shadow->v, 1.0);
   }
-  put(b.albedoRock, a.rock, kDeckAsymmetry);
+  put(b.albedoRock, a.rock, view.deckAsymmetry);
   put(b.albedoVegetation, a.vegetation);
   put(b.albedoSnow, a.snow);
   b.albedoLines[0] = float(a.treeLine), b.albedoLines[1] = float(a.treeLineTransition);
@@ -158,10 +164,8 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   block_.upload(&b, sizeof(b));
 }
 
-void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts,
-                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& frame,
-                         const gpu::TileDispatch& tiles, gpu::CommandList& commands, const TerrainCloudShadow* shadow) {
-  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("TerrainPass: one irradiance table per batch");
+void TerrainPass::recordCast(const TerrainPassView& view, const gpu::TileDispatch& tiles, gpu::CommandList& commands,
+                             const TerrainCloudShadow* shadow) {
   uploadBlock(view, shadow);
   const VkDeviceSize pixels = VkDeviceSize(view.camera.width) * VkDeviceSize(view.camera.height);
   if (!hits_ || hits_.size() != pixels * 8 * sizeof(float))
@@ -176,6 +180,13 @@ void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts
   commands.pushConstants(castPush);
   commands.dispatchTiles(tiles, "terrain/cast_terrain");
   commands.barrier();
+}
+
+void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts,
+                         const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& frame,
+                         const gpu::TileDispatch& tiles, gpu::CommandList& commands, const TerrainCloudShadow* shadow) {
+  if (skyIrradiance.size() != luts.batchCount()) throw std::logic_error("TerrainPass: one irradiance table per batch");
+  recordCast(view, tiles, commands, shadow);
   const size_t batches = luts.batchCount();
   for (size_t b = 0; b < batches; ++b) {
     const AtmosphereLuts::Batch& batch = luts.batch(b);
@@ -189,7 +200,7 @@ void TerrainPass::record(const TerrainPassView& view, const AtmosphereLuts& luts
                            {batch.multipleScatteringAnisotropy, luts.linearClamp()},
                            hits_,
                            frame});
-    ShadePush push{tiles, b > 0 ? 1 : 0, b + 1 == batches ? 1 : 0, {0, 0}};
+    ShadePush push{tiles, b > 0 ? 1 : 0, b + 1 == batches ? 1 : 0, view.groundOnly ? 1 : 0, 0};
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, "terrain/shade_terrain");
     commands.barrier();

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/atmosphere_luts.h"
+#include "clouds/cloud_settings.h"
 #include "common/camera.glsl"
 #include "core/scene.h"
 #include "gpu/buffer.h"
@@ -24,6 +25,24 @@
 
 namespace firmament {
 
+// How the ground's sky light is modelled (shaders/terrain/shade_terrain.comp; docs/terrain.md, "Shading").
+enum class TerrainSkyLight {
+  Deck,   // the clear-sky table dimmed by the clouds' Eddington deck transmission, plus the sun's diffuse part
+  Clear,  // the clear-sky table alone: no dimming under cloud, no diffuse sunlight through it
+};
+
+// Knobs of the terrain pass that a bench or a test sets (SkyRenderOptions::terrain).
+struct TerrainPassOptions {
+  bool selfShadow = true;  // a shadow ray per pixel at the sun
+  TerrainSkyLight skyLight = TerrainSkyLight::Deck;
+  // Soft cloud-shadow edges from the sun's disc: the shadow map read over the disc's footprint
+  // (shaders/terrain/cast_terrain.comp); off: one lookup at the sun's centre.
+  bool penumbra = true;
+  // The ground's own radiance at the surface, without the air between camera and ground (eval's ground
+  // reference compares this); the sky's pixels stay.
+  bool groundOnly = false;
+};
+
 struct TerrainPassView {
   glm::dvec3 cameraPosition{0.0};          // planet-centred (the camera on +z of its ground point's ENU frame)
   glm::dvec3 sunDirection{0.0, 0.0, 1.0};  // the light's direction (the Sun's, or the Moon's at night)
@@ -33,7 +52,20 @@ struct TerrainPassView {
   std::vector<const gpu::Buffer*> lightBlocks;
   int airSteps = 32;       // the air march's steps to the ground (the sky's view steps)
   bool selfShadow = true;  // a shadow ray per pixel at the sun
+  TerrainSkyLight skyLight = TerrainSkyLight::Deck;
+  bool groundOnly = false;  // TerrainPassOptions::groundOnly
+  // The sun's angular radius (rad) for the cloud shadows' penumbrae; 0: no penumbra.
+  double sunAngularRadius = 0.0;
+  // The mean cosine of the clouds' phase function, for the deck's diffuse transmission (Eddington's
+  // (1 - g) tau): cloudPhaseMeanCosine of the scene's lighting.
+  double deckAsymmetry = 0.85;
 };
+
+// The mean cosine of the clouds' two-lobe phase (clouds/cloud_settings.h CloudLightingSettings):
+// (1 - w) g_F + w <cos>_Draine(g_B, alpha), with Draine's <cos> = g (1 + alpha (3 + 2 g^2) / 5) /
+// (1 + alpha (1 + 2 g^2) / 3) (Draine 2003, ApJ 598, 1017; HG's g for alpha = 0). The default dual HG
+// (0.8, -0.3, w 0.3): 0.47.
+double cloudPhaseMeanCosine(const CloudLightingSettings& lighting);
 
 // The clouds' Beer shadow map and where it lies (clouds/cloud_pass.h ShadowPlacement).
 struct TerrainCloudShadow {
@@ -69,6 +101,11 @@ class TerrainPass {
   // Per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun, height,
   // surface) (shaders/terrain/cast_terrain.comp).
   const gpu::Buffer& hits() const { return hits_; }
+
+  // Records the cast alone (the pixels' hits and depth: hits(), depth()) and a barrier; record() runs it
+  // before the shading. For tests: a shadow map made by hand.
+  void recordCast(const TerrainPassView& view, const gpu::TileDispatch& tiles, gpu::CommandList& commands,
+                  const TerrainCloudShadow* shadow = nullptr);
 
   // The GPU cast on given rays, for tests: per ray (origin, r) and (direction, mu) in; per ray
   // (normal, t) and (height, surface, 0, 0) out. Submits and waits.

@@ -1,4 +1,4 @@
-// `firmament bench atmosphere|clouds|weather|all --out DIR [--quick]`: error-against-run-time sweeps
+// `firmament bench atmosphere|clouds|terrain|weather|all --out DIR [--quick]`: error-against-run-time sweeps
 // (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "eval/atmosphere_bench.h"
 #include "eval/cloud_bench.h"
 #include "eval/cloud_calibration.h"
+#include "eval/terrain_bench.h"
 #include "gpu/context.h"
 #include "samples/firmament/command.h"
 
@@ -163,13 +164,48 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   return kExitOk;
 }
 
+int benchTerrain(const Args& args, const std::filesystem::path& out) {
+  TerrainBenchConfig config;
+  config.quick = args.has("quick");
+  config.outDir = out;
+  config.repeats = args.integer("repeats", 3, 1, 100);
+  config.threads = args.integer("threads", 0, 0, 1024);
+  config.skyDirections = args.integer("reference-spp", 0, 1, 1 << 16);
+  config.scenario = args.getOr("scenario", "");
+  config.demDir = args.getOr("dem-dir", config.demDir.string());
+  if (config.quick) config.timingWidth = 160, config.timingHeight = 90;
+  if (auto size = args.get("timing-size")) {
+    int w = 0, h = 0;
+    char x = 0, tail = 0;
+    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 ||
+        h > 8192)
+      throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. 640x360");
+    config.timingWidth = w;
+    config.timingHeight = h;
+  }
+  checkTerrainBenchConfig(config);  // refused before any work
+  gpu::ContextOptions contextOptions;
+  contextOptions.device = args.getOr("device", "");
+  gpu::Context context(contextOptions);
+  logInfo("bench terrain: device " + context.description() + ", output " + out.string());
+  const std::string loadBefore = loadAverage();
+  const std::vector<TerrainBenchRow> rows = runTerrainBench(context, config);
+  if (!loadBefore.empty())
+    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
+                             " (timings on a shared machine are noisy).";
+  writeTerrainBenchOutputs(config, rows, context.description());
+  logInfo("wrote " + (out / "terrain_results.csv").string() + " and " + (out / "terrain_report.md").string());
+  return kExitOk;
+}
+
 struct Target {
   std::string name;
   std::function<int(const Args&, const std::filesystem::path&)> run;  // empty: not implemented yet
 };
 
 const std::vector<Target>& targets() {
-  static const std::vector<Target> t = {{"atmosphere", benchAtmosphere}, {"clouds", benchClouds}, {"weather", {}}};
+  static const std::vector<Target> t = {
+      {"atmosphere", benchAtmosphere}, {"clouds", benchClouds}, {"terrain", benchTerrain}, {"weather", {}}};
   return t;
 }
 
@@ -203,7 +239,8 @@ int runBench(const Args& args) {
 const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
-    "bench atmosphere|clouds|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp N] "
+    "bench atmosphere|clouds|terrain|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp "
+    "N] "
     "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate "
     "[--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] "
     "[--reflection|--reflection-only|--low-sun]] [--device D]",
@@ -213,9 +250,13 @@ const CommandRegistration registration{Command{
         {"scenario", "NAME",
          "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
          "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
-         "above_clouds, cumulus_low_sun, cumulus_low_sun_behind)"},
+         "above_clouds, cumulus_low_sun, cumulus_low_sun_behind; terrain: cumulus_noon, overcast, ridges_low_sun, "
+         "snow_broken_cloud, dem_luxembourg)"},
+        {"dem-dir", "DIR",
+         "terrain only: the folder scripts/fetch_test_dems.sh fills (default build/test-data/dem), for dem_luxembourg"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
-        {"reference-spp", "N", "Monte Carlo paths per pixel of every reference (default: per scenario)"},
+        {"reference-spp", "N",
+         "Monte Carlo paths per pixel of every reference (default: per scenario; terrain: hemisphere directions, 64)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
@@ -241,7 +282,8 @@ const CommandRegistration registration{Command{
          "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), "
          "and the defaults' still and 1/16 sequence"},
         {"timing-size", "WxH",
-         "clouds only: the frame timing's image size (default 640x360, --quick 320x180), e.g. 1920x1080 on a GPU"},
+         "clouds and terrain: the frame timing's image size (default 640x360, --quick 320x180 / terrain 160x90), e.g. "
+         "1920x1080 on a GPU"},
         {"calibrate", "",
          "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "
          "scenes (clouds_calibration.csv/.md; docs/clouds/README.md)"},

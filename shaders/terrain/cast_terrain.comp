@@ -16,16 +16,20 @@
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 // Two vec4 per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
 // height, surface); t = 1e30 where the ray meets no terrain.
-layout(std430, set = 0, binding = 3) writeonly buffer TerrainHits { vec4 v[]; } hits;
-layout(std430, set = 0, binding = 4) writeonly buffer TerrainDepth { float t[]; } depth;
+layout(std430, set = 0, binding = 3) writeonly buffer TerrainHits { vec4 v[]; }
+hits;
+layout(std430, set = 0, binding = 4) writeonly buffer TerrainDepth { float t[]; }
+depth;
 layout(set = 0, binding = 5) uniform sampler2D cloudShadowMap;  // linear, clamp; 1x1 and unread without clouds
-layout(push_constant) uniform Push { TileDispatch tiles; } push;
+layout(push_constant) uniform Push { TileDispatch tiles; }
+push;
 
 void main() {
   uvec2 tile_pixel;
   if (!tilePixel(push.tiles, tile_pixel)) return;
   uint index = tile_pixel.y * push.tiles.width + tile_pixel.x;
-  CameraParameters camera = cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
+  CameraParameters camera =
+      cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(tile_pixel) + 0.5, valid);
   TerrainCastHit hit = terrainNoHit();
@@ -60,7 +64,23 @@ void main() {
     if (terrain.shadow_v.w > 0.5) {
       vec3 c = cloudShadowCoordinate(p, terrain.shadow_centre.xyz, terrain.shadow_u.xyz, terrain.shadow_v.xyz, sun,
                                      terrain.shadow_centre.w, terrain.shadow_u.w);
-      if (cloudShadowCovers(c)) cloudDepth = cloudShadowOpticalDepth(textureLod(cloudShadowMap, c.xy, 0.0), c.z);
+      if (cloudShadowCovers(c)) {
+        // Penumbra: the sun's disc (tan of its radius in heights.w) seen from p covers, on the map's
+        // plane through the layers' middle (perpendicular to the sun, depth L), a disc of radius
+        // (depth(p) - L) tan(radius): 8 lookups over it (Vogel's equal-area spiral), their
+        // transmittances averaged. With clouds at height h over the ground that is a penumbra
+        // 2 h tan(0.265 deg) wide (9.3 m per km) for a sun at the zenith, 1 / mu_s times more across the
+        // sun's azimuth. Off (heights.w = 0): one lookup.
+        float reach = terrain.heights.w * max(c.z - terrain.shadow_u.w, 0.0) / terrain.shadow_centre.w;
+        float transmittance = 0.0;
+        for (int k = 0; k < 8; ++k) {
+          float radius = reach * sqrt((float(k) + 0.5) / 8.0);
+          float angle = 2.39996323 * float(k);
+          vec2 at = c.xy + radius * vec2(cos(angle), sin(angle));
+          transmittance += exp(-cloudShadowOpticalDepth(textureLod(cloudShadowMap, at, 0.0), c.z));
+        }
+        cloudDepth = -log(max(transmittance / 8.0, 1.0e-30));
+      }
     }
   }
   hits.v[2u * index] = vec4(hit.normal, hit.t);

@@ -28,14 +28,18 @@ layout(set = 0, binding = 4) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 5) uniform sampler2D multipleScatteringLut;
 layout(set = 0, binding = 6) uniform sampler2D skyIrradianceLut;
 layout(set = 0, binding = 7) uniform sampler2D multipleScatteringAnisotropy;
-layout(std430, set = 0, binding = 8) readonly buffer TerrainHits { vec4 v[]; } hits;
-layout(std430, set = 0, binding = 9) buffer OutputFrame { vec4 pixels[]; } outputFrame;
+layout(std430, set = 0, binding = 8) readonly buffer TerrainHits { vec4 v[]; }
+hits;
+layout(std430, set = 0, binding = 9) buffer OutputFrame { vec4 pixels[]; }
+outputFrame;
 layout(push_constant) uniform Push {
   TileDispatch tiles;
-  int accumulate;  // add to the pixel (spectral batches after the first)
-  int last;        // the last batch: clamp to >= 0
-  int pad0, pad1;
-} push;
+  int accumulate;   // add to the pixel (spectral batches after the first)
+  int last;         // the last batch: clamp to >= 0
+  int ground_only;  // the ground's radiance at the surface, no air (sky/terrain_pass.h TerrainPassOptions)
+  int pad0;
+}
+push;
 
 // Eddington's total (direct + diffuse) transmission of a conservative slab of optical depth tau with
 // asymmetry g for light arriving at cosine mu0 (Shettle & Weinman 1970): 1 at tau = 0.
@@ -52,7 +56,8 @@ void main() {
   if (!(h0.w < 1.0e29)) return;  // no terrain: the sky stays
   vec4 h1 = hits.v[2u * index + 1u];
   AtmosphereParameters atmosphere = atmosphereFromBlock();
-  CameraParameters camera = cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
+  CameraParameters camera =
+      cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(tile_pixel) + 0.5, valid);
   vec3 sun = terrain.sun_direction.xyz;
@@ -69,7 +74,7 @@ void main() {
     tStart = distanceToBottomAtmosphereBoundary(r, mu, atmosphere.top_radius);
   vec3 sky = vec3(0.0), sunlike = vec3(0.0), throughput = vec3(1.0);
   float pathLength = max(tHit - tStart, 0.0);
-  if (r <= atmosphere.top_radius || tStart > 0.0) {
+  if (push.ground_only == 0 && (r <= atmosphere.top_radius || tStart > 0.0)) {
     vec3 start = origin + dir * tStart;
     float rStart = max(length(start), atmosphere.bottom_radius + 0.01);
     start = normalize(start) * rStart;
@@ -104,6 +109,10 @@ void main() {
   float direct = exp(-tau);
   float diffuseSun = max(deckTransmission(tauV, g, mu0) - exp(-tauV / mu0), 0.0);
   float diffuseSky = min(deckTransmission(tauV, g, 0.5), 1.0);
+  if (terrain.heights.z > 0.5) {  // the clear-sky table alone
+    diffuseSun = 0.0;
+    diffuseSky = 1.0;
+  }
   float tilt = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
   float cosine = max(dot(normal, sun), 0.0);
   vec3 groundSun = throughput * sunLight * (visibility * direct * cosine + max(muS, 0.0) * diffuseSun * tilt) / kPi;

@@ -22,7 +22,7 @@ layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
   ivec4 image;           // width, height, projection, air march steps
   vec4 grid;             // x0, y0, dx, dy of the samples on the plane (m)
   ivec4 grid_size;       // nx, ny, pyramid levels, 1 when the outside sphere exists
-  vec4 heights;          // outside height, highest height (field and outside), unused, unused
+  vec4 heights;          // outside height, highest height (field and outside), sky light (0 deck, 1 clear), tan(sun's angular radius) (0: no penumbra)
   vec4 shadow_centre;    // Beer shadow map: centre (cloud frame, m); w = extent (m)
   vec4 shadow_u;         // axis u; w = start distance L (m)
   vec4 shadow_v;         // axis v; w = 1 when the map is read (clouds with a shadow map)

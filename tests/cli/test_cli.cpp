@@ -126,6 +126,8 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --timing-only --timing-size 4x4", {"--timing-size 4x4", "WxH"}},
       {"bench clouds --timing-setting quality", {"--timing-setting", "--timing-only"}},
       {"bench clouds --timing-only --error-setting default", {"--error-setting", "--timing-only"}},
+      {"bench terrain --scenario cumulus", {"--scenario cumulus", "cumulus_noon", "dem_luxembourg"}},
+      {"bench terrain --scenario dem_luxembourg --dem-dir nowhere", {"nowhere", "scripts/fetch_test_dems.sh"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";

@@ -72,6 +72,23 @@ TEST(CliTerrain, GdalSceneOnARealDemReportsItsDataShare) {
   EXPECT_NE(report["source"].get<std::string>().find("UTM"), std::string::npos);
 }
 
+// The shipped DEM scene (scenes/dem-luxembourg.json, the terra package's elev.tif, fetched by
+// scripts/fetch_test_dems.sh: CTest's terrain_dems fixture) resolves: most of its 40 km square from the
+// raster (95 x 90 pixels over ~70 x 75 km, heights 141-547 m), the rest the procedural fallback.
+TEST(CliTerrain, DemSceneResolvesTheTerraDem) {
+  const fs::path dir = test::scratchDir("cli_terrain_dem_scene");
+  const fs::path dem = fs::path(FIRMAMENT_TEST_DEM_DIR) / "terra" / "elev.tif";
+  ASSERT_TRUE(fs::exists(dem)) << dem << " is missing: run scripts/fetch_test_dems.sh " << FIRMAMENT_TEST_DEM_DIR;
+  const CommandRun run = firmament("terrain " + (test::sourceDir() / "scenes" / "dem-luxembourg.json").string() +
+                                   " --set /terrain/file=" + dem.string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::ifstream in(dir / "out" / "terrain.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_GT(report.at("data_fraction").get<double>(), 0.8);
+  EXPECT_GT(report.at("min_height_m").get<double>(), 100.0);
+  EXPECT_LT(report.at("max_height_m").get<double>(), 600.0);
+}
+
 TEST(CliTerrain, BadInputExitsTwoAndSaysWhy) {
   const fs::path dir = test::scratchDir("cli_terrain_bad");
   writeText(dir / "none.json", "{}");

@@ -15,7 +15,7 @@
 namespace firmament {
 namespace {
 
-const char* const kGroups[] = {"atmosphere", "clouds", "calibration"};
+const char* const kGroups[] = {"atmosphere", "clouds", "calibration", "terrain"};
 
 TEST(EvalScenarios, EveryIndexEntryIsAValidSceneFileAndEveryFileIsListed) {
   std::set<std::string> listed;
@@ -30,7 +30,9 @@ TEST(EvalScenarios, EveryIndexEntryIsAValidSceneFileAndEveryFileIsListed) {
       const Scene scene = evalScenarioScene(group, name);
       EXPECT_EQ(scene.source(), "eval/scenarios/" + std::string(group) + "/" + name + ".json");
       EXPECT_GT(scene.integer("/camera/width"), 0);
-      if (std::string(group) != "atmosphere") {
+      if (std::string(group) == "terrain") {
+        EXPECT_TRUE(scene.hasSection("terrain")) << name;  // the ground against its reference
+      } else if (std::string(group) != "atmosphere") {
         EXPECT_TRUE(scene.hasSection("clouds")) << name;
       } else {
         EXPECT_FALSE(scene.hasSection("clouds")) << name;  // clear skies against the spectral reference
