@@ -28,6 +28,26 @@ std::string loadAverage() {
   return text;
 }
 
+// The note a report carries about the machine's load before and after a run ("" when unknown).
+std::string loadNote(const std::string& before) {
+  if (before.empty()) return "";
+  return "Load average (1, 5, 15 min) before: " + before + "; after: " + loadAverage() +
+         " (timings on a shared machine are noisy).";
+}
+
+// --timing-size WxH into width and height (kept when the option is absent); `example` goes into the error.
+void readTimingSize(const Args& args, int& width, int& height, const std::string& example) {
+  const auto size = args.get("timing-size");
+  if (!size) return;
+  int w = 0, h = 0;
+  char x = 0, tail = 0;
+  if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 ||
+      h > 8192)
+    throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. " + example);
+  width = w;
+  height = h;
+}
+
 int benchAtmosphere(const Args& args, const std::filesystem::path& out) {
   AtmosphereBenchConfig config;
   config.quick = args.has("quick");
@@ -129,27 +149,14 @@ int benchClouds(const Args& args, const std::filesystem::path& out) {
   config.timingOnly = args.has("timing-only");
   config.timingSetting = args.getOr("timing-setting", "");
   config.errorSetting = args.getOr("error-setting", "");
-  if (auto size = args.get("timing-size")) {
-    // WxH: the frame timing's image size.
-    int w = 0, h = 0;
-    char x = 0, tail = 0;
-    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 ||
-        h > 8192)
-      throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. 1920x1080");
-    config.timingWidth = w;
-    config.timingHeight = h;
-  }
-  checkCloudBenchConfig(config);  // refused before any work
+  readTimingSize(args, config.timingWidth, config.timingHeight, "1920x1080");  // the frame timing's image size
+  checkCloudBenchConfig(config);                                               // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
   logInfo("bench clouds: device " + context.description() + ", output " + out.string());
   const std::string loadBefore = loadAverage();
-  auto noteLoad = [&] {
-    if (!loadBefore.empty())
-      config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
-                               " (timings on a shared machine are noisy).";
-  };
+  auto noteLoad = [&] { config.environmentNote = loadNote(loadBefore); };
   if (!config.timingOnly) {
     const std::vector<CloudBenchRow> rows = runCloudBench(context, config);
     noteLoad();
@@ -174,15 +181,7 @@ int benchTerrain(const Args& args, const std::filesystem::path& out) {
   config.scenario = args.getOr("scenario", "");
   config.demDir = args.getOr("dem-dir", config.demDir.string());
   if (config.quick) config.timingWidth = 160, config.timingHeight = 90;
-  if (auto size = args.get("timing-size")) {
-    int w = 0, h = 0;
-    char x = 0, tail = 0;
-    if (std::sscanf(size->c_str(), "%d%c%d%c", &w, &x, &h, &tail) != 3 || x != 'x' || w < 8 || h < 8 || w > 8192 ||
-        h > 8192)
-      throw InputError("--timing-size " + *size + ": allowed: WxH with W and H in 8..8192, e.g. 640x360");
-    config.timingWidth = w;
-    config.timingHeight = h;
-  }
+  readTimingSize(args, config.timingWidth, config.timingHeight, "640x360");
   checkTerrainBenchConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
@@ -190,9 +189,7 @@ int benchTerrain(const Args& args, const std::filesystem::path& out) {
   logInfo("bench terrain: device " + context.description() + ", output " + out.string());
   const std::string loadBefore = loadAverage();
   const std::vector<TerrainBenchRow> rows = runTerrainBench(context, config);
-  if (!loadBefore.empty())
-    config.environmentNote = "Load average (1, 5, 15 min) before: " + loadBefore + "; after: " + loadAverage() +
-                             " (timings on a shared machine are noisy).";
+  config.environmentNote = loadNote(loadBefore);
   writeTerrainBenchOutputs(config, rows, context.description());
   logInfo("wrote " + (out / "terrain_results.csv").string() + " and " + (out / "terrain_report.md").string());
   return kExitOk;
