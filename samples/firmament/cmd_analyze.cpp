@@ -38,12 +38,6 @@ namespace fs = std::filesystem;
 constexpr double kDefaultHalfWidth_m = 25600.0;
 constexpr double kDefaultPixel_m = 50.0;
 
-std::string number(const char* pattern, double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, v);
-  return buffer;
-}
-
 int runAnalyze(const Args& args) {
   if (args.positionals.at(0) != "clouds")
     throw InputError("analyze: '" + args.positionals.at(0) + "' is not something to analyse; allowed: clouds");
@@ -53,11 +47,11 @@ int runAnalyze(const Args& args) {
   if (!out) throw InputError("analyze clouds: --out DIR is required");
   const double pixel = args.number("pixel-size", kDefaultPixel_m);
   if (!(pixel >= 10.0 && pixel <= 5000.0))
-    throw InputError("option --pixel-size: " + number("%g", pixel) + " m; allowed: 10 to 5000 m");
+    throw InputError("option --pixel-size: " + formatNumber("%g", pixel) + " m; allowed: 10 to 5000 m");
   CloudFieldStatisticsOptions statistics;
   statistics.opticalDepthThreshold = args.number("tau", 1.0);
   if (!(statistics.opticalDepthThreshold > 0.0 && statistics.opticalDepthThreshold <= 1000.0))
-    throw InputError("option --tau: " + number("%g", statistics.opticalDepthThreshold) +
+    throw InputError("option --tau: " + formatNumber("%g", statistics.opticalDepthThreshold) +
                      "; allowed: an optical depth in (0, 1000]");
   const int threads = args.integer("threads", 0, 0, 1024);
   CloudVolumeRegion region;
@@ -68,7 +62,7 @@ int runAnalyze(const Args& args) {
   const double columns =
       std::ceil((region.east_m - region.west_m) / pixel) * std::ceil((region.north_m - region.south_m) / pixel);
   if (columns > 16.0e6)
-    throw InputError("options --region/--pixel-size: " + number("%.0f", columns) +
+    throw InputError("options --region/--pixel-size: " + formatNumber("%.0f", columns) +
                      " columns; allowed: at most 16 million (raise --pixel-size or shrink the region)");
 
   const Scene scene = Scene::load(scenePath, args.all("set"));  // InputError (exit 2) on a bad scene or override
@@ -136,7 +130,7 @@ int runAnalyze(const Args& args) {
       mask[to] = field.opticalDepth[from] > statistics.opticalDepthThreshold ? 255 : 0;
     }
   depth.metadata = {{"firmament:quantity", "vertical optical depth at 550 nm"},
-                    {"firmament:pixel_m", number("%.9g", pixel)},
+                    {"firmament:pixel_m", formatNumber("%.9g", pixel)},
                     {"firmament:scene", scenePath}};
   writeExrChannel(dir / "optical_depth.exr", depth);
   writePng(dir / "mask.png", field.width, field.height, 1, mask.data());

@@ -29,12 +29,6 @@ namespace {
 constexpr double kDefaultVoxel_m = 50.0;
 constexpr double kDefaultHalfWidth_m = 10000.0;
 
-std::string format(const char* pattern, double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), pattern, v);
-  return buffer;
-}
-
 int runExportVdb(const Args& args) {
   const std::string scenePath = args.positionals.at(0);
   const std::filesystem::path out =
@@ -42,8 +36,9 @@ int runExportVdb(const Args& args) {
   if (out.extension() != ".vdb") throw InputError("-o " + out.string() + ": the output must end in .vdb");
   const double voxel = args.number("voxel-size", kDefaultVoxel_m);
   if (!(voxel >= kCloudVolumeMinVoxel_m && voxel <= kCloudVolumeMaxVoxel_m))
-    throw InputError("option --voxel-size: " + format("%g", voxel) + " m; allowed: " +
-                     format("%g", kCloudVolumeMinVoxel_m) + " to " + format("%g", kCloudVolumeMaxVoxel_m) + " m");
+    throw InputError("option --voxel-size: " + formatNumber("%g", voxel) +
+                     " m; allowed: " + formatNumber("%g", kCloudVolumeMinVoxel_m) + " to " +
+                     formatNumber("%g", kCloudVolumeMaxVoxel_m) + " m");
   const int threads = args.integer("threads", 0, 0, 1024);
   // Read the numbers before the scene, so that a bad option fails fast.
   CloudVolumeRegion asked;
@@ -53,10 +48,10 @@ int runExportVdb(const Args& args) {
   const std::optional<double> top = args.has("top") ? std::optional<double>(args.number("top", 0.0)) : std::nullopt;
   for (const auto& [name, value] : {std::pair{"bottom", bottom}, std::pair{"top", top}})
     if (value && std::abs(*value) > kCloudVolumeMaxExtent_m)
-      throw InputError(std::string("option --") + name + ": " + format("%g", *value) + " m; allowed: within " +
-                       format("%.0f", kCloudVolumeMaxExtent_m) + " m of the ground");
+      throw InputError(std::string("option --") + name + ": " + formatNumber("%g", *value) + " m; allowed: within " +
+                       formatNumber("%.0f", kCloudVolumeMaxExtent_m) + " m of the ground");
   if (bottom && top && !(*bottom < *top))
-    throw InputError("options --bottom " + format("%g", *bottom) + " and --top " + format("%g", *top) +
+    throw InputError("options --bottom " + formatNumber("%g", *bottom) + " and --top " + formatNumber("%g", *top) +
                      ": --bottom must be less than --top (metres above the camera's ground point)");
 
   const Scene scene = Scene::load(scenePath, args.all("set"));  // InputError (exit 2) on a bad scene or override
@@ -77,8 +72,8 @@ int runExportVdb(const Args& args) {
   if (bottom) region.bottom_m = *bottom;
   if (top) region.top_m = *top;
   if (!(region.bottom_m < region.top_m))
-    throw InputError("options --bottom/--top: the height range " + format("%g", region.bottom_m) + " to " +
-                     format("%g", region.top_m) +
+    throw InputError("options --bottom/--top: the height range " + formatNumber("%g", region.bottom_m) + " to " +
+                     formatNumber("%g", region.top_m) +
                      " m is empty; allowed: bottom < top (defaults: the layers' lowest "
                      "base to their highest top over the region)");
   const uint64_t voxels = cloudVoxelBox(region).count();
@@ -109,10 +104,10 @@ int runExportVdb(const Args& args) {
   options.region = region;
   options.threads = threads;
   options.metadata = {{"scene", scenePath}, {"scene_hash", scene.hash()}};
-  options.metadata.push_back({"location", "latitude_deg " + format("%.9g", scene.number("/location/latitude_deg")) +
-                                              " longitude_deg " +
-                                              format("%.9g", scene.number("/location/longitude_deg")) + " height_m " +
-                                              format("%.9g", scene.number("/location/height_m"))});
+  options.metadata.push_back(
+      {"location", "latitude_deg " + formatNumber("%.9g", scene.number("/location/latitude_deg")) + " longitude_deg " +
+                       formatNumber("%.9g", scene.number("/location/longitude_deg")) + " height_m " +
+                       formatNumber("%.9g", scene.number("/location/height_m"))});
   options.metadata.push_back({"utc", scene.string("/time/utc")});
   {
     char line[320];

@@ -16,15 +16,9 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-std::string shortNumber(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", x);
-  return buffer;
-}
-
 std::string outsideRange(const std::string& name, double value, double lo, double hi, const char* meaning) {
-  return "option --" + name + ": " + shortNumber(value) + " is outside [" + shortNumber(lo) + ", " + shortNumber(hi) +
-         "] (" + meaning + ")";
+  return "option --" + name + ": " + formatNumber("%g", value) + " is outside [" + formatNumber("%g", lo) + ", " +
+         formatNumber("%g", hi) + "] (" + meaning + ")";
 }
 
 double requiredNumber(const Args& args, const std::string& name, const char* meaning, double lo, double hi) {

@@ -53,6 +53,9 @@ struct CommandRegistration {
 
 const std::map<std::string, Command>& commands();
 
+// One number through a printf pattern ("%g", "%.9g", ...) for messages and metadata.
+std::string formatNumber(const char* pattern, double value);
+
 // Options every scene-taking command shares.
 OptionSpec setOption();     // --set /json/pointer=value (repeatable)
 OptionSpec deviceOption();  // --device NAME|INDEX

@@ -136,6 +136,12 @@ std::string Args::getOr(const std::string& name, const std::string& fallback) co
   auto v = get(name);
   return v ? *v : fallback;
 }
+std::string formatNumber(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), pattern, value);
+  return buffer;
+}
+
 double Args::number(const std::string& name, double fallback) const {
   auto v = get(name);
   if (!v) return fallback;
