@@ -114,18 +114,10 @@ struct SkyRenderer::Frame {
 RenderResult SkyRenderer::render(const Scene& scene, const SkyRenderOptions& options) {
   RenderResult result;
   Frame frame = plan(scene, options, result);
-  result.light.direction = result.view.sunDirection;  // the Sun, unless the night's light is the Moon
-  result.light.reason = "the Sun";
   prepareTables(frame, result);
   prepareClouds(scene, frame, result);
   gpu::CommandList commands(context_);
-  recordSky(frame, result, commands);
-  if (result.night.run) recordNight(scene, frame, result, commands);
-  if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
-  if (frame.terrain && !frame.clouds) {
-    commands.barrier();
-    recordTerrain(frame, result, commands, nullptr);
-  }
+  recordBeforeClouds(scene, frame, result, commands);
   if (frame.clouds) recordClouds(frame, result, commands);
   resolve(scene, frame, commands, result);
   return result;
@@ -146,8 +138,6 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   RenderResult result;
   Frame frame = plan(scene, options, result);
   frame.embedded = &targets;
-  result.light.direction = result.view.sunDirection;  // the Sun, unless the night's light is the Moon
-  result.light.reason = "the Sun";
   prepareTables(frame, result);
   prepareClouds(scene, frame, result);
   // The previous frame's pass timings (its commands have finished: one frame in flight), then this
@@ -159,13 +149,7 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
     }
   embeddedCommands_ = std::make_unique<gpu::CommandList>(context_, targets.commands);
   gpu::CommandList& commands = *embeddedCommands_;
-  recordSky(frame, result, commands);
-  if (result.night.run) recordNight(scene, frame, result, commands);
-  if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
-  if (frame.terrain && !frame.clouds) {
-    commands.barrier();
-    recordTerrain(frame, result, commands, nullptr);
-  }
+  recordBeforeClouds(scene, frame, result, commands);
   if (frame.clouds) {
     recordClouds(frame, result, commands);  // the host's depth before the march
     commands.barrier();
@@ -176,6 +160,19 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   commands.finish();
   if (frame.clouds) result.cloudsReprojected = clouds_->lastFrameReprojected();
   return result;
+}
+
+// What both ways of running record before the clouds: the sky, the night's light added to it, the
+// night's choice of the light, and a terrain that no cloud pass will shadow.
+void SkyRenderer::recordBeforeClouds(const Scene& scene, Frame& frame, RenderResult& result,
+                                     gpu::CommandList& commands) {
+  recordSky(frame, result, commands);
+  if (result.night.run) recordNight(scene, frame, result, commands);
+  if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
+  if (frame.terrain && !frame.clouds) {
+    commands.barrier();
+    recordTerrain(frame, result, commands, nullptr);
+  }
 }
 
 void SkyRenderer::recordHostDepth(Frame& frame, RenderResult& result, gpu::CommandList& commands, bool aerialRecorded) {
@@ -294,6 +291,8 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
                        result.view.cameraRadius <=
                            atmosphereParametersAt(result.view.atmosphere, frame.options.luts.wavelengthsNm).top_radius;
   result.night = decideNight(scene, frame.options.night, skyView);
+  result.light.direction = result.view.sunDirection;  // the Sun, unless the night's light is the Moon
+  result.light.reason = "the Sun";
   if (hasClouds) {
     frame.clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     frame.options.clouds.apply(frame.clouds->march);

@@ -148,6 +148,8 @@ class SkyRenderer {
   void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordNight(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  // recordSky, recordNight, chooseLight and, without clouds, recordTerrain: the steps before the clouds.
+  void recordBeforeClouds(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
   // The light of the clouds and terrain at night (sky/frame_light.h), its blocks uploaded.
   void chooseLight(Frame& frame, RenderResult& result);
   // The terrain (sky/terrain_pass.h) over the sky, before the clouds; shadow: the clouds' Beer shadow map.
