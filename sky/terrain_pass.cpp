@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/cloud_lighting.glsl"
 #include "core/error.h"
 #include "terrain/min_max_pyramid.h"
 
@@ -57,9 +58,7 @@ struct ShadePush {
 }  // namespace
 
 double cloudPhaseMeanCosine(const CloudLightingSettings& l) {
-  const double g = l.gBack, a = l.alpha;
-  const double draine = g * (1.0 + a * (3.0 + 2.0 * g * g) / 5.0) / (1.0 + a * (1.0 + 2.0 * g * g) / 3.0);
-  return (1.0 - l.backWeight) * l.gForward + l.backWeight * draine;
+  return shared::cloudPhaseMeanCosine(l.gForward, l.gBack, l.backWeight, l.alpha);
 }
 
 TerrainPass::TerrainPass(gpu::Context& context)
