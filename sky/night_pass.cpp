@@ -13,6 +13,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/spectrum.h"
+#include "sky/frame_light.h"
 #include "sky/render_plan.h"
 
 namespace firmament {
@@ -229,19 +230,10 @@ void NightPass::record(const Inputs& in, gpu::CommandList& commands) {
   if (d.moonSky) {
     const std::vector<SpectralBatch> spectra =
         spectralBatches(in.lutSettings->spectralSamples, in.lutSettings->wavelengthsNm);
-    moonBlocks_.resize(luts.batchCount());
-    for (size_t b = 0; b < luts.batchCount(); ++b) {
-      glm::dmat3 scale(0.0);
-      for (int c = 0; c < 3; ++c)
-        scale[c][c] = astro::moonToSolarIrradianceRatio(moon_.illuminanceLux, spectra[b].wavelengthsNm[c]) /
-                      in.solarIrradianceScale;
-      const AtmosphereBlock block =
-          packAtmosphereBlock(luts.batch(b).parameters, spectra[b].skyToRgb * scale, spectra[b].sunToRgb * scale);
-      if (!moonBlocks_[b])
-        moonBlocks_[b] = gpu::Buffer(context_, sizeof(AtmosphereBlock), gpu::BufferUsage::Uniform,
-                                     gpu::MemoryLocation::Host, "moon atmosphere block");
-      moonBlocks_[b].upload(&block, sizeof(block));
-    }
+    FrameLight moonAlone;  // the Moon's spectrum at the batches' wavelengths, carrying only itself
+    moonAlone.moon = true;
+    moonAlone.channelScale = moonChannelScale(moon_, spectra, in.solarIrradianceScale);
+    uploadLightBlocks(context_, luts, spectra, moonAlone, moonBlocks_);
     for (size_t b = 0; b < luts.batchCount(); ++b) {
       const AtmosphereLuts::Batch& batch = luts.batch(b);
       struct {
