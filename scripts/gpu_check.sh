@@ -9,6 +9,8 @@
 #   atmosphere  firmament bench atmosphere --quick
 #   cloudsquick firmament bench clouds --quick (errors against the CPU path tracer, GPU renders)
 #   renders     scenes/default, thunderstorm and overcast at 640x360 (to compare with lavapipe's)
+#   timelapse1080  31 frames of the fair-weather afternoon (12:00 UTC, 720x, 30 fps) at 1920x1080 and
+#               of the night (22:00 UTC); per-frame wall times in each run's frames.csv
 # A step named twice runs twice (its second folder gets _2: the run-to-run spread of the timings).
 # REPEATS=N sets the benches' --repeats (default 3).
 # RESULTS_DIR gets one folder or log per step and summary.txt. A step that fails is reported and the
@@ -22,7 +24,7 @@ bundle=$(realpath "${1:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [S
 results=$(realpath -m "${2:?usage: scripts/gpu_check.sh BUNDLE.tar.xz RESULTS_DIR [STEP...]}")
 shift 2
 steps=("$@")
-[ ${#steps[@]} -eq 0 ] && steps=(tests clouds1080 clouds360 atmosphere cloudsquick renders)
+[ ${#steps[@]} -eq 0 ] && steps=(tests clouds1080 clouds360 atmosphere cloudsquick renders timelapse1080)
 mkdir -p "$results"
 summary=$results/summary.txt
 : >"$summary"
@@ -92,7 +94,16 @@ for step in "${steps[@]}"; do
         run_step "render_$s" "$fm" render "scenes/$s.json" --width 640 --height 360 -o "$results/renders/$s.exr"
       done
       ;;
-    *) say "unknown step $step (tests clouds1080 clouds360 atmosphere cloudsquick renders)"; failed=$((failed + 1)) ;;
+    timelapse1080)
+      for t in 12 22; do
+        run_step "timelapse_$t" "$fm" timelapse scenes/fair-weather.json --from "2026-06-21T$t:00:00Z" \
+          --to "2026-06-21T$t:12:00Z" --fps 30 --speed 720 --width 1920 --height 1080 --no-video \
+          --out "$results/timelapse_$t"
+        say "timelapse_$t: median frame_wall_s of frames 1.. = $(awk -F, 'NR > 2 { print $NF }' \
+          "$results/timelapse_$t/frames.csv" 2>/dev/null | sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }')"
+      done
+      ;;
+    *) say "unknown step $step (tests clouds1080 clouds360 atmosphere cloudsquick renders timelapse1080)"; failed=$((failed + 1)) ;;
   esac
 done
 say "failed steps: $failed"
