@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -162,6 +163,50 @@ TEST(CliWeather, BadInputExitsTwoWithAClearMessage) {
   CommandRun help = firmament("weather --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.output.find("usage: firmament weather"), std::string::npos) << help.output;
+}
+
+// `bench weather --quick` (docs/weather.md, "Error and cost per knob"): the grid and time step against
+// a reference run. The reference's own settings are run again as a row: the model is deterministic, so
+// that row's errors are exactly 0. Other seeds give other weather (the floor is above 0), the other
+// settings give other days (some error above 0), and fair weather on 21 June makes midday cumulus (the
+// day's mean cloud fraction between 0.02 and 0.6 in every row).
+TEST(CliWeather, BenchQuickRerunsItsReferenceIdenticallyAndMeasuresTheKnobs) {
+  auto dir = test::scratchDir("cli_bench_weather");
+  CommandRun r = firmament("bench weather --quick --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream csv(dir / "weather_results.csv");
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line.rfind("preset,cells,cell_size_m,time_step_s,reference,default,cpu_s_per_day,", 0), 0u) << line;
+  int rows = 0, references = 0;
+  double largestError = 0.0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    ASSERT_EQ(f.size(), 16u) << line;
+    ++rows;
+    EXPECT_EQ(f[0], "fair-weather");
+    std::vector<double> v;
+    for (size_t i = 6; i < f.size(); ++i) {
+      v.push_back(std::stod(f[i]));
+      ASSERT_TRUE(std::isfinite(v.back()) && v.back() >= 0.0) << line;
+    }
+    EXPECT_GT(v[0], 0.0) << "CPU time per day: " << line;
+    EXPECT_GT(v[1], 0.02) << line;
+    EXPECT_LT(v[1], 0.6) << line;
+    EXPECT_GT(v[6], 0.0) << "the floor (other seeds): " << line;
+    if (f[4] == "1") {
+      ++references;
+      for (int k = 2; k <= 5; ++k) EXPECT_EQ(v[k], 0.0) << "the reference run again: " << line;
+    } else {
+      largestError = std::max(largestError, v[2]);
+    }
+  }
+  EXPECT_EQ(rows, 3);  // 64 cells at 60 and 300 s, the reference's 128 cells at 60 s
+  EXPECT_EQ(references, 1);
+  EXPECT_GT(largestError, 0.0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "weather_report.md"));
 }
 
 }  // namespace
