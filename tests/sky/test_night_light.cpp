@@ -227,6 +227,115 @@ TEST_F(NightLightTest, MoonDiscPixelsSumToItsIlluminanceAtAnyResolution) {
   EXPECT_NEAR(sums[1] / expected, 1.0, 0.02);
 }
 
+// The daytime Moon (docs/night.md, "The daytime Moon"): 2026-06-22T15:00Z, the sun 42.3 deg high, a
+// 0.6-lit Moon 23.3 deg high, 88 deg from the sun. With the sun above +10 deg no night pass runs and the disc
+// alone is drawn (night/moon_disc_day).
+constexpr const char* kDayMoon = R"("time": { "utc": "2026-06-22T15:00:00Z" })";
+
+// The daytime Moon's pixels (the frame with the disc minus the frame without) sum, as radiance x pixel
+// solid angle, to its illuminance above the air times the transmittance along its direction: the law the
+// night's disc follows (MoonDiscPixelsSumToItsIlluminanceAtAnyResolution): the night pass run at this sun
+// with its disc alone gives the same sum (float disc against double, 1e-3). Against the clear-sky
+// reference's transmittance: the frame extincts with the sun table's three Rec.709 channels from the
+// daytime's three wavelengths, measured +5.2 % at the Moon's 23 deg (+2.3 % with 12 wavelengths, +1.5 %
+// at 42 deg at night); tolerance 7 %. 32 against 64 pixels 1 %. Outside the disc's circle plus two pixels
+// nothing changes: no star, airglow or moonlit sky in daylight.
+TEST_F(NightLightTest, DaytimeMoonDiscPixelsSumToItsIlluminanceTimesTheTransmittance) {
+  const astro::MoonLight moon = astro::moonLight(astro::makeAstroTime("2026-06-22T15:00:00Z"),
+                                                 astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0));
+  const double expected = referenceMoonAtGround(moon, 1200.0);
+  double sums[2];
+  int k = 0;
+  for (int width : {32, 64}) {
+    char json[600];
+    std::snprintf(json, sizeof(json), R"({%s, %s, "camera": { "height_above_ground_m": 0, "yaw_deg": %.6f,
+      "pitch_deg": %.6f, "fov_deg": 2, "width": %d, "height": %d }})",
+                  kPlace, kDayMoon, moon.azimuth / kDegree + 0.11, 90.0 - moon.zenith / kDegree - 0.07, width, width);
+    SkyRenderOptions options, noDisc;
+    noDisc.night.moonDisc = false;
+    SkyRenderOptions nightLaw;  // the night pass at this sun, drawing its disc alone
+    nightLaw.night.sunAltitudeLimitDeg = 90.0;
+    nightLaw.night.moonSky = nightLaw.night.skyGlow = nightLaw.night.stars = false;
+    const RenderResult with = renderer().render(scene(json), options);
+    const RenderResult without = renderer().render(scene(json), noDisc);
+    const RenderResult night = renderer().render(scene(json), nightLaw);
+    ASSERT_TRUE(night.night.run && night.night.moonDisc);
+    ASSERT_FALSE(with.night.run);
+    ASSERT_TRUE(with.night.dayMoonDisc);
+    ASSERT_FALSE(without.night.dayMoonDisc);
+    const shared::CameraParameters& c = with.view.camera;
+    const double pixel = c.fov / c.width;
+    double sum = 0.0, nightSum = 0.0, outside = 0.0;
+    for (int y = 0; y < c.height; ++y)
+      for (int x = 0; x < c.width; ++x) {
+        const size_t i = (size_t(y) * c.width + x) * 4;
+        const double sky = luminanceRec709(without.image.pixels.data() + i);
+        const double d = luminanceRec709(with.image.pixels.data() + i) - sky;
+        sum += d * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+        nightSum +=
+            (luminanceRec709(night.image.pixels.data() + i) - sky) * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+        bool valid = false;
+        const glm::dvec3 dir = shared::cameraRayDirection(c, glm::dvec2(x + 0.5, y + 0.5), valid);
+        if (std::acos(std::min(1.0, glm::dot(dir, moon.directionEnu))) > moon.angularRadius + 2.0 * pixel)
+          outside = std::max(outside, std::fabs(d));
+      }
+    sums[k++] = sum;
+    std::printf(
+        "%d px, %d wavelengths: daytime disc %.5f lx, the night pass's %.5f, reference %.5f lx (%.5f above the "
+        "air); outside it %.3g cd/m^2\n",
+        width, with.spectralSamples, sum, nightSum, expected, moon.illuminanceLux, outside);
+    EXPECT_EQ(outside, 0.0);
+    EXPECT_NEAR(sum / nightSum, 1.0, 1e-3);
+  }
+  EXPECT_NEAR(sums[0] / sums[1], 1.0, 0.01);
+  EXPECT_NEAR(sums[1] / expected, 1.0, 0.07);
+}
+
+// The daytime Moon against the blue sky, the case of the brief: a Moon near quarter (0.6 lit) 88 deg from a
+// sun 42 deg high, 23 deg above the horizon, from 1200 m. The sky around the disc (a ring from 2 to 4 radii)
+// is a clear daytime sky (bound 1000-10000 cd/m^2, an order of magnitude only; measured 2030 cd/m^2, 90 deg
+// from the sun where Rayleigh scattering is weakest). The lit part's mean luminance is the Moon's
+// illuminance at the ground over the lit part's solid angle (the illuminated fraction of the disc's): its
+// Weber contrast against the sky around it (measured 0.38) is well above the eye's daylight threshold of
+// ~0.02 for a half-degree target (Blackwell 1946): the daytime Moon is readily seen. The frame's contrast
+// against the one predicted from K&S 1991 through the clear-sky reference's transmittance and the frame's
+// own sky: measured +5.7 %, the disc's three-wavelength extinction above; tolerance 7 %.
+TEST_F(NightLightTest, DaytimeQuarterMoonIsSeenAgainstTheBlueSky) {
+  const astro::MoonLight moon = astro::moonLight(astro::makeAstroTime("2026-06-22T15:00:00Z"),
+                                                 astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0));
+  char json[600];
+  std::snprintf(json, sizeof(json), R"({%s, %s, "camera": { "height_above_ground_m": 0, "yaw_deg": %.6f,
+    "pitch_deg": %.6f, "fov_deg": 3, "width": 64, "height": 64 }})",
+                kPlace, kDayMoon, moon.azimuth / kDegree, 90.0 - moon.zenith / kDegree);
+  SkyRenderOptions options, noDisc;
+  noDisc.night.moonDisc = false;
+  const RenderResult with = renderer().render(scene(json), options);
+  const RenderResult without = renderer().render(scene(json), noDisc);
+  ASSERT_TRUE(with.night.dayMoonDisc);
+  const shared::CameraParameters& c = with.view.camera;
+  double lit = 0.0, ring = 0.0, ringCount = 0.0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      const size_t i = (size_t(y) * c.width + x) * 4;
+      const double sky = luminanceRec709(without.image.pixels.data() + i);
+      lit += (luminanceRec709(with.image.pixels.data() + i) - sky) * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+      bool valid = false;
+      const glm::dvec3 dir = shared::cameraRayDirection(c, glm::dvec2(x + 0.5, y + 0.5), valid);
+      const double angle = std::acos(std::min(1.0, glm::dot(dir, moon.directionEnu)));
+      if (angle > 2.0 * moon.angularRadius && angle < 4.0 * moon.angularRadius) ring += sky, ringCount += 1.0;
+    }
+  ring /= ringCount;
+  const double litSolidAngle = moon.illuminatedFraction * 2.0 * std::numbers::pi * (1.0 - std::cos(moon.angularRadius));
+  const double contrast = lit / litSolidAngle / ring;
+  const double predicted = referenceMoonAtGround(moon, 1200.0) / litSolidAngle / ring;
+  std::printf("sky around the Moon %.0f cd/m^2; the lit part %.0f cd/m^2 above it: contrast %.3f (predicted %.3f)\n",
+              ring, lit / litSolidAngle, contrast, predicted);
+  EXPECT_GT(ring, 1000.0);
+  EXPECT_LT(ring, 10000.0);
+  EXPECT_GT(contrast, 0.02);
+  EXPECT_NEAR(contrast / predicted, 1.0, 0.07);
+}
+
 // Sum over the image of the luminance the stars add (the frame with them minus the frame without).
 double starLight(const RenderResult& with, const RenderResult& without) {
   double sum = 0.0;
@@ -301,7 +410,8 @@ TEST_F(NightLightTest, StarsDoNotShowInDaylight) {
 // (2026-06-24, the location of the scenes): measured 2.1e-6 / 3.9e-6 / 2.5e-5 (lavapipe), the stated
 // bound at +10 deg 1e-3 (a tenth of the eye's daylight contrast threshold, Blackwell 1946). The Moon's
 // disc is another matter: in daylight it is seen (the daytime Moon; its brightest pixel over the sky's
-// measured 0.98 / 1.44 / 4.66), so a frame above +10 deg leaves out a visible Moon (docs/night.md).
+// measured 0.98 / 1.44 / 4.66), so above +10 deg the disc alone is drawn (night/moon_disc_day, the
+// Daytime… tests above; docs/night.md "The daytime Moon").
 TEST_F(NightLightTest, NightSkyTermsAboveTenDegreesChangeTheFrameByUnderOnePerMille) {
   const astro::GeodeticLocation place = astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0);
   double worstSky[3], disc[3];
