@@ -417,23 +417,67 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
     }
     const std::vector<ReferenceRadiance> radiance =
         renderReferenceDirections(reference, a.view.cameraRadius, directions);
-    double referenceLux = 0.0;
-    for (size_t i = 0; i < radiance.size(); ++i) referenceLux += radiance[i].luminance() * weights[i];
-    char quantity[80], note[200];
+    // The frame read at the same directions (nearest fisheye pixel) and summed with the same weights: the
+    // comparison without the quadrature's own error; the fisheye's full sum goes into the note.
+    double referenceLux = 0.0, variance = 0.0, singleLux = 0.0;
+    for (size_t i = 0; i < radiance.size(); ++i) {
+      referenceLux += radiance[i].luminance() * weights[i];
+      singleLux += reference.toXyz(radiance[i].singleScattering).y * weights[i];
+      variance += std::pow(radiance[i].luminanceStandardError * weights[i], 2.0);
+    }
+    auto atDirections = [&](const RenderResult& frame) {
+      double sum = 0.0;
+      for (size_t i = 0; i < directions.size(); ++i) {
+        const double z = directions[i].zenith, az = directions[i].azimuth;
+        bool valid = false;
+        const glm::dvec2 p = shared::cameraPixelOfDirection(
+            c, glm::dvec3(std::sin(z) * std::sin(az), std::sin(z) * std::cos(az), std::cos(z)), valid);
+        const int x = std::clamp(int(p.x), 0, c.width - 1), y = std::clamp(int(p.y), 0, c.height - 1);
+        sum += luminanceRec709(frame.image.pixels.data() + (size_t(y) * c.width + x) * 4) * weights[i];
+      }
+      return sum;
+    };
+    const double frameAtDirections = atDirections(a);
+    char quantity[80], note[400];
     std::snprintf(quantity, sizeof(quantity), "ground illuminance from the sky, sun %.0f deg", altitude);
-    NightBenchRow r = row("twilight", quantity, "lx", frameLux, referenceLux);
+    NightBenchRow r = row("twilight", quantity, "lx", frameAtDirections, referenceLux);
     r.referenceSeconds = seconds(start);
     r.passes = "sky/* (the day's passes; no night pass)";
     r.passMs = passMilliseconds(renderer, utc, aimedCamera(0.0, 20.0 * kDegree, 60.0, 64, 36), off, config, {"sky/"});
-    std::snprintf(note, sizeof(note), "%s; reference %d x %d directions, %d paths, %d wavelengths; %d in the frame",
-                  utc, zenithSteps, azimuthSteps, quality.samplesPerPixel, quality.wavelengthCount, a.spectralSamples);
+    std::snprintf(note, sizeof(note),
+                  "%s; reference +- %.2g (1 standard error), single scattering %.3g lx, %d x %d directions, %d paths, "
+                  "%d wavelengths; the frame's fisheye sum %.4g lx, %d wavelengths",
+                  utc, std::sqrt(variance), singleLux, zenithSteps, azimuthSteps, quality.samplesPerPixel,
+                  quality.wavelengthCount, frameLux, a.spectralSamples);
     r.note = note;
     rows.push_back(r);
+    // The same sky from the frame's other ways of computing it: which approximation the difference is in.
+    SkyRenderOptions perPixel = off, tables = off;
+    perPixel.method = SkyMethod::PerPixel;
+    tables.multipleScattering = MultipleScattering::BrunetonTables;
+    for (const auto& [name, options] :
+         {std::pair<const char*, const SkyRenderOptions&>{"f_ms, marched per pixel", perPixel},
+          {"Bruneton's 4D tables, 4 orders", tables}}) {
+      const RenderResult v = renderer.render(scene, options);
+      std::snprintf(quantity, sizeof(quantity), "the same, %s", name);
+      NightBenchRow variant = row("twilight", quantity, "lx", atDirections(v), referenceLux);
+      variant.passes = "sky/*";
+      std::snprintf(note, sizeof(note), "%s; %d wavelengths", utc, v.spectralSamples);
+      variant.note = note;
+      rows.push_back(variant);
+    }
   }
   return rows;
 }
 
 }  // namespace
+
+void checkNightBenchConfig(const NightBenchConfig& config) {
+  for (const char* t : kNightBenchTerms)
+    if (config.term.empty() || config.term == t) return;
+  throw InputError("--scenario " + config.term +
+                   ": no such night term (moon_disc, stars, sky_glow, moonlit_sky, twilight)");
+}
 
 std::vector<NightBenchRow> runNightBench(gpu::Context& context, const NightBenchConfig& config) {
   SkyRenderer renderer(context);
@@ -448,12 +492,15 @@ std::vector<NightBenchRow> runNightBench(gpu::Context& context, const NightBench
       rows.push_back(std::move(r));
     }
   };
-  add({moonDiscRow(renderer, config, ref, kFullMoon, false)});
-  add({moonDiscRow(renderer, config, ref, kDayMoon, true)});
-  add(starRows(renderer, config, ref));
-  add(skyGlowRows(renderer, config, ref));
-  add({moonlitSkyRow(renderer, config)});
-  add(twilightRows(renderer, config));
+  auto wanted = [&](const char* term) { return config.term.empty() || config.term == term; };
+  if (wanted("moon_disc")) {
+    add({moonDiscRow(renderer, config, ref, kFullMoon, false)});
+    add({moonDiscRow(renderer, config, ref, kDayMoon, true)});
+  }
+  if (wanted("stars")) add(starRows(renderer, config, ref));
+  if (wanted("sky_glow")) add(skyGlowRows(renderer, config, ref));
+  if (wanted("moonlit_sky")) add({moonlitSkyRow(renderer, config)});
+  if (wanted("twilight")) add(twilightRows(renderer, config));
   return rows;
 }
 

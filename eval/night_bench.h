@@ -27,8 +27,12 @@ struct NightBenchConfig {
   int threads = 0;       // reference worker threads (0: all cores)
   int referenceSpp = 0;  // reference paths per direction for orders >= 2 (0: 128, --quick 32)
   int timingWidth = 640, timingHeight = 360;
+  std::string term;  // only this term (empty: all): one of kNightBenchTerms
   std::string environmentNote;
 };
+inline constexpr const char* kNightBenchTerms[] = {"moon_disc", "stars", "sky_glow", "moonlit_sky", "twilight"};
+// InputError for a term that does not exist (before any work).
+void checkNightBenchConfig(const NightBenchConfig& config);
 
 struct NightBenchRow {
   std::string term, quantity, unit;

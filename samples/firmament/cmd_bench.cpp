@@ -203,8 +203,10 @@ int benchNight(const Args& args, const std::filesystem::path& out) {
   config.repeats = args.integer("repeats", 3, 1, 100);
   config.threads = args.integer("threads", 0, 0, 1024);
   config.referenceSpp = args.integer("reference-spp", 0, 1, 1 << 16);
+  config.term = args.getOr("scenario", "");
   if (config.quick) config.timingWidth = 160, config.timingHeight = 90;
   readTimingSize(args, config.timingWidth, config.timingHeight, "640x360");
+  checkNightBenchConfig(config);  // refused before any work
   gpu::ContextOptions contextOptions;
   contextOptions.device = args.getOr("device", "");
   gpu::Context context(contextOptions);
@@ -274,7 +276,7 @@ const CommandRegistration registration{Command{
          "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
          "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
          "above_clouds, cumulus_low_sun, cumulus_low_sun_behind; terrain: cumulus_noon, overcast, ridges_low_sun, "
-         "snow_broken_cloud, dem_luxembourg)"},
+         "snow_broken_cloud, dem_luxembourg; night: the term moon_disc, stars, sky_glow, moonlit_sky, twilight)"},
         {"dem-dir", "DIR",
          "terrain only: the folder scripts/fetch_test_dems.sh fills (default build/test-data/dem), for dem_luxembourg"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
@@ -306,7 +308,7 @@ const CommandRegistration registration{Command{
          "and the defaults' still and 1/16 sequence"},
         {"timing-size", "WxH",
          "clouds, terrain and night: the frame timing's image size (default 640x360, --quick 320x180 / terrain "
-         "160x90), e.g. "
+         "and night 160x90), e.g. "
          "1920x1080 on a GPU"},
         {"calibrate", "",
          "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "

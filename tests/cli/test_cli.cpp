@@ -128,6 +128,7 @@ TEST(Cli, BenchRefusesBadOptionsBeforeAnyWork) {
       {"bench clouds --timing-only --error-setting default", {"--error-setting", "--timing-only"}},
       {"bench terrain --scenario cumulus", {"--scenario cumulus", "cumulus_noon", "dem_luxembourg"}},
       {"bench terrain --scenario dem_luxembourg --dem-dir nowhere", {"nowhere", "scripts/fetch_test_dems.sh"}},
+      {"bench night --scenario stars_only", {"--scenario stars_only", "moon_disc", "twilight"}},
   };
   for (const auto& c : cases) {
     const auto out = dir / "out";
