@@ -366,6 +366,35 @@ TEST_F(NightLightTest, StarsBehindAnOpaqueDeckAreGone) {
   EXPECT_LE(std::fabs(overcastStars), 1e-3 * clearStars);
 }
 
+// The daytime Moon behind an opaque stratus deck (700 m thick, optical depth ~ 50) is gone: the disc is
+// added before the clouds composite over the sky, so their transmittance along the view dims it. Its light
+// at most 1e-3 of the clear sky's (measured 0). 2026-06-22T15:00Z as above, a 4-deg view.
+TEST_F(NightLightTest, DaytimeMoonBehindAnOpaqueDeckIsGone) {
+  const astro::MoonLight moon = astro::moonLight(astro::makeAstroTime("2026-06-22T15:00:00Z"),
+                                                 astro::GeodeticLocation::fromDegrees(46.55, 7.98, 1200.0));
+  char camera[300];
+  std::snprintf(camera, sizeof(camera), R"("camera": { "height_above_ground_m": 2, "yaw_deg": %.6f,
+    "pitch_deg": %.6f, "fov_deg": 4, "width": 24, "height": 24 })",
+                moon.azimuth / kDegree, 90.0 - moon.zenith / kDegree);
+  const std::string deck = R"("clouds": { "layers": [ { "kind": "stratus", "bottom_m": 1500, "top_m": 2200,
+    "coverage": 1.0 } ], "quality": "low", "seed": 1 })";
+  SkyRenderOptions disc, none;
+  none.night.moonDisc = false;
+  disc.cloudNoise.shapeSize = none.cloudNoise.shapeSize = 32;
+  disc.cloudNoise.detailSize = none.cloudNoise.detailSize = 16;
+  const Scene clear = sections({kPlace, kDayMoon, camera});
+  const Scene overcast = sections({kPlace, kDayMoon, camera, deck});
+  const RenderResult clearWith = renderer().render(clear, disc);
+  const double clearDisc = starLight(clearWith, renderer().render(clear, none));
+  const RenderResult overcastWith = renderer().render(overcast, disc);
+  const double overcastDisc = starLight(overcastWith, renderer().render(overcast, none));
+  std::printf("daytime Moon: clear %.4g, behind the deck %.4g (summed cd/m^2)\n", clearDisc, overcastDisc);
+  ASSERT_TRUE(clearWith.night.dayMoonDisc && overcastWith.night.dayMoonDisc);
+  ASSERT_FALSE(overcastWith.night.run);
+  ASSERT_GT(clearDisc, 0.0);
+  EXPECT_LE(std::fabs(overcastDisc), 1e-3 * clearDisc);
+}
+
 // Stars in daylight: with the sun 5 deg high (the night's passes run, below +10 deg) the brightest star
 // above 20 deg changes no pixel by more than 1e-3 of its luminance, under the eye's contrast threshold in
 // daylight (about 1 %, Blackwell 1946) by ten, with a pixel of 0.16 deg (measured 3.1e-4); the same view at night shows
