@@ -113,6 +113,20 @@ TEST(NightFrame, DaytimeMoonRunsItsDiscAloneOnlyWhenUpAndInTheView) {
   EXPECT_NEAR(0.5 * (centre.x0 + centre.x1), 32.0, 1.0);
   EXPECT_TRUE(moonDiscPixelRect(camera, -camera.forward, rho).empty());
   EXPECT_TRUE(moonDiscPixelRect(camera, glm::dvec3(1, 0, 0), rho).empty());
+  // The equirectangular image wraps: a disc on its seam (behind the yaw) spans the whole width, its rows only.
+  shared::CameraParameters sphere{};
+  sphere.projection = shared::kProjectionEquirectangular;
+  sphere.yaw = 0.0;
+  sphere.width = 256;
+  sphere.height = 128;
+  const double rho2 = 0.02;  // rad: 0.8 pixels of 1.4 deg
+  const PixelRect seam = moonDiscPixelRect(sphere, glm::normalize(glm::dvec3(0.0, -1.0, 0.3)), rho2);
+  EXPECT_EQ(seam.x0, 0);
+  EXPECT_EQ(seam.x1, sphere.width);
+  EXPECT_LT(seam.height(), 12);
+  const PixelRect front = moonDiscPixelRect(sphere, glm::normalize(glm::dvec3(0.0, 1.0, 0.3)), rho2);
+  EXPECT_LT(front.width(), 12);
+  EXPECT_NEAR(0.5 * (front.x0 + front.x1), 128.0, 2.0);
 }
 
 class NightFrameTest : public test::GpuTest {};
