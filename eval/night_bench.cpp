@@ -466,6 +466,26 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
       variant.note = note;
       rows.push_back(variant);
     }
+    // The tables' ground illuminance (sky/frame_light.h, TableGroundIlluminance: direct plus the ground's
+    // skylight table; what decision 0228 compares with the Moon's), read in a night frame with clouds: a
+    // cloud layer of no coverage, small noise, a tiny image (clouds take three wavelengths).
+    {
+      SkyRenderOptions withClouds;
+      withClouds.cloudNoise.shapeSize = 32;
+      withClouds.cloudNoise.detailSize = 16;
+      withClouds.night.stars = withClouds.night.skyGlow = withClouds.night.moonDisc = false;
+      const Scene clouded = sceneAt(utc, aimedCamera(0.0, kPi / 2, 90.0, 8, 8),
+                                    {R"(/clouds={"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 2500,
+                                        "coverage": 0.0}], "quality": "low", "seed": 1})"});
+      const RenderResult v = renderer.render(clouded, withClouds);
+      NightBenchRow table = row("twilight", "the same, the tables' ground illuminance (frame light)", "lx",
+                                v.light.sunGroundLux, referenceLux);
+      table.passes = "sky/frame_light (CPU read-back)";
+      std::snprintf(note, sizeof(note), "%s; direct plus the ground's skylight table, %d wavelengths", utc,
+                    v.spectralSamples);
+      table.note = note;
+      rows.push_back(table);
+    }
   }
   return rows;
 }
