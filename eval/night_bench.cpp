@@ -452,12 +452,14 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
     r.note = note;
     rows.push_back(r);
     // The same sky from the frame's other ways of computing it: which approximation the difference is in.
-    SkyRenderOptions perPixel = off, tables = off;
+    SkyRenderOptions perPixel = off, tables = off, three = off;
     perPixel.method = SkyMethod::PerPixel;
     tables.multipleScattering = MultipleScattering::BrunetonTables;
+    three.luts.spectralSamples = 3;  // as with clouds, and as the frame light's tables below
     for (const auto& [name, options] :
          {std::pair<const char*, const SkyRenderOptions&>{"f_ms, marched per pixel", perPixel},
-          {"Bruneton's 4D tables, 4 orders", tables}}) {
+          {"Bruneton's 4D tables, 4 orders", tables},
+          {"f_ms, sky-view table, 3 wavelengths", three}}) {
       const RenderResult v = renderer.render(scene, options);
       std::snprintf(quantity, sizeof(quantity), "the same, %s", name);
       NightBenchRow variant = row("twilight", quantity, "lx", atDirections(v), referenceLux);
