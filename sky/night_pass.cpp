@@ -15,6 +15,7 @@
 #include "core/spectrum.h"
 #include "sky/frame_light.h"
 #include "sky/render_plan.h"
+#include "sky/scene_view.h"
 
 namespace firmament {
 namespace {
@@ -81,6 +82,40 @@ const astro::StarCatalogue* nightStarCatalogue() {
   return catalogue.get();
 }
 
+namespace {
+
+// The daytime Moon: the disc alone when the Moon is above the horizon and in the view.
+void decideDayMoonDisc(const Scene& scene, const NightOptions& options, const astro::AstroTime& time,
+                       const astro::GeodeticLocation& location, NightDecision& d) {
+  if (!options.moonDisc) {
+    d.dayMoonDiscReason = "switched off";
+    return;
+  }
+  const astro::MoonLight moon = astro::moonLight(time, location);
+  d.moonAltitudeDeg = 90.0 - moon.zenith / kDegree;
+  char text[200];
+  if (d.moonAltitudeDeg <= -1.0) {
+    std::snprintf(text, sizeof(text), "the Moon is %.1f deg below the horizon", -d.moonAltitudeDeg);
+    d.dayMoonDiscReason = text;
+    return;
+  }
+  const shared::CameraParameters camera = makeSceneView(scene).camera;
+  const PixelRect rect = moonDiscPixelRect(camera, moon.directionEnu, moon.angularRadius);
+  if (rect.empty()) {
+    std::snprintf(text, sizeof(text), "the Moon (%.1f deg high, azimuth %.1f deg) is outside the view",
+                  d.moonAltitudeDeg, moon.azimuth / kDegree);
+    d.dayMoonDiscReason = text;
+    return;
+  }
+  d.dayMoonDisc = true;
+  std::snprintf(text, sizeof(text),
+                "the daytime Moon, %.1f deg high and %.0f %% lit, is in the view: its disc alone over %d x %d pixels",
+                d.moonAltitudeDeg, 100.0 * moon.illuminatedFraction, rect.width(), rect.height());
+  d.dayMoonDiscReason = text;
+}
+
+}  // namespace
+
 NightDecision decideNight(const Scene& scene, const NightOptions& options, bool skyView) {
   NightDecision d;
   if (!options.enabled) {
@@ -99,6 +134,7 @@ NightDecision decideNight(const Scene& scene, const NightOptions& options, bool 
     std::snprintf(text, sizeof(text), "the sun is %.1f deg above the horizon (the night runs below %.0f deg)",
                   d.sunAltitudeDeg, options.sunAltitudeLimitDeg);
     d.reason = text;
+    decideDayMoonDisc(scene, options, time, location, d);
     return d;
   }
   std::snprintf(text, sizeof(text), "the sun is at %.1f deg (below %.0f deg)", d.sunAltitudeDeg,
@@ -131,6 +167,11 @@ NightDecision decideNight(const Scene& scene, const NightOptions& options, bool 
 void planNight(const NightDecision& d, RenderPlan& plan) {
   if (!d.run) {
     plan.omitted.push_back({"night/moon_sky_view, night/night_sky", d.reason});
+    if (d.dayMoonDisc)
+      plan.passes.push_back({"night/moon_disc_day", "the Moon's disc added to the sky image over its pixels (cd/m^2)",
+                             d.dayMoonDiscReason + ", extincted along the view", true});
+    else if (!d.dayMoonDiscReason.empty())
+      plan.omitted.push_back({"night/moon_disc_day", d.dayMoonDiscReason});
     return;
   }
   if (d.moonSky)
@@ -168,9 +209,12 @@ double pixelSolidAngle(const shared::CameraParameters& camera, glm::dvec2 p) {
   return side * side * cosine * cosine * cosine;
 }
 
-std::vector<float> splatPointLights(const shared::CameraParameters& camera, const std::vector<PointLight>& lights) {
+namespace {
+
+// splatPointLights into the pixels of `rect` (an image of rect's size, row by row).
+void splatInto(const shared::CameraParameters& camera, const std::vector<PointLight>& lights, const PixelRect& rect,
+               std::vector<float>& image) {
   const int w = camera.width, h = camera.height;
-  std::vector<float> image(size_t(w) * size_t(h) * 4, 0.0f);
   const bool wrap = camera.projection == shared::kProjectionEquirectangular;
   for (const PointLight& light : lights) {
     bool valid = false;
@@ -185,16 +229,132 @@ std::vector<float> splatPointLights(const shared::CameraParameters& camera, cons
         const int y = y0 + j;
         if (wrap) x = ((x % w) + w) % w;
         if (x < 0 || x >= w || y < 0 || y >= h) continue;
+        if (x < rect.x0 || x >= rect.x1 || y < rect.y0 || y >= rect.y1) continue;
         const double weight = (i ? ax : 1.0 - ax) * (j ? ay : 1.0 - ay);
         if (weight <= 0.0) continue;
-        const shared::CameraParameters& c = camera;
-        if (!shared::cameraSeesPixel(c, glm::dvec2(x + 0.5, y + 0.5))) continue;
+        if (!shared::cameraSeesPixel(camera, glm::dvec2(x + 0.5, y + 0.5))) continue;
         const double radiance = weight / pixelSolidAngle(camera, glm::dvec2(x + 0.5, y + 0.5));
-        float* out = &image[(size_t(y) * size_t(w) + size_t(x)) * 4];
+        float* out = &image[(size_t(y - rect.y0) * size_t(rect.width()) + size_t(x - rect.x0)) * 4];
         for (int c3 = 0; c3 < 3; ++c3) out[c3] += float(light.rgbLux[c3] * radiance);
       }
   }
+}
+
+}  // namespace
+
+std::vector<float> splatPointLights(const shared::CameraParameters& camera, const std::vector<PointLight>& lights) {
+  std::vector<float> image(size_t(camera.width) * size_t(camera.height) * 4, 0.0f);
+  splatInto(camera, lights, PixelRect{0, 0, camera.width, camera.height}, image);
   return image;
+}
+
+glm::dvec3 moonRec709UnitLuminance() {
+  static const glm::dvec3 colour = [] {
+    const glm::dvec3 rgb =
+        rec709Of([](double l) { return solarIrradianceTopOfAtmosphere()(l) * astro::lunarRelativeReflectance(l); });
+    return rgb / luminanceRec709(rgb.x, rgb.y, rgb.z);
+  }();
+  return colour;
+}
+
+PixelRect moonDiscPixelRect(const shared::CameraParameters& camera, const glm::dvec3& moonDirection,
+                            double angularRadius) {
+  PixelRect rect;
+  const double radius = angularRadius + 2.0 * pixelAngle(camera);
+  // Two unit vectors across the Moon's direction span the circle around it.
+  const glm::dvec3 m = glm::normalize(moonDirection);
+  const glm::dvec3 a = glm::normalize(glm::cross(m, std::fabs(m.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+  const glm::dvec3 b = glm::cross(m, a);
+  double lo[2] = {1e30, 1e30}, hi[2] = {-1e30, -1e30};
+  bool any = false;
+  constexpr int kPoints = 32;
+  for (int k = 0; k <= kPoints; ++k) {
+    const double t = 2.0 * kPi * k / kPoints;
+    const glm::dvec3 d =
+        k == kPoints ? m : std::cos(radius) * m + std::sin(radius) * (std::cos(t) * a + std::sin(t) * b);
+    bool valid = false;
+    const glm::dvec2 p = shared::cameraPixelOfDirection(camera, d, valid);
+    if (!valid) continue;
+    any = true;
+    lo[0] = std::min(lo[0], p.x), lo[1] = std::min(lo[1], p.y);
+    hi[0] = std::max(hi[0], p.x), hi[1] = std::max(hi[1], p.y);
+  }
+  if (!any) return rect;
+  // The equirectangular image wraps: a circle across its seam spans the whole width.
+  if (camera.projection == shared::kProjectionEquirectangular && hi[0] - lo[0] > 0.5 * camera.width) {
+    lo[0] = 0.0;
+    hi[0] = camera.width;
+  }
+  rect.x0 = std::max(0, int(std::floor(lo[0])) - 1);
+  rect.y0 = std::max(0, int(std::floor(lo[1])) - 1);
+  rect.x1 = std::min(camera.width, int(std::ceil(hi[0])) + 1);
+  rect.y1 = std::min(camera.height, int(std::ceil(hi[1])) + 1);
+  if (rect.empty()) rect = PixelRect{};
+  return rect;
+}
+
+std::vector<float> moonDiscAboveAir(const shared::CameraParameters& camera, const astro::MoonLight& moon,
+                                    const PixelRect& rect) {
+  std::vector<float> image(size_t(std::max(rect.width(), 0)) * size_t(std::max(rect.height(), 0)) * 4, 0.0f);
+  if (rect.empty()) return image;
+  const glm::dvec3 colour = moonRec709UnitLuminance();
+  if (moon.angularRadius / pixelAngle(camera) < 2.0) {
+    splatInto(camera, {{moon.directionEnu, colour * moon.illuminanceLux}}, rect, image);
+    return image;
+  }
+  for (int y = rect.y0; y < rect.y1; ++y)
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      double sum = 0.0;
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+          bool valid = false;
+          const glm::dvec3 d =
+              shared::cameraRayDirection(camera, glm::dvec2(x + (i + 0.5) / 4.0, y + (j + 0.5) / 4.0), valid);
+          if (!valid) continue;
+          sum += shared::moonDiscRadiance(d, moon.directionEnu, moon.sunFromMoonEnu, moon.angularRadius,
+                                          moon.litRadianceScale, moon.earthshineLuminance, 1.0);
+        }
+      float* out = &image[(size_t(y - rect.y0) * size_t(rect.width()) + size_t(x - rect.x0)) * 4];
+      for (int c = 0; c < 3; ++c) out[c] = float(colour[c] * sum / 16.0);
+    }
+  return image;
+}
+
+DayMoonDiscPass::DayMoonDiscPass(gpu::Context& context)
+    : context_(context),
+      pipeline_(context,
+                {"night/moon_disc_day",
+                 {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage, gpu::BindingType::StorageBuffer,
+                  gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer},
+                 sizeof(gpu::TileDispatch) + 4 * sizeof(int32_t)}) {}
+
+bool DayMoonDiscPass::record(const Inputs& in, gpu::CommandList& commands) {
+  const Scene& scene = *in.scene;
+  moon_ = astro::moonLight(astro::makeAstroTime(scene.string("/time/utc")), sceneLocation(scene));
+  rect_ = moonDiscPixelRect(in.camera, moon_.directionEnu, moon_.angularRadius);
+  if (rect_.empty()) return false;
+  const std::vector<float> above = moonDiscAboveAir(in.camera, moon_, rect_);
+  const VkDeviceSize bytes = VkDeviceSize(above.size() * sizeof(float));
+  if (!radiance_ || radiance_->size() < bytes)
+    radiance_ = std::make_unique<gpu::Buffer>(context_, bytes, gpu::BufferUsage::Storage, gpu::MemoryLocation::Host,
+                                              "daytime Moon disc");
+  radiance_->upload(above);
+  struct {
+    gpu::TileDispatch tiles;
+    int32_t rect[4];
+  } push{};
+  push.tiles = gpu::tileDispatch(context_, uint32_t(rect_.width()), uint32_t(rect_.height()));
+  push.rect[0] = rect_.x0;
+  push.rect[1] = rect_.y0;
+  push.rect[2] = in.camera.width;
+  const AtmosphereLuts& luts = *in.luts;
+  commands.barrier();
+  commands.bind(
+      pipeline_,
+      {luts.atmosphereBlock(), {luts.sunRadiance(), luts.linearClamp()}, *in.output, *in.frameBlock, *radiance_});
+  commands.pushConstants(push);
+  commands.dispatchTiles(push.tiles, "night/moon_disc_day");
+  return true;
 }
 
 NightPass::NightPass(gpu::Context& context)
@@ -257,11 +417,7 @@ void NightPass::record(const Inputs& in, gpu::CommandList& commands) {
 
   // The block: the Moon's disc, the sky's own light, the frames.
   NightBlock block{};
-  const glm::dvec3 moonColour = [] {
-    const glm::dvec3 rgb =
-        rec709Of([](double l) { return solarIrradianceTopOfAtmosphere()(l) * astro::lunarRelativeReflectance(l); });
-    return rgb / luminanceRec709(rgb.x, rgb.y, rgb.z);
-  }();
+  const glm::dvec3 moonColour = moonRec709UnitLuminance();
   const double discPixels = moon_.angularRadius / pixelAngle(camera);
   const bool disc = d.moonDisc && discPixels >= 2.0;
   put(block.moonDirection, moon_.directionEnu, moon_.angularRadius);

@@ -33,6 +33,49 @@ std::vector<float> splatPointLights(const shared::CameraParameters& camera, cons
 // The solid angle (sr) of the pixel centred at `pixelCentre` (pixel units) for the camera's projection.
 double pixelSolidAngle(const shared::CameraParameters& camera, glm::dvec2 pixelCentre);
 
+// The pixels the Moon's disc can touch: its circle of angular radius plus two pixels projected, clamped
+// to the image; empty when the Moon is out of the view. x1, y1 are one past the last.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+PixelRect moonDiscPixelRect(const shared::CameraParameters& camera, const glm::dvec3& moonDirection,
+                            double angularRadius);
+// The Moon's disc above the air over `rect`, RGBA floats (cd/m^2, Rec.709), row by row: moonDiscRadiance
+// with 4x4 samples per pixel when the disc is at least two pixels in radius, else the Moon's illuminance
+// splatted as a point (splatPointLights), as the night pass draws it.
+std::vector<float> moonDiscAboveAir(const shared::CameraParameters& camera, const astro::MoonLight& moon,
+                                    const PixelRect& rect);
+// The Moon's colour: Rec.709 of unit luminance of the solar spectrum times the lunar relative reflectance.
+glm::dvec3 moonRec709UnitLuminance();
+
+// The daytime Moon (docs/night.md, "The daytime Moon"): the disc alone, over its pixel rectangle, extincted
+// along the view (shaders/night/moon_disc_day.comp), for frames with the sun above the night's limit.
+class DayMoonDiscPass {
+ public:
+  explicit DayMoonDiscPass(gpu::Context& context);
+  struct Inputs {
+    const Scene* scene = nullptr;
+    const AtmosphereLuts* luts = nullptr;
+    const gpu::Buffer* frameBlock = nullptr;
+    gpu::Buffer* output = nullptr;
+    shared::CameraParameters camera{};
+  };
+  // Records nothing (and returns false) when the disc's rectangle is empty.
+  bool record(const Inputs& inputs, gpu::CommandList& commands);
+  const astro::MoonLight& moon() const { return moon_; }
+  const PixelRect& rect() const { return rect_; }
+
+ private:
+  gpu::Context& context_;
+  gpu::ComputePipeline pipeline_;
+  std::unique_ptr<gpu::Buffer> radiance_;
+  astro::MoonLight moon_;
+  PixelRect rect_;
+};
+
 // The GPU side: the Moon's sky-view table and the per-pixel pass (shaders/night/night_sky.comp).
 class NightPass {
  public:

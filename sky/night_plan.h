@@ -10,8 +10,8 @@ namespace firmament {
 struct RenderPlan;
 
 // Above this sun altitude no night pass runs. Measured (docs/night.md, "Where the night starts"): the
-// night's sky terms change no pixel by more than 2.1e-6 there (2.5e-5 at 0 deg); the Moon's disc is not
-// negligible in daylight and is left out above it.
+// night's sky terms change no pixel by more than 2.1e-6 there (2.5e-5 at 0 deg). The Moon's disc is not
+// negligible in daylight: above it the disc alone is drawn (`NightDecision::dayMoonDisc`, the daytime Moon).
 inline constexpr double kNightSunAltitudeLimitDeg = 10.0;
 // The Moon lights the sky while its apparent altitude is above this (a choice; the step it leaves in a
 // 24 h sweep is still to be measured).
@@ -28,6 +28,10 @@ struct NightOptions {
 struct NightDecision {
   bool run = false;  // any part
   bool moonSky = false, moonDisc = false, skyGlow = false, stars = false;
+  // The daytime Moon: with the sun above the limit (no night pass, `run` false) the disc alone, over its
+  // pixel rectangle, when the Moon is above the horizon and in the view (night/moon_disc_day).
+  bool dayMoonDisc = false;
+  std::string dayMoonDiscReason;           // why it runs or not (with the sun above the limit)
   std::string reason;                      // why the night runs or not
   std::string moonSkyReason, starsReason;  // why those parts are left out, when they are
   double sunAltitudeDeg = 0.0, moonAltitudeDeg = 0.0;

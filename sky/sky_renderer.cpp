@@ -168,6 +168,7 @@ void SkyRenderer::recordBeforeClouds(const Scene& scene, Frame& frame, RenderRes
                                      gpu::CommandList& commands) {
   recordSky(frame, result, commands);
   if (result.night.run) recordNight(scene, frame, result, commands);
+  if (!result.night.run && result.night.dayMoonDisc) recordDayMoonDisc(scene, frame, result, commands);
   if (result.night.run && (frame.terrain || frame.clouds)) chooseLight(frame, result);
   if (frame.terrain && !frame.clouds) {
     commands.barrier();
@@ -518,6 +519,19 @@ void SkyRenderer::recordNight(const Scene& scene, Frame& frame, RenderResult& re
   in.skyViewHeight = frame.options.skyViewHeight;
   commands.barrier();
   night_->record(in, commands);
+}
+
+// The daytime Moon (sky/night_pass.h): the disc alone over its pixels, before the clouds composite.
+void SkyRenderer::recordDayMoonDisc(const Scene& scene, Frame& frame, RenderResult& result,
+                                    gpu::CommandList& commands) {
+  if (!dayMoon_) dayMoon_ = std::make_unique<DayMoonDiscPass>(context_);
+  DayMoonDiscPass::Inputs in;
+  in.scene = &scene;
+  in.luts = &luts_;
+  in.frameBlock = &frameBlock_;
+  in.output = frame.output.get();
+  in.camera = result.view.camera;
+  result.night.dayMoonDisc = dayMoon_->record(in, commands);
 }
 
 // The light of the clouds and terrain at night (decision 0228): each light's horizontal ground illuminance

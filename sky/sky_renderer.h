@@ -147,6 +147,7 @@ class SkyRenderer {
   void prepareClouds(const Scene& scene, Frame& frame, RenderResult& result);
   void recordSky(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordNight(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
+  void recordDayMoonDisc(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
   void recordClouds(Frame& frame, RenderResult& result, gpu::CommandList& commands);
   // recordSky, recordNight, chooseLight and, without clouds, recordTerrain: the steps before the clouds.
   void recordBeforeClouds(const Scene& scene, Frame& frame, RenderResult& result, gpu::CommandList& commands);
@@ -174,6 +175,7 @@ class SkyRenderer {
   std::unique_ptr<AerialPerspectiveVolume> aerial_;            // created for the first scene that reads it
   std::unique_ptr<TerrainPass> terrain_;                       // created for the first scene with terrain
   std::unique_ptr<NightPass> night_;                           // created for the first night scene
+  std::unique_ptr<DayMoonDiscPass> dayMoon_;                   // created for the first daytime Moon in view
   gpu::Buffer frameBlock_;
   gpu::Buffer lightFrameBlock_;           // the frame block with the light's direction (light shafts under the Moon)
   std::vector<gpu::Buffer> lightBlocks_;  // per batch, the atmosphere block of the Moon as the light

@@ -1,4 +1,4 @@
-// `firmament bench atmosphere|clouds|terrain|weather|all --out DIR [--quick]`: error-against-run-time sweeps
+// `firmament bench atmosphere|clouds|terrain|night|weather|all --out DIR [--quick]`: error-against-run-time sweeps
 // (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "eval/atmosphere_bench.h"
 #include "eval/cloud_bench.h"
 #include "eval/cloud_calibration.h"
+#include "eval/night_bench.h"
 #include "eval/terrain_bench.h"
 #include "eval/weather_bench.h"
 #include "gpu/context.h"
@@ -210,14 +211,40 @@ int benchWeather(const Args& args, const std::filesystem::path& out) {
   return kExitOk;
 }
 
+int benchNight(const Args& args, const std::filesystem::path& out) {
+  NightBenchConfig config;
+  config.quick = args.has("quick");
+  config.outDir = out;
+  config.repeats = args.integer("repeats", 3, 1, 100);
+  config.threads = args.integer("threads", 0, 0, 1024);
+  config.referenceSpp = args.integer("reference-spp", 0, 1, 1 << 16);
+  config.term = args.getOr("scenario", "");
+  if (config.quick) config.timingWidth = 160, config.timingHeight = 90;
+  readTimingSize(args, config.timingWidth, config.timingHeight, "640x360");
+  checkNightBenchConfig(config);  // refused before any work
+  gpu::ContextOptions contextOptions;
+  contextOptions.device = args.getOr("device", "");
+  gpu::Context context(contextOptions);
+  logInfo("bench night: device " + context.description() + ", output " + out.string());
+  const std::string loadBefore = loadAverage();
+  const std::vector<NightBenchRow> rows = runNightBench(context, config);
+  config.environmentNote = loadNote(loadBefore);
+  writeNightBenchOutputs(config, rows, context.description());
+  logInfo("wrote " + (out / "night_results.csv").string() + " and " + (out / "night_report.md").string());
+  return kExitOk;
+}
+
 struct Target {
   std::string name;
   std::function<int(const Args&, const std::filesystem::path&)> run;
 };
 
 const std::vector<Target>& targets() {
-  static const std::vector<Target> t = {
-      {"atmosphere", benchAtmosphere}, {"clouds", benchClouds}, {"terrain", benchTerrain}, {"weather", benchWeather}};
+  static const std::vector<Target> t = {{"atmosphere", benchAtmosphere},
+                                        {"clouds", benchClouds},
+                                        {"terrain", benchTerrain},
+                                        {"night", benchNight},
+                                        {"weather", benchWeather}};
   return t;
 }
 
@@ -246,7 +273,8 @@ int runBench(const Args& args) {
 const CommandRegistration registration{Command{
     "bench",
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
-    "bench atmosphere|clouds|terrain|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] [--reference-spp "
+    "bench atmosphere|clouds|terrain|night|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] "
+    "[--reference-spp "
     "N] "
     "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate "
     "[--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] "
@@ -258,7 +286,8 @@ const CommandRegistration registration{Command{
          "only this scenario (atmosphere: noon, sunset, twilight, altitude_10km, limb_100km; clouds: "
          "cumulus_noon, stratocumulus_sunset, overcast, cumulonimbus, inside_cloud, horizon, two_layers, cirrus, "
          "above_clouds, cumulus_low_sun, cumulus_low_sun_behind; terrain: cumulus_noon, overcast, ridges_low_sun, "
-         "snow_broken_cloud, dem_luxembourg; weather: a preset, default fair-weather and thunderstorm)"},
+         "snow_broken_cloud, dem_luxembourg; night: the term moon_disc, stars, sky_glow, moonlit_sky, twilight; "
+         "weather: a preset, default fair-weather and thunderstorm)"},
         {"dem-dir", "DIR",
          "terrain only: the folder scripts/fetch_test_dems.sh fills (default build/test-data/dem), for dem_luxembourg"},
         {"repeats", "N", "timing repeats, median reported (default 3)"},
@@ -289,7 +318,8 @@ const CommandRegistration registration{Command{
          "clouds, with --timing-only: only the timing settings whose name contains TEXT (alternatives separated by |), "
          "and the defaults' still and 1/16 sequence"},
         {"timing-size", "WxH",
-         "clouds and terrain: the frame timing's image size (default 640x360, --quick 320x180 / terrain 160x90), e.g. "
+         "clouds, terrain and night: the frame timing's image size (default 640x360, --quick 320x180 / terrain "
+         "and night 160x90), e.g. "
          "1920x1080 on a GPU"},
         {"calibrate", "",
          "clouds only: fit the octave parameters a, b, c to the path tracer on separate calibration "

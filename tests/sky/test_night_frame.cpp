@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "core/color.h"
 #include "sky/night_pass.h"
@@ -72,6 +73,60 @@ TEST(NightFrame, PlanRunsTheNightOnlyBelowTheSunAltitudeLimit) {
   for (const auto& o : planRender(day).omitted)
     omitted = omitted || o.name.find("night/night_sky") != std::string::npos;
   EXPECT_TRUE(omitted);
+}
+
+// The daytime Moon (docs/night.md, "The daytime Moon"): with the sun above +10 deg the night's passes are
+// omitted and the Moon's disc alone runs, over its pixel rectangle, when the Moon is up and in the view;
+// out of the view or below the horizon nothing runs. 2026-06-22T15:00Z at the scenes' place: the sun 42.3
+// deg high, a 0.6-lit Moon 23.3 deg high at azimuth 131.2 deg.
+TEST(NightFrame, DaytimeMoonRunsItsDiscAloneOnlyWhenUpAndInTheView) {
+  const std::string place = R"("location": {"latitude_deg": 46.55, "longitude_deg": 7.98, "height_m": 1200})";
+  auto plan = [&](const char* utc, double yaw, double pitch) {
+    char json[400];
+    std::snprintf(json, sizeof(json),
+                  R"({%s, "time": {"utc": "%s"}, "camera": {"yaw_deg": %.1f, "pitch_deg": %.1f, "fov_deg": 20}})",
+                  place.c_str(), utc, yaw, pitch);
+    return planRender(Scene::parse(json, "<test>"));
+  };
+  const RenderPlan facing = plan("2026-06-22T15:00:00Z", 131.2, 23.3);
+  EXPECT_TRUE(facing.has("night/moon_disc_day"));
+  EXPECT_FALSE(facing.has("night/night_sky"));
+  EXPECT_FALSE(facing.has("night/moon_sky_view (sky/sky_view_lut)"));
+  const RenderPlan away = plan("2026-06-22T15:00:00Z", 311.2, 23.3);  // facing the other way
+  const RenderPlan set = plan("2026-06-22T08:00:00Z", 131.2, 23.3);   // the Moon below the horizon
+  for (const RenderPlan* p : {&away, &set}) {
+    EXPECT_FALSE(p->has("night/moon_disc_day"));
+    bool omitted = false;
+    for (const auto& o : p->omitted) omitted = omitted || o.name == "night/moon_disc_day";
+    EXPECT_TRUE(omitted);
+  }
+  // The rectangle: the disc's circle plus two pixels, clamped to the image; empty out of the view.
+  shared::CameraParameters camera{};
+  camera.forward = glm::dvec3(0, 1, 0);
+  camera.right = glm::dvec3(1, 0, 0);
+  camera.up = glm::dvec3(0, 0, 1);
+  camera.fov = 2.0 * std::numbers::pi / 180.0;
+  camera.width = camera.height = 64;
+  const double rho = 0.0045;  // rad: 8.3 pixels of 0.031 deg
+  const PixelRect centre = moonDiscPixelRect(camera, camera.forward, rho);
+  EXPECT_NEAR(centre.width(), 2.0 * (rho / (camera.fov / 64) + 2.0) + 2.0, 3.0);
+  EXPECT_NEAR(0.5 * (centre.x0 + centre.x1), 32.0, 1.0);
+  EXPECT_TRUE(moonDiscPixelRect(camera, -camera.forward, rho).empty());
+  EXPECT_TRUE(moonDiscPixelRect(camera, glm::dvec3(1, 0, 0), rho).empty());
+  // The equirectangular image wraps: a disc on its seam (behind the yaw) spans the whole width, its rows only.
+  shared::CameraParameters sphere{};
+  sphere.projection = shared::kProjectionEquirectangular;
+  sphere.yaw = 0.0;
+  sphere.width = 256;
+  sphere.height = 128;
+  const double rho2 = 0.02;  // rad: 0.8 pixels of 1.4 deg
+  const PixelRect seam = moonDiscPixelRect(sphere, glm::normalize(glm::dvec3(0.0, -1.0, 0.3)), rho2);
+  EXPECT_EQ(seam.x0, 0);
+  EXPECT_EQ(seam.x1, sphere.width);
+  EXPECT_LT(seam.height(), 12);
+  const PixelRect front = moonDiscPixelRect(sphere, glm::normalize(glm::dvec3(0.0, 1.0, 0.3)), rho2);
+  EXPECT_LT(front.width(), 12);
+  EXPECT_NEAR(0.5 * (front.x0 + front.x1), 128.0, 2.0);
 }
 
 class NightFrameTest : public test::GpuTest {};
