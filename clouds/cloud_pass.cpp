@@ -19,8 +19,7 @@ struct CloudBlock {
   float sunDirection[4];   // w = largest march distance
   int32_t image[4];        // width, height, projection, layer count
   int32_t steps[4];        // view steps, light steps, octaves, flags
-  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), light-step falloff k, light
-                           // march length
+  float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), unused, light march length
   float phase[4];          // g forward, g back, back weight, albedo
   float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
   float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
@@ -53,9 +52,8 @@ struct CloudBlock {
                      // (0); the slab through the other layers, baked this frame (1); the flow's scale
   float layerLowSun[kMaxLayers / 4]
                    [4];  // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
-  float topEntry[4];     // the shadowed top (CloudMarchSettings::topEntryShadow): 1 on, the top's threshold, unused x2
 };
-static_assert(sizeof(CloudBlock) == (31 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
 
 // The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
 // clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from
@@ -218,7 +216,7 @@ uint32_t cloudMarchFeatures(const CloudSettings& settings, bool weatherReach, bo
   if (m.lightThroughOtherLayers && settings.layers.size() > 1) features |= 1u | (m.otherLayerMap ? 64u : 128u);
   if (m.beerShadowMap) features |= 2u;
   if (weatherReach) features |= 4u;
-  if (m.lightStepsFalloff > 0.0) features |= 8u;
+  // 8 is free (the light samples by transmittance, decision 0002).
   if (m.lightCone > 0.0) features |= 16u;
   if (settings.layers.size() > 1) features |= 32u;
   features |= m.columnMap ? 256u : 512u;
@@ -345,7 +343,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   // a, b, c are per layer (below).
-  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, std::max(m.lightStepsFalloff, 0.0),
+  put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, 0.0,
       m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
   put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
@@ -418,9 +416,7 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   for (size_t i = 0; i < layers.size(); ++i)
     b.layerLowSun[i / 4][i % 4] =
         float(std::clamp(m.octaveLowSunMu >= 0.0 ? m.octaveLowSunMu : settings.layers[i].msLowSunMu, 0.0, 1.0));
-  put(b.topEntry, m.topEntryShadow ? 1.0 : 0.0, std::max(m.topEntryThreshold, 0.0), 0.0, 0.0);
-  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0),
-      std::clamp(m.lightStepsFalloffStart, 1e-6, 1.0));
+  put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), 0.0);
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;

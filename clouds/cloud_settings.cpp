@@ -216,8 +216,6 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
   if (earlyExitRemainder) march.earlyExitRemainder = *earlyExitRemainder;
   if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
-  if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
-  if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;
   if (lowTransmittanceStepStart) march.lowTransmittanceStepStart = *lowTransmittanceStepStart;
   if (lowTransmittanceStepMax) march.lowTransmittanceStepMax = *lowTransmittanceStepMax;
   if (otherLayerLightStepsScale) march.otherLayerLightStepsScale = *otherLayerLightStepsScale;
@@ -239,8 +237,6 @@ void CloudOverrides::apply(CloudMarchSettings& march) const {
   if (ambientFlow) march.ambientFlow = *ambientFlow;
   if (octaveLowSunMu) march.octaveLowSunMu = *octaveLowSunMu;
   if (reflectedLowSunDepth) march.reflectedLowSunDepth = *reflectedLowSunDepth;
-  if (topEntryShadow) march.topEntryShadow = *topEntryShadow;
-  if (topEntryThreshold) march.topEntryThreshold = *topEntryThreshold;
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {

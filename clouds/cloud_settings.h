@@ -112,18 +112,6 @@ struct CloudMarchSettings {
   int deepShadowMapLevels = 16;  // K: levels per layer (K samples per line)
   int deepShadowNearSteps = 3;   // light-march steps marched before the map takes over
   double lightMaxLength_m = 40000.0;
-  // Fewer light samples where little of the sample's light reaches the camera (a sample's light enters
-  // the pixel weighted by T, the view ray's δ-scaled transmittance in front of it): the sun's march in
-  // the sample's own layer takes m = max(4, ceil(n min(T / T0, 1)^k)) samples of its n, k this exponent
-  // and T0 lightStepsFalloffStart, each the midpoint of a group of consecutive steps of the n-sample
-  // schedule (opticalDepthToSunGrouped), so the step boundaries do not move as m falls. 0 (off, the
-  // default): n everywhere. At k = 1 the bench's all-order errors are unchanged and the stills up to
-  // 29 % faster at a low sun (noon no faster, within the noise), but the single scattering against the
-  // path tracer's first order drifts bright by up to 8 points (cirrus +1.0 % -> +9.4 %), hidden in the
-  // all-order error by the model's own; docs/clouds.md "Light samples by transmittance".
-  double lightStepsFalloff = 0.0;
-  // Where the falloff starts: m = n while T > T0 (1: from the first sample).
-  double lightStepsFalloffStart = 1.0;
   // Longer view steps behind dense cloud: once the view ray's δ-scaled transmittance T falls below
   // T1 = lowTransmittanceStepStart, the fine step is multiplied by min(T1 / T, K), K =
   // lowTransmittanceStepMax (common/cloud_march.glsl cloudLowTransmittanceStepFactor; docs/clouds.md
@@ -171,15 +159,6 @@ struct CloudMarchSettings {
   // reflected back from deep along it was what stayed too bright (the view away from a sun 82 deg
   // from the zenith +26 %, its far cloud bases 2.1x). Off: a_r whatever the sun.
   bool reflectedLowSunDepth = true;
-  // The sun's shadow on the column's cloud top (docs/clouds.md "The shadowed top"): the way
-  // down from the layer top and the diffusion floor assume sunlight falls on the top of p's column;
-  // under a low sun a taller cloud upsun shadows it. With it on the column's cloud top (the lowest
-  // column-map level above p with at most topEntryThreshold optical depth above it) takes the sun's
-  // optical depth there from the deep shadow map, tau_top: octave i's way from the top passes
-  // e^(-a^i (tau_up + tau_top)) and the floor's flux e^(-(1 - g) tau_top). Needs the column map and the
-  // deep shadow map (else no effect).
-  bool topEntryShadow = false;
-  double topEntryThreshold = 1.0;
   // Step schedule (common/cloud_march.glsl): the fine step is H / N up to one thickness H from the
   // camera, then grows in proportion to the distance up to maxStepFactor H / N. uniformSteps: the first
   // milestone's schedule instead, N equal steps over the ray's total length inside the shells.
@@ -298,8 +277,6 @@ struct CloudOverrides {
   std::optional<double> earlyExitTransmittance;
   std::optional<bool> earlyExitRemainder;
   std::optional<double> noiseLodScale;
-  std::optional<double> lightStepsFalloff;
-  std::optional<double> lightStepsFalloffStart;
   std::optional<double> lowTransmittanceStepStart;
   std::optional<double> lowTransmittanceStepMax;
   std::optional<double> otherLayerLightStepsScale;
@@ -321,8 +298,6 @@ struct CloudOverrides {
   std::optional<double> ambientFlow;
   std::optional<double> octaveLowSunMu;
   std::optional<bool> reflectedLowSunDepth;
-  std::optional<bool> topEntryShadow;
-  std::optional<double> topEntryThreshold;
   std::optional<bool> specializeMarch;
   void apply(CloudMarchSettings& march) const;
 };
