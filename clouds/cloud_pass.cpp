@@ -10,7 +10,24 @@ namespace {
 
 constexpr int kMaxLayers = 8;
 
-// std140 mirror of CloudBlock in shaders/clouds/render_clouds.comp.
+// Every knob of shaders/clouds/cloud_march_knobs.def as a float, in the table's order: the march reads
+// cloud.knobs.NAME (shaders/clouds/cloud_sampling.glsl declares the same struct from the same table; std140
+// packs consecutive floats 4 to a vec4, the struct rounded up to 16 bytes).
+struct alignas(16) CloudKnobsBlock {
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) float name;
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+};
+constexpr int kCloudKnobCount = 0
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) +1
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+    ;
+static_assert(sizeof(CloudKnobsBlock) == size_t((kCloudKnobCount + 3) / 4) * 16);
+float knobFloat(double v) { return float(v); }
+float knobFloat(AerialPerspective v) { return float(int(v)); }
+
+// std140 mirror of CloudBlock in shaders/clouds/cloud_sampling.glsl.
 struct CloudBlock {
   float cameraPosition[4];
   float cameraForward[4];  // w = fov
@@ -21,8 +38,8 @@ struct CloudBlock {
   int32_t steps[4];        // view steps, light steps, octaves, flags
   float phaseLight[4];     // second phase lobe's Draine alpha, δ-scaled share f (0: none), unused, light march length
   float phase[4];          // g forward, g back, back weight, albedo
-  float march[4];          // ambient bottom visibility, early exit, coarse factor, cone
-  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, empty-space margin
+  float march[4];          // ambient bottom visibility, unused, coarse factor, unused (knobs: early exit, cone)
+  float stepGrowth[4];     // base step h0 (m), growth start D (m), largest step factor G, unused (knobs: margin)
   float weatherRegion[4];  // width, height (m), skew east, north (m/m)
   float weatherPlanet[4];  // ground radius (m), low-transmittance step start T1 and largest factor K, other layers'
                            // light-step scale
@@ -51,9 +68,10 @@ struct CloudBlock {
   float buildUp[4];  // the higher orders' build-up along the view: k (0: off); the ambient as a slab (1) or by height
                      // (0); the slab through the other layers, baked this frame (1); the flow's scale
   float layerLowSun[kMaxLayers / 4]
-                   [4];  // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
+                   [4];   // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale's mu_0 (0: off)
+  CloudKnobsBlock knobs;  // every knob, by name (the table)
 };
-static_assert(sizeof(CloudBlock) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
+static_assert(sizeof(CloudBlock) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16 + sizeof(CloudKnobsBlock));
 
 // The per-frame maps (the other layers' map, clouds/other_layer_map.glsl; the column map,
 // clouds/column_map.glsl; the deep shadow map, clouds/deep_shadow_map.glsl). Their log warp's rho0: the distance from
@@ -340,13 +358,13 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
                (m.reflectedLowSunDepth ? 1024 : 0);
   // Growing steps (common/cloud_march.glsl): h0 = H / N, growth from D = H, cap G.
   const double thickest = cloudThickestLayer(settings);
-  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), m.emptySpaceMargin);
+  put(b.stepGrowth, thickest / double(b.steps[0]), thickest, std::max(m.maxStepFactor, 1.0), 0.0);
   // a <= b is enforced when the scene is read; clamp again for settings built in code.
   // a, b, c are per layer (below).
   put(b.phaseLight, l.alpha, m.deltaScaling ? cloudPhaseDeltaFraction(l) : 0.0, 0.0,
       m.lightMarchToExit ? m.lightMaxLength_m : cloudLightMarchLength(settings));
   put(b.phase, l.gForward, l.gBack, l.backWeight, l.albedo);
-  put(b.march, l.ambientBottomVisibility, m.earlyExitTransmittance, double(std::max(m.coarseFactor, 1)), m.lightCone);
+  put(b.march, l.ambientBottomVisibility, 0.0, double(std::max(m.coarseFactor, 1)), 0.0);
   for (size_t i = 0; i < layers.size(); ++i) {
     const shared::CloudLayer& c = layers[i];
     put(b.layers[5 * i], c.bottom_radius, c.top_radius, c.coverage, c.extinction);
@@ -387,11 +405,11 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     // bake marches only each texel's stretch inside the layers, so a long march costs no resolution).
     const double muS = std::max(sun.z, 0.05);
     const double tanS = std::sqrt(std::max(1.0 - muS * muS, 0.0)) / muS;
-    const double start = (highest - mid) / muS + 1000.0 + m.shadowMapExtent_m / std::sqrt(2.0) * tanS;
-    put(b.shadowCentre, centre, m.shadowMapExtent_m);
+    const double start = (highest - mid) / muS + 1000.0 + m.shadowMapExtent / std::sqrt(2.0) * tanS;
+    put(b.shadowCentre, centre, m.shadowMapExtent);
     put(b.shadowAxisU, u, start);
     put(b.shadowAxisV, v, 2.0 * start);
-    shadowPlacement_ = {centre, u, v, m.shadowMapExtent_m, start};
+    shadowPlacement_ = {centre, u, v, m.shadowMapExtent, start};
     b.shadowSize[0] = std::max(m.shadowMapSize, 1);
     b.shadowSize[1] = std::max(m.shadowMapSteps, 1);
     b.shadowSize[2] = m.beerShadowMap ? 1 : 0;
@@ -417,6 +435,9 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     b.layerLowSun[i / 4][i % 4] =
         float(std::clamp(m.octaveLowSunMu >= 0.0 ? m.octaveLowSunMu : settings.layers[i].msLowSunMu, 0.0, 1.0));
   put(b.aerial, aerialDistance_m, double(std::max(m.aerialPerspectiveSteps, 1)), std::max(m.noiseLodScale, 0.0), 0.0);
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) b.knobs.name = knobFloat(m.name);
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
   block_.upload(&b, sizeof(b));
   // The history's key: the block without what reprojection follows (camera, sun, wind offset).
   std::vector<uint8_t> settingsKey;

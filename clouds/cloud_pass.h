@@ -49,7 +49,7 @@ struct CloudAerialVolume {
 
 // The march's specialization constant kMarchFeatures (shaders/clouds/render_clouds.glsl): a bit per
 // option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
-// shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
+// shadow map, 4 the weather map's coverage reach (weatherReach), 8 free (removed: decision 0002), 16 the
 // light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
 // crossings (one of the two with bit 1), 256 the vertical optical depths from the column map, 512 by
 // marching up and down (one of the two), 1024 the own layer's far light from the deep shadow map, 2048

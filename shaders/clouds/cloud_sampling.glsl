@@ -11,6 +11,13 @@
 layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
 layout(set = 0, binding = 5) uniform sampler3D detailNoise;  // linear, repeat
 layout(set = 0, binding = 6) uniform sampler2D curlNoise;    // linear, repeat
+// Every knob of clouds/cloud_march_knobs.def as a float, in the table's order (clouds/cloud_pass.cpp
+// fills the same struct from the same table): a term reads its knob as cloud.knobs.NAME.
+struct CloudKnobs {
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) float name;
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+};
 layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_position;  // planet-centred, m
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -21,8 +28,8 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only, 128 light steps per thickness, 256 light through the other layers, 512 the early exit's remainder)
   vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y: δ-scaled share f (CloudMarchSettings::deltaScaling); z: unused; w: light march length (m; the largest one with flag 16)
   vec4 phase;            // phase lobes g1, g2, second lobe's weight w (cloudPhase), single-scattering albedo
-  vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
-  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, empty-space margin per thickness
+  vec4 march;            // ambient bottom visibility, unused, coarse factor, unused (knobs.earlyExitTransmittance, knobs.lightCone)
+  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, unused (knobs.emptySpaceMargin)
   vec4 weatherRegion;    // weather map: width (m), height (m), skew east, skew north (m per m)
   vec4 weatherPlanet;    // x: planet (ground) radius (m); y, z: the view step's growth behind dense cloud T1, K (cloudLowTransmittanceStepFactor); w: the other layers' light-step scale
   vec4 shadowCentre;     // Beer shadow map: centre C (cloud frame, m); w = extent (m, square side)
@@ -45,6 +52,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 deepShadowMap;    // the deep shadow map (clouds/deep_shadow_map.glsl; placed as the other layers' map): texels per side, levels K, near light steps, baked (0: no map)
   vec4 buildUp;          // x: the higher orders' build-up along the view, k (CloudMarchSettings::msBuildUpScale; 0: off); y: 1 for the ambient as a slab (CloudMarchSettings::ambientSlab); z: 1 where the column map's ambient slices are baked this frame (the slab through the other layers: ambientThroughOtherLayers, more than one layer, the column map); w: the slab's flow towards the camera (ambientFlow)
   vec4 layerLowSun[2];   // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0), mu_0 (CloudLayerSettings::msLowSunMu, or CloudMarchSettings::octaveLowSunMu for all; 0: off)
+  CloudKnobs knobs;      // every knob by name (clouds/cloud_march_knobs.def)
 } cloud;
 
 // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,

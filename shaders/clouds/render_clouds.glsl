@@ -201,15 +201,15 @@ void main() {
   float transportScale = cloudLightTransportScale();
   float phaseMeanCosine = cloudLightPhaseMeanCosine();
   float bottomVisibility = cloud.march.x;
-  float earlyExit = cloud.march.y;
+  float earlyExit = cloud.knobs.earlyExitTransmittance;
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
   // CloudMarchSettings::ambientThroughOtherLayers, where the column map's ambient slices are baked
   bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;
   float ambientFlow = cloud.buildUp.w;  // CloudMarchSettings::ambientFlow (0: the slab's J alone)
   int coarse = max(int(cloud.march.z + 0.5), 1);
-  float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
-  float cone = kLightCone ? cloud.march.w : 0.0;
+  float emptyMargin = cloud.knobs.emptySpaceMargin;  // per thickness of the span
+  float cone = kLightCone ? cloud.knobs.lightCone : 0.0;
   bool uniformSteps = (cloud.steps.w & 8) != 0;
   bool lightToExit = (cloud.steps.w & 16) != 0;
   bool msZenith = (cloud.steps.w & 32) != 0;
