@@ -37,7 +37,7 @@ struct Scenario {
   // issue's list) run the rows marked KnobValue::everyScenario and three timing settings, and only
   // without --quick (their references take minutes).
   bool fullSweep = true;
-  // The camera is inside a layer: a sequence marches every pixel of every frame (clouds/cloud_pass.cpp:
+  // The camera is inside a layer: a sequence marches every pixel of every frame (clouds/cloud_temporal.cpp:
   // reprojection is off there by design), so its frames are not expected to be reprojected.
   bool cameraInLayer = false;
 };

@@ -11,7 +11,7 @@
 layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
 layout(set = 0, binding = 5) uniform sampler3D detailNoise;  // linear, repeat
 layout(set = 0, binding = 6) uniform sampler2D curlNoise;    // linear, repeat
-// Every knob of clouds/cloud_march_knobs.def as a float, in the table's order (clouds/cloud_pass.cpp
+// Every knob of clouds/cloud_march_knobs.def as a float, in the table's order (clouds/cloud_block.cpp
 // fills the same struct from the same table): a term reads its knob as cloud.knobs.NAME.
 struct CloudKnobs {
 #define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) float name;
