@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 
 #include "core/error.h"
 
@@ -30,6 +32,22 @@ static_assert(sizeof(CloudKnobsBlock) == size_t((kCloudKnobCount + 3) / 4) * 16)
 float knobFloat(double v) { return float(v); }
 float knobFloat(AerialPerspective v) { return float(int(v)); }
 
+// A layer in the block (std140: 5 vec4; shaders/clouds/cloud_sampling.glsl's CloudBlockLayer).
+struct CloudBlockLayer {
+  float bottomRadius, topRadius, coverage, extinction;
+  float densityScale, anvil, shapePeriod, detailPeriod;
+  float detailStrength, curlPeriod, curlStrength, msA;
+  float windOffset[3], msB;
+  float skew[2], kind, msC;
+};
+static_assert(sizeof(CloudBlockLayer) == 5 * 16 && offsetof(CloudBlockLayer, windOffset) == 48 &&
+              offsetof(CloudBlockLayer, skew) == 64);
+// A layer's lighting (one vec4; CloudBlockLayerLighting there).
+struct CloudBlockLayerLighting {
+  float floorWeight, reflectWeight, reflectDepthScale, baseLimb;
+};
+static_assert(sizeof(CloudBlockLayerLighting) == 16);
+
 // std140 mirror of CloudBlock in shaders/clouds/cloud_sampling.glsl.
 struct CloudBlock {
   float cameraPosition[4];
@@ -51,9 +69,8 @@ struct CloudBlock {
   float shadowAxisV[4];    // axis v, march length (m)
   int32_t shadowSize[4];   // texels, steps, enabled, unused
   float aerial[4];  // the aerial-perspective volume's maximum distance (m), air-march steps, noise LOD scale, unused
-  float layers[kMaxLayers * 5][4];
-  float layerLighting[kMaxLayers]
-                     [4];  // the diffusion floor's weight d, the reflected light's r and a_r, the base's limb darkening
+  CloudBlockLayer layers[kMaxLayers];
+  CloudBlockLayerLighting layerLighting[kMaxLayers];
   float weatherReach[4];   // the reach map's radius (m; 0: none, the margin test), the longest coarse span on it (m),
                            // unused x2
   float otherLayerMap[4];  // the other layers' map: log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles
@@ -75,6 +92,10 @@ struct CloudBlock {
   CloudKnobsBlock knobs;  // every knob, by name (the table)
 };
 static_assert(sizeof(CloudBlock) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16 + sizeof(CloudKnobsBlock));
+// The named layers keep the slots the march reads (std140 vec4 numbers 18 onward; the knobs after all).
+static_assert(offsetof(CloudBlock, layers) == 18 * 16 &&
+              offsetof(CloudBlock, layerLighting) == (18 + 5 * kMaxLayers) * 16);
+static_assert(offsetof(CloudBlock, knobs) == (30 + kMaxLayers / 4 + kMaxLayers * 6) * 16);
 
 }  // namespace
 
@@ -113,15 +134,21 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
   put(b.march, l.ambientBottomVisibility, 0.0, double(std::max(m.coarseFactor, 1)), 0.0);
   for (size_t i = 0; i < layers.size(); ++i) {
     const shared::CloudLayer& c = layers[i];
-    put(b.layers[5 * i], c.bottom_radius, c.top_radius, c.coverage, c.extinction);
-    put(b.layers[5 * i + 1], c.density_scale, c.anvil, c.shape_period, c.detail_period);
-    // The w components: the layer's octave parameters a (<= b, enforced when the scene is read; clamped
-    // again for settings built in code), b, c.
+    CloudBlockLayer& bl = b.layers[i];
+    bl.bottomRadius = float(c.bottom_radius), bl.topRadius = float(c.top_radius), bl.coverage = float(c.coverage);
+    bl.extinction = float(c.extinction);
+    bl.densityScale = float(c.density_scale), bl.anvil = float(c.anvil), bl.shapePeriod = float(c.shape_period);
+    bl.detailPeriod = float(c.detail_period);
+    bl.detailStrength = float(c.detail_strength), bl.curlPeriod = float(c.curl_period);
+    bl.curlStrength = float(c.curl_strength);
+    bl.windOffset[0] = float(c.wind_offset.x), bl.windOffset[1] = float(c.wind_offset.y);
+    bl.windOffset[2] = float(c.wind_offset.z);
+    bl.skew[0] = float(c.skew.x), bl.skew[1] = float(c.skew.y), bl.kind = float(double(c.kind));
+    // The layer's octave parameters a (<= b, enforced when the scene is read; clamped again for settings
+    // built in code), b, c.
     const CloudLayerSettings& ls = settings.layers[i];
-    put(b.layers[5 * i + 2], c.detail_strength, c.curl_period, c.curl_strength, std::min(ls.msA, ls.msB));
-    put(b.layers[5 * i + 3], c.wind_offset, ls.msB);
-    put(b.layers[5 * i + 4], c.skew.x, c.skew.y, double(c.kind), ls.msC);
-    put(b.layerLighting[i], ls.msD, ls.msR, ls.msRA, cloudTypeBaseLimbDarkening(ls.kind));
+    bl.msA = float(std::min(ls.msA, ls.msB)), bl.msB = float(ls.msB), bl.msC = float(ls.msC);
+    b.layerLighting[i] = {float(ls.msD), float(ls.msR), float(ls.msRA), float(cloudTypeBaseLimbDarkening(ls.kind))};
   }
   if (!weatherImage_) throw std::logic_error("CloudPass: setWeatherMap before record");
   put(b.weatherRegion, weatherRegion_.x, weatherRegion_.y, weatherRegion_.z, weatherRegion_.w);
@@ -203,7 +230,8 @@ std::vector<uint8_t> CloudPass::uploadBlock(const CloudSettings& settings, const
     std::fill(std::begin(k.columnOrigin), std::end(k.columnOrigin), 0.0f);
     std::fill(std::begin(k.columnAxisU), std::end(k.columnAxisU), 0.0f);
     std::fill(std::begin(k.columnAxisV), std::end(k.columnAxisV), 0.0f);
-    for (size_t i = 0; i < layers.size(); ++i) std::fill(k.layers[5 * i + 3], k.layers[5 * i + 3] + 3, 0.0f);
+    for (size_t i = 0; i < layers.size(); ++i)
+      std::fill(std::begin(k.layers[i].windOffset), std::end(k.layers[i].windOffset), 0.0f);
     const auto* bytes = reinterpret_cast<const uint8_t*>(&k);
     settingsKey.assign(bytes, bytes + sizeof(k));
   }

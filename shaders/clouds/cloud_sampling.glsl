@@ -18,6 +18,21 @@ struct CloudKnobs {
 #include "clouds/cloud_march_knobs.def"
 #undef FIRMAMENT_CLOUD_KNOB
 };
+// A layer in the block (std140: 5 vec4, 80 bytes; clouds/cloud_block.cpp fills the same struct): the
+// shared CloudLayer's fields (common/cloud_density.glsl) and the layer's octave parameters a, b, c.
+struct CloudBlockLayer {
+  float bottomRadius; float topRadius; float coverage; float extinction;
+  float densityScale; float anvil; float shapePeriod; float detailPeriod;
+  float detailStrength; float curlPeriod; float curlStrength; float msA;
+  vec3 windOffset; float msB;
+  vec2 skew; float kind; float msC;
+};
+// A layer's lighting (std140: one vec4): the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off),
+// the reflected light's r and a_r (cloudReflectedSource; r 0: off), the base's limb darkening
+// (cloudBaseLimbFactor's strength).
+struct CloudBlockLayerLighting {
+  float floorWeight; float reflectWeight; float reflectDepthScale; float baseLimb;
+};
 layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_position;  // planet-centred, m
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -37,8 +52,8 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
   vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: unused
-  vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
-  vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), y, z = the reflected light's r and a_r (cloudReflectedSource; r 0: off), w = the base's limb darkening (cloudBaseLimbFactor's strength)
+  CloudBlockLayer layers[8];                  // per layer (CloudBlockLayer)
+  CloudBlockLayerLighting layerLighting[8];   // per layer (CloudBlockLayerLighting)
   vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: the longest coarse span on it (m)
   vec4 otherLayerMap;    // the other layers' map (clouds/other_layer_map.glsl): log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   vec4 otherLayerOrigin; // its plane's origin c (cloud frame, m); w: the first row the bake writes
@@ -71,26 +86,22 @@ layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (
 
 
 CloudLayer layerAt(int i) {
-  vec4 a = cloud.layers[5 * i];
-  vec4 b = cloud.layers[5 * i + 1];
-  vec4 c = cloud.layers[5 * i + 2];
-  vec4 d = cloud.layers[5 * i + 3];
-  vec4 e = cloud.layers[5 * i + 4];
+  CloudBlockLayer l = cloud.layers[i];
   CloudLayer layer;
-  layer.bottom_radius = a.x;
-  layer.top_radius = a.y;
-  layer.coverage = a.z;
-  layer.extinction = a.w;
-  layer.density_scale = b.x;
-  layer.anvil = b.y;
-  layer.shape_period = b.z;
-  layer.detail_period = b.w;
-  layer.detail_strength = c.x;
-  layer.curl_period = c.y;
-  layer.curl_strength = c.z;
-  layer.wind_offset = d.xyz;
-  layer.skew = e.xy;
-  layer.kind = int(e.z + 0.5);
+  layer.bottom_radius = l.bottomRadius;
+  layer.top_radius = l.topRadius;
+  layer.coverage = l.coverage;
+  layer.extinction = l.extinction;
+  layer.density_scale = l.densityScale;
+  layer.anvil = l.anvil;
+  layer.shape_period = l.shapePeriod;
+  layer.detail_period = l.detailPeriod;
+  layer.detail_strength = l.detailStrength;
+  layer.curl_period = l.curlPeriod;
+  layer.curl_strength = l.curlStrength;
+  layer.wind_offset = l.windOffset;
+  layer.skew = l.skew;
+  layer.kind = int(l.kind + 0.5);
   layer.stratiform = 0.0;  // set per column by cloudColumnLayer
   layer.stratiform_kind = kCloudStratus;
   return layer;

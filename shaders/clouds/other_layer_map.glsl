@@ -56,7 +56,7 @@ float otherLayerMapOpticalDepth(sampler2D map, int own, vec3 p, float r) {
     vec4 depth = textureLod(map, vec2(uv.x, (float(t) + uv.y) / float(tiles)), 0.0);
     for (int c = 0; c < 4; ++c) {
       int j = 4 * t + c;
-      if (j < cloud.image.w && j != own && r < cloud.layers[5 * j].x) tau += depth[c];
+      if (j < cloud.image.w && j != own && r < cloud.layers[j].bottomRadius) tau += depth[c];
     }
   }
   return tau;

@@ -336,13 +336,13 @@ void main() {
     if ((kSeveralLayers ? segmentLayer[s] : 0) != phaseLayer) {
       // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
       phaseLayer = kSeveralLayers ? segmentLayer[s] : 0;
-      float a = cloud.layers[5 * phaseLayer + 2].w;
-      float b = cloud.layers[5 * phaseLayer + 3].w;
-      float c = cloud.layers[5 * phaseLayer + 4].w;
-      diffusion = cloud.layerLighting[phaseLayer].x;
-      baseLimb = cloud.layerLighting[phaseLayer].w;
-      reflectWeight = cloud.layerLighting[phaseLayer].y;
-      reflectDepthScale = cloud.layerLighting[phaseLayer].z;
+      float a = cloud.layers[phaseLayer].msA;
+      float b = cloud.layers[phaseLayer].msB;
+      float c = cloud.layers[phaseLayer].msC;
+      diffusion = cloud.layerLighting[phaseLayer].floorWeight;
+      baseLimb = cloud.layerLighting[phaseLayer].baseLimb;
+      reflectWeight = cloud.layerLighting[phaseLayer].reflectWeight;
+      reflectDepthScale = cloud.layerLighting[phaseLayer].reflectDepthScale;
       lowSunMu = cloud.layerLowSun[phaseLayer / 4][phaseLayer % 4];
       float weightScale = cloudOctaveWeightScale(b, octaves);
       for (int o = 0; o < octaves; ++o) {
