@@ -49,7 +49,7 @@ struct CloudAerialVolume {
 
 // The march's specialization constant kMarchFeatures (shaders/clouds/render_clouds.glsl): a bit per
 // option whose code the frame needs: 1 light through other layers (more than one layer), 2 the Beer
-// shadow map, 4 the weather map's coverage reach (weatherReach), 8 light samples by transmittance, 16 the
+// shadow map, 4 the weather map's coverage reach (weatherReach), 8 free (removed: decision 0002), 16 the
 // light cone, 32 more than one layer, 64 the other layers' light from their map, 128 by marching their
 // crossings (one of the two with bit 1), 256 the vertical optical depths from the column map, 512 by
 // marching up and down (one of the two), 1024 the own layer's far light from the deep shadow map, 2048
@@ -146,11 +146,37 @@ class CloudPass {
                       int extraSlices, const char* name, const char* pass, const AtmosphereLuts& luts,
                       const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame,
                       gpu::CommandList& commands);
+  // A frame's temporal plan (cloud_temporal.cpp): the block side k (1: every pixel marched), the wind's
+  // offset, and whether the weather map is the history's or evolved from it by little.
+  struct TemporalPlan {
+    int k = 1;
+    glm::dvec3 windOffset{0.0};
+    bool sameWeather = false;
+  };
+  // Decides k and whether this frame reprojects (sets reprojected_): the same settings and weather, the
+  // camera outside the layers, a sequence continued at full resolution.
+  TemporalPlan planTemporal(const CloudMarchSettings& march, const CloudView& view,
+                            const std::vector<shared::CloudLayer>& layers, const std::vector<uint8_t>& settingsKey,
+                            bool continueSequence);
+  // The pixel (x, y) of each k x k block this reprojected frame marches (the Bayer order over k^2 frames).
+  void blockPixel(int k, int offset[2]) const;
+  // The reprojection: the fresh neighbourhoods on the march's grid, then the image from the history.
+  void recordTemporalResolve(const CloudView& view, const CloudMarchSettings& march, const TemporalPlan& plan,
+                             uint32_t coarseWidth, uint32_t coarseHeight, const gpu::TileDispatch& marchTiles,
+                             const gpu::TileDispatch& tiles, const int offset[2], gpu::Buffer& cloudFrame,
+                             const gpu::Buffer& historyFrame, gpu::Buffer& skyFrame, gpu::CommandList& commands);
+  // Keeps what the next frame's reprojection compares with.
+  void rememberHistory(std::vector<uint8_t> settingsKey, const CloudView& view, const TemporalPlan& plan);
+  // Places the per-frame maps (cloud_maps.cpp): one in w of their rows when the frame continues one that
+  // baked them and little moved, else all rows at this frame's camera and sun; re-uploads the block.
+  void placeMaps(const CloudSettings& settings, const CloudView& view, const AtmosphereLuts& luts,
+                 const std::vector<uint8_t>& settingsKey, const TemporalPlan& plan, bool continueSequence,
+                 double aerialDistance_m);
   // The rows of a map `height` rows high that this frame bakes: every rowStride-th from firstRow.
   uint32_t bakedRows(uint32_t height) const {
     return (height - uint32_t(maps_.firstRow) + uint32_t(maps_.rowStride) - 1) / uint32_t(maps_.rowStride);
   }
-  // Binds a bake (cloudBakeDesc in cloud_pass.cpp): the march's first 13 bindings (the frames bound,
+  // Binds a bake (cloudBakeDesc in cloud_pass.cpp; cloud_maps.cpp): the march's first 13 bindings (the frames bound,
   // unread) and `target`, the image it writes.
   void bindBake(gpu::ComputePipeline& pipeline, const gpu::Image& target, const AtmosphereLuts& luts,
                 const std::vector<const gpu::Image*>& skyIrradiance, gpu::Buffer& skyFrame, gpu::CommandList& commands);
@@ -201,7 +227,7 @@ class CloudPass {
   // What the previous frame was, for reprojection.
   struct History {
     bool usable = false;            // recorded with temporal update > 1
-    std::vector<uint8_t> settings;  // the cloud block without camera, sun and wind (clouds/cloud_pass.cpp)
+    std::vector<uint8_t> settings;  // the cloud block without camera, sun and wind (clouds/cloud_block.cpp)
     uint64_t weather = 0;
     glm::dvec4 weatherRegion{0.0};
     std::vector<float> weatherTexels;  // the map's texels, to tell a map that has evolved a little

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include "clouds/cloud_knobs.h"
 #include "core/error.h"
 
 namespace firmament {
@@ -190,57 +192,87 @@ const char* aerialPerspectiveName(AerialPerspective mode) {
   return "unknown";
 }
 
+namespace {
+
+// The range check of a knob's value (shaders/clouds/cloud_march_knobs.def's min and max).
+void checkKnobRange(const char* name, double v, double lo, double hi, const char* type) {
+  if (v >= lo && v <= hi) return;
+  std::ostringstream s;
+  s << "cloud knob " << cloudKnobIdentifier(name) << ": " << v
+    << " is out of range; allowed: " << (std::string(type) == "int" ? "integer" : "number") << " in [" << lo << ", "
+    << hi << "]";
+  throw InputError(s.str());
+}
+void checkKnob(const char* name, int v, double lo, double hi) { checkKnobRange(name, v, lo, hi, "int"); }
+void checkKnob(const char* name, double v, double lo, double hi) { checkKnobRange(name, v, lo, hi, "double"); }
+void checkKnob(const char*, bool, double, double) {}
+void checkKnob(const char*, AerialPerspective, double, double) {}
+
+// A knob's value from text (CloudOverrides::set).
+void parseKnob(const std::string& id, const std::string& text, int& out) {
+  size_t used = 0;
+  try {
+    out = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) throw InputError("cloud knob " + id + ": '" + text + "' is not an integer");
+}
+void parseKnob(const std::string& id, const std::string& text, double& out) {
+  size_t used = 0;
+  try {
+    out = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(out))
+    throw InputError("cloud knob " + id + ": '" + text + "' is not a number");
+}
+void parseKnob(const std::string& id, const std::string& text, bool& out) {
+  if (text != "true" && text != "false")
+    throw InputError("cloud knob " + id + ": '" + text + "'; allowed: true, false");
+  out = text == "true";
+}
+void parseKnob(const std::string& id, const std::string& text, AerialPerspective& out) {
+  try {
+    out = aerialPerspectiveFromName(text);
+  } catch (const InputError& e) {
+    throw InputError("cloud knob " + id + ": " + e.what());
+  }
+}
+
+// A knob's value from the scene (the rows with a scene path; the schema has checked its type and range).
+void readSceneKnob(const Scene& scene, const char* pointer, int& out) { out = int(scene.integer(pointer)); }
+void readSceneKnob(const Scene& scene, const char* pointer, double& out) { out = scene.number(pointer); }
+void readSceneKnob(const Scene& scene, const char* pointer, bool& out) { out = scene.boolean(pointer); }
+void readSceneKnob(const Scene& scene, const char* pointer, AerialPerspective& out) {
+  out = aerialPerspectiveFromName(scene.string(pointer));
+}
+
+}  // namespace
+
 void CloudOverrides::apply(CloudMarchSettings& march) const {
-  if (viewSteps) march.viewSteps = *viewSteps;
-  if (lightSteps) march.lightSteps = *lightSteps;
-  if (coarseFactor) march.coarseFactor = *coarseFactor;
-  if (emptySpaceMargin) march.emptySpaceMargin = *emptySpaceMargin;
-  if (deltaScaling) march.deltaScaling = *deltaScaling;
-  if (jitter) march.jitter = *jitter;
-  if (specializeMarch) march.specializeMarch = *specializeMarch;
-  if (resolutionDivisor) march.resolutionDivisor = *resolutionDivisor;
-  if (temporalUpdate) march.temporalUpdate = *temporalUpdate;
-  if (temporalClamp) march.temporalClamp = *temporalClamp;
-  if (uniformSteps) march.uniformSteps = *uniformSteps;
-  if (maxStepFactor) march.maxStepFactor = *maxStepFactor;
-  if (beerShadowMap) march.beerShadowMap = *beerShadowMap;
-  if (shadowMapSize) march.shadowMapSize = *shadowMapSize;
-  if (shadowMapExtent) march.shadowMapExtent_m = *shadowMapExtent;
-  if (lightShafts) march.lightShafts = *lightShafts;
-  if (aerialPerspective) march.aerialPerspective = *aerialPerspective;
-  if (aerialPerspectiveSteps) march.aerialPerspectiveSteps = *aerialPerspectiveSteps;
-  if (ambient) march.ambient = *ambient;
-  if (lightMarchToExit) march.lightMarchToExit = *lightMarchToExit;
-  if (lightStepsPerThickness) march.lightStepsPerThickness = *lightStepsPerThickness;
-  if (lightThroughOtherLayers) march.lightThroughOtherLayers = *lightThroughOtherLayers;
-  if (earlyExitTransmittance) march.earlyExitTransmittance = *earlyExitTransmittance;
-  if (earlyExitRemainder) march.earlyExitRemainder = *earlyExitRemainder;
-  if (noiseLodScale) march.noiseLodScale = *noiseLodScale;
-  if (lightStepsFalloff) march.lightStepsFalloff = *lightStepsFalloff;
-  if (lightStepsFalloffStart) march.lightStepsFalloffStart = *lightStepsFalloffStart;
-  if (lowTransmittanceStepStart) march.lowTransmittanceStepStart = *lowTransmittanceStepStart;
-  if (lowTransmittanceStepMax) march.lowTransmittanceStepMax = *lowTransmittanceStepMax;
-  if (otherLayerLightStepsScale) march.otherLayerLightStepsScale = *otherLayerLightStepsScale;
-  if (otherLayerMap) march.otherLayerMap = *otherLayerMap;
-  if (otherLayerMapSize) march.otherLayerMapSize = *otherLayerMapSize;
-  if (columnMap) march.columnMap = *columnMap;
-  if (columnMapSize) march.columnMapSize = *columnMapSize;
-  if (columnMapLevels) march.columnMapLevels = *columnMapLevels;
-  if (deepShadowMap) march.deepShadowMap = *deepShadowMap;
-  if (deepShadowMapSize) march.deepShadowMapSize = *deepShadowMapSize;
-  if (deepShadowMapLevels) march.deepShadowMapLevels = *deepShadowMapLevels;
-  if (deepShadowNearSteps) march.deepShadowNearSteps = *deepShadowNearSteps;
-  if (lightCone) march.lightCone = *lightCone;
-  if (msZenithDepth) march.msZenithDepth = *msZenithDepth;
-  if (msScatteredOnly) march.msScatteredOnly = *msScatteredOnly;
-  if (msBuildUpScale) march.msBuildUpScale = *msBuildUpScale;
-  if (ambientSlab) march.ambientSlab = *ambientSlab;
-  if (ambientThroughOtherLayers) march.ambientThroughOtherLayers = *ambientThroughOtherLayers;
-  if (ambientFlow) march.ambientFlow = *ambientFlow;
-  if (octaveLowSunMu) march.octaveLowSunMu = *octaveLowSunMu;
-  if (reflectedLowSunDepth) march.reflectedLowSunDepth = *reflectedLowSunDepth;
-  if (topEntryShadow) march.topEntryShadow = *topEntryShadow;
-  if (topEntryThreshold) march.topEntryThreshold = *topEntryThreshold;
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) \
+  if (name) {                                                       \
+    checkKnob(#name, *name, lo, hi);                                \
+    march.name = *name;                                             \
+  }
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+}
+
+void CloudOverrides::set(const std::string& id, const std::string& value) {
+#define FIRMAMENT_CLOUD_KNOB(type, name, value_, lo, hi, scene, doc) \
+  if (id == cloudKnobIdentifier(#name)) {                            \
+    type v{};                                                        \
+    parseKnob(id, value, v);                                         \
+    checkKnob(#name, v, lo, hi);                                     \
+    name = v;                                                        \
+    return;                                                          \
+  }
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+  throw InputError("unknown cloud knob '" + id + "'; the knobs: docs/clouds/knobs.md");
 }
 
 CloudSettings CloudSettings::fromScene(const Scene& scene) {
@@ -310,11 +342,11 @@ CloudSettings CloudSettings::fromScene(const Scene& scene) {
           (lighting.contains("ms_b") ? "" : std::string(", the ") + cloudKindName(l.kind) + " default") +
           ") of layer " + std::to_string(i) + "; allowed: ms_a <= ms_b (the octaves would add energy, Hillaire 2016)");
   }
-  s.march.aerialPerspective = aerialPerspectiveFromName(scene.string("/clouds/aerial_perspective"));
-  s.march.resolutionDivisor = int(scene.integer("/clouds/resolution_divisor"));
-  s.march.temporalUpdate = int(scene.integer("/clouds/temporal_update"));
-  s.march.beerShadowMap = scene.boolean("/clouds/shadow_map");
-  s.march.lightShafts = scene.boolean("/clouds/light_shafts");
+  // The knobs with a scene path (shaders/clouds/cloud_march_knobs.def).
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, pointer, doc) \
+  if (*pointer) readSceneKnob(scene, pointer, s.march.name);
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
   const std::string quality = scene.string("/clouds/quality");
   // The presets set the march's steps only. A `low` that also capped the octaves at 2, for
   // constants fitted for 3: two_layers -52 % against the path tracer (3 octaves: -1.4 %), horizon -26 %

@@ -106,6 +106,10 @@ void validateNode(json& value, const json& schema, const std::string& pointer, c
     const json& properties = schema.contains("properties") ? schema["properties"] : json::object();
     for (auto it = value.begin(); it != value.end(); ++it) {
       if (!properties.contains(it.key())) {
+        // A key of an option the project measured and removed: say so and where the finding is kept.
+        if (schema.contains("x-removed") && schema["x-removed"].contains(it.key()))
+          fail(source, pointer + "/" + it.key(), "the removed key \"" + it.key() + "\"",
+               "nothing: it was removed, " + schema["x-removed"][it.key()].get<std::string>());
         std::string keys;
         for (auto p = properties.begin(); p != properties.end(); ++p) keys += (keys.empty() ? "" : ", ") + p.key();
         fail(source, pointer + "/" + it.key(), "an unknown key \"" + it.key() + "\"",
@@ -293,6 +297,13 @@ void objectSection(const json& schema, const std::string& pointer, std::string& 
                                                         : "required") +
              " | " + leaf.value("description", "") + " |\n";
     }
+  }
+  if (schema.contains("x-removed")) {
+    out += "\nRemoved keys (measured, not adopted; a scene that sets one is an error naming its decision record):";
+    std::string sep = " ";
+    for (auto r = schema["x-removed"].begin(); r != schema["x-removed"].end(); ++r, sep = ", ")
+      out += sep + "`" + r.key() + "`";
+    out += ".\n";
   }
   for (const auto& [p, child] : nested) objectSection(*child, p, out);
 }

@@ -37,7 +37,7 @@ struct Scenario {
   // issue's list) run the rows marked KnobValue::everyScenario and three timing settings, and only
   // without --quick (their references take minutes).
   bool fullSweep = true;
-  // The camera is inside a layer: a sequence marches every pixel of every frame (clouds/cloud_pass.cpp:
+  // The camera is inside a layer: a sequence marches every pixel of every frame (clouds/cloud_temporal.cpp:
   // reprojection is off there by design), so its frames are not expected to be reprojected.
   bool cameraInLayer = false;
 };
@@ -242,9 +242,6 @@ std::vector<KnobValue> knobValues(bool quick) {
   // (CloudMarchSettings::msBuildUpScale), the constants unchanged (they were not refitted with it).
   v.push_back(
       {"ms_model", "no build-up along the view", {}, [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }});
-  // The sun's shadow on the column's cloud top (CloudMarchSettings::topEntryShadow; the top
-  // at the lowest column-map level with at most one optical depth above it).
-  v.push_back({"ms_model", "shadowed top", {}, [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }});
   v.push_back({"ms_model", "plain octaves", {}, [](SkyRenderOptions& o) {
                  o.clouds.msZenithDepth = false;
                  o.clouds.msScatteredOnly = false;
@@ -352,32 +349,6 @@ std::vector<KnobValue> knobValues(bool quick) {
                      o.clouds.deepShadowNearSteps = near;
                    }});
   }
-  // Light samples by the view ray's transmittance (CloudMarchSettings::lightStepsFalloff: n T^k), an
-  // alternative to the deep shadow map's savings, so measured with the map off.
-  for (double k : {0.5, 1.0, 2.0})  // 0 (off): the default
-    v.push_back(
-        {"light_steps_falloff", std::to_string(k).substr(0, 3) + ", deep_shadow_map off", {}, [k](SkyRenderOptions& o) {
-           o.clouds.lightStepsFalloff = k;
-           o.clouds.lightStepsFalloffStart = 1.0;
-           o.clouds.deepShadowMap = false;
-         }});
-  v.push_back({"single_scattering",
-               "1 octave, light_steps_falloff 1, deep_shadow_map off",
-               {"/clouds/lighting/ms_octaves=1"},
-               [](SkyRenderOptions& o) {
-                 o.clouds.lightStepsFalloff = 1.0;
-                 o.clouds.deepShadowMap = false;
-               },
-               true});
-  for (double start : {0.3, 0.1})
-    v.push_back({"light_steps_falloff",
-                 "1 from T " + std::to_string(start).substr(0, 3) + ", deep_shadow_map off",
-                 {},
-                 [start](SkyRenderOptions& o) {
-                   o.clouds.lightStepsFalloff = 1.0;
-                   o.clouds.lightStepsFalloffStart = start;
-                   o.clouds.deepShadowMap = false;
-                 }});
   // Longer view steps behind dense cloud (CloudMarchSettings::lowTransmittanceStep*: the step times
   // min(T1 / T, K) once the view ray's transmittance T < T1; the default T1 0.1, K 4).
   for (const auto& [start, most, label] : {std::tuple<double, double, const char*>{0.0, 4.0, "off"},
@@ -565,7 +536,6 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"ms_model", "no diffusion floor"},
       {"ms_model", "no reflected light"},
       {"ms_model", "no build-up along the view"},
-      {"ms_model", "shadowed top"},
       {"temporal_update", "16"},
       {"quality", "low (32v/4l/3o)"},
       {"quality", "low, 2 octaves (the earlier preset)"},
@@ -594,12 +564,6 @@ std::vector<KnobValue> knobValues(bool quick) {
       {"ambient", "on, each layer its own slab, against the path tracer with the sky and ground"},
       {"noise_lod", "0 (level 0)"},
       {"noise_lod", "2.0"},
-      {"light_steps_falloff", "0.5, deep_shadow_map off"},
-      {"light_steps_falloff", "1.0, deep_shadow_map off"},
-      {"light_steps_falloff", "2.0, deep_shadow_map off"},
-      {"light_steps_falloff", "1 from T 0.3, deep_shadow_map off"},
-      {"light_steps_falloff", "1 from T 0.1, deep_shadow_map off"},
-      {"single_scattering", "1 octave, light_steps_falloff 1, deep_shadow_map off"},
       {"deep_shadow_map", "off (every light step marched)"},
       {"single_scattering", "1 octave, deep_shadow_map off"}};
   for (const auto& [knob, value] : everywhere) {
@@ -867,32 +831,6 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
       {"deep_shadow_map 8 levels, temporal_update 16 (sequence)",
        [](SkyRenderOptions& o) { o.clouds.deepShadowMapLevels = 8; }, 16, false, false},
       {"deep_shadow_map 6 near steps", [](SkyRenderOptions& o) { o.clouds.deepShadowNearSteps = 6; }, 1, false, false},
-      // Light samples by transmittance: an alternative to the deep shadow map's savings, with it off.
-      {"light_steps_falloff 0.5, deep_shadow_map off",
-       [](SkyRenderOptions& o) {
-         o.clouds.lightStepsFalloff = 0.5;
-         o.clouds.deepShadowMap = false;
-       },
-       1, true},
-      {"light_steps_falloff 1, deep_shadow_map off",
-       [](SkyRenderOptions& o) {
-         o.clouds.lightStepsFalloff = 1.0;
-         o.clouds.deepShadowMap = false;
-       },
-       1, true},
-      {"light_steps_falloff 2, deep_shadow_map off",
-       [](SkyRenderOptions& o) {
-         o.clouds.lightStepsFalloff = 2.0;
-         o.clouds.deepShadowMap = false;
-       },
-       1, true},
-      {"light_steps_falloff 1 from T 0.1, deep_shadow_map off",
-       [](SkyRenderOptions& o) {
-         o.clouds.lightStepsFalloff = 1.0;
-         o.clouds.lightStepsFalloffStart = 0.1;
-         o.clouds.deepShadowMap = false;
-       },
-       1, true},
       {"low_transmittance_steps off", [](SkyRenderOptions& o) { o.clouds.lowTransmittanceStepStart = 0.0; }, 1, true,
        false},
       {"low_transmittance_steps from T 0.3 up to 8x",
@@ -929,10 +867,6 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
        false},
       {"reflected_low_sun_depth off, temporal_update 16 (sequence)",
        [](SkyRenderOptions& o) { o.clouds.reflectedLowSunDepth = false; }, 16, true, false},
-      // The shadowed top's cost (CloudMarchSettings::topEntryShadow: 4 density samples per lit sample).
-      {"shadowed top", [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }, 1, true, false},
-      {"shadowed top, temporal_update 16 (sequence)", [](SkyRenderOptions& o) { o.clouds.topEntryShadow = true; }, 16,
-       true, false},
       // The build-up along the view's cost (CloudMarchSettings::msBuildUpScale).
       {"build-up along the view off", [](SkyRenderOptions& o) { o.clouds.msBuildUpScale = 0.0; }, 1, true, false},
       {"build-up along the view off, temporal_update 16 (sequence)",

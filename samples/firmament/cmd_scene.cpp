@@ -1,7 +1,9 @@
 // `firmament check SCENE` validates a scene and prints it with every default filled in;
-// `firmament scene-doc` prints docs/scene.md, generated from the embedded schema.
+// `firmament scene-doc` prints docs/scene.md, generated from the embedded schema;
+// `firmament cloud-knobs` prints docs/clouds/knobs.md, generated from the cloud march's knob table.
 #include <cstdio>
 
+#include "clouds/cloud_knobs.h"
 #include "core/scene.h"
 #include "samples/firmament/command.h"
 
@@ -20,6 +22,11 @@ int runSceneDoc(const Args&) {
   return 0;
 }
 
+int runCloudKnobs(const Args&) {
+  std::fputs(cloudMarchKnobsMarkdown().c_str(), stdout);
+  return 0;
+}
+
 const CommandRegistration check{{"check",
                                  "validate a scene file and print it with defaults filled in",
                                  "check SCENE [--set /PATH=VALUE]...",
@@ -29,6 +36,13 @@ const CommandRegistration check{{"check",
                                  runCheck}};
 const CommandRegistration sceneDoc{
     {"scene-doc", "print the scene-format reference (docs/scene.md) in Markdown", "scene-doc", {}, 0, 0, runSceneDoc}};
+const CommandRegistration cloudKnobs{{"cloud-knobs",
+                                      "print the cloud march's knobs (docs/clouds/knobs.md) in Markdown",
+                                      "cloud-knobs",
+                                      {},
+                                      0,
+                                      0,
+                                      runCloudKnobs}};
 
 }  // namespace
 }  // namespace firmament::cli

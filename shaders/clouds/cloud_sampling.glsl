@@ -11,6 +11,28 @@
 layout(set = 0, binding = 4) uniform sampler3D shapeNoise;   // linear, repeat
 layout(set = 0, binding = 5) uniform sampler3D detailNoise;  // linear, repeat
 layout(set = 0, binding = 6) uniform sampler2D curlNoise;    // linear, repeat
+// Every knob of clouds/cloud_march_knobs.def as a float, in the table's order (clouds/cloud_block.cpp
+// fills the same struct from the same table): a term reads its knob as cloud.knobs.NAME.
+struct CloudKnobs {
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) float name;
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+};
+// A layer in the block (std140: 5 vec4, 80 bytes; clouds/cloud_block.cpp fills the same struct): the
+// shared CloudLayer's fields (common/cloud_density.glsl) and the layer's octave parameters a, b, c.
+struct CloudBlockLayer {
+  float bottomRadius; float topRadius; float coverage; float extinction;
+  float densityScale; float anvil; float shapePeriod; float detailPeriod;
+  float detailStrength; float curlPeriod; float curlStrength; float msA;
+  vec3 windOffset; float msB;
+  vec2 skew; float kind; float msC;
+};
+// A layer's lighting (std140: one vec4): the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off),
+// the reflected light's r and a_r (cloudReflectedSource; r 0: off), the base's limb darkening
+// (cloudBaseLimbFactor's strength).
+struct CloudBlockLayerLighting {
+  float floorWeight; float reflectWeight; float reflectDepthScale; float baseLimb;
+};
 layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 camera_position;  // planet-centred, m
   vec4 camera_forward;   // xyz; w = horizontal fov (rad)
@@ -19,19 +41,19 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 sun_direction;    // xyz; w = largest march distance (m)
   ivec4 image;           // width, height, projection, layer count
   ivec4 steps;           // view steps, light steps, octaves, flags (1 unused: the aerial perspective is a compile-time variant, 2 jitter, 4 ambient, 8 uniform steps, 16 light march to the layer exit, 32 octaves >= 1 also from the top, 64 octaves >= 1 scattered part only, 128 light steps per thickness, 256 light through the other layers, 512 the early exit's remainder)
-  vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y: δ-scaled share f (CloudMarchSettings::deltaScaling); z: light-step falloff k (lightStepsFalloff); w: light march length (m; the largest one with flag 16)
+  vec4 phaseLight;       // x: the second phase lobe's Draine alpha; y: δ-scaled share f (CloudMarchSettings::deltaScaling); z: unused; w: light march length (m; the largest one with flag 16)
   vec4 phase;            // phase lobes g1, g2, second lobe's weight w (cloudPhase), single-scattering albedo
-  vec4 march;            // ambient bottom visibility, early-exit transmittance, coarse factor, light cone tan
-  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, empty-space margin per thickness
+  vec4 march;            // ambient bottom visibility, unused, coarse factor, unused (knobs.earlyExitTransmittance, knobs.lightCone)
+  vec4 stepGrowth;       // base step h0 (m), growth start D (m), largest step factor G, unused (knobs.emptySpaceMargin)
   vec4 weatherRegion;    // weather map: width (m), height (m), skew east, skew north (m per m)
   vec4 weatherPlanet;    // x: planet (ground) radius (m); y, z: the view step's growth behind dense cloud T1, K (cloudLowTransmittanceStepFactor); w: the other layers' light-step scale
   vec4 shadowCentre;     // Beer shadow map: centre C (cloud frame, m); w = extent (m, square side)
   vec4 shadowAxisU;      // xyz: unit axis u (perpendicular to the sun); w = start distance L (m)
   vec4 shadowAxisV;      // xyz: unit axis v; w = march length (m)
   ivec4 shadowSize;      // texels per side, march steps, enabled (the light march reads it), unused
-  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: the light-step falloff's start T0 (lightStepsFalloffStart)
-  vec4 layers[8 * 5];    // 5 vec4 per layer, see layerAt; the w of the 3rd, 4th, 5th: octave a, b, c
-  vec4 layerLighting[8]; // per layer: x = the diffusion floor's weight d (cloudEddingtonSlabSource; 0: off), y, z = the reflected light's r and a_r (cloudReflectedSource; r 0: off), w = the base's limb darkening (cloudBaseLimbFactor's strength)
+  vec4 aerial;           // aerial perspective: the volume's maximum distance D (m), the air march's steps; z: noise LOD scale (CloudMarchSettings::noiseLodScale); w: unused
+  CloudBlockLayer layers[8];                  // per layer (CloudBlockLayer)
+  CloudBlockLayerLighting layerLighting[8];   // per layer (CloudBlockLayerLighting)
   vec4 weatherReach;     // x: radius (m) of the coverage reach map (0: none); y: the longest coarse span on it (m)
   vec4 otherLayerMap;    // the other layers' map (clouds/other_layer_map.glsl): log-warp scale ln(1 + E / rho0), rho0 (m), texels per side, tiles (0: none)
   vec4 otherLayerOrigin; // its plane's origin c (cloud frame, m); w: the first row the bake writes
@@ -45,7 +67,7 @@ layout(std140, set = 0, binding = 10) uniform CloudBlock {
   vec4 deepShadowMap;    // the deep shadow map (clouds/deep_shadow_map.glsl; placed as the other layers' map): texels per side, levels K, near light steps, baked (0: no map)
   vec4 buildUp;          // x: the higher orders' build-up along the view, k (CloudMarchSettings::msBuildUpScale; 0: off); y: 1 for the ambient as a slab (CloudMarchSettings::ambientSlab); z: 1 where the column map's ambient slices are baked this frame (the slab through the other layers: ambientThroughOtherLayers, more than one layer, the column map); w: the slab's flow towards the camera (ambientFlow)
   vec4 layerLowSun[2];   // per layer (4 a vec4): the octaves' and the reflected light's low-sun scale min(1, mu_s / mu_0), mu_0 (CloudLayerSettings::msLowSunMu, or CloudMarchSettings::octaveLowSunMu for all; 0: off)
-  vec4 topEntry;         // x: 1 for the shadowed top (CloudMarchSettings::topEntryShadow); y: the top's optical-depth threshold (topEntryThreshold)
+  CloudKnobs knobs;      // every knob by name (clouds/cloud_march_knobs.def)
 } cloud;
 
 // δ-scaled transport (CloudMarchSettings::deltaScaling): the phase peak's share f goes straight on,
@@ -64,26 +86,22 @@ layout(set = 0, binding = 12) uniform sampler2D weatherMap;  // linear, repeat (
 
 
 CloudLayer layerAt(int i) {
-  vec4 a = cloud.layers[5 * i];
-  vec4 b = cloud.layers[5 * i + 1];
-  vec4 c = cloud.layers[5 * i + 2];
-  vec4 d = cloud.layers[5 * i + 3];
-  vec4 e = cloud.layers[5 * i + 4];
+  CloudBlockLayer l = cloud.layers[i];
   CloudLayer layer;
-  layer.bottom_radius = a.x;
-  layer.top_radius = a.y;
-  layer.coverage = a.z;
-  layer.extinction = a.w;
-  layer.density_scale = b.x;
-  layer.anvil = b.y;
-  layer.shape_period = b.z;
-  layer.detail_period = b.w;
-  layer.detail_strength = c.x;
-  layer.curl_period = c.y;
-  layer.curl_strength = c.z;
-  layer.wind_offset = d.xyz;
-  layer.skew = e.xy;
-  layer.kind = int(e.z + 0.5);
+  layer.bottom_radius = l.bottomRadius;
+  layer.top_radius = l.topRadius;
+  layer.coverage = l.coverage;
+  layer.extinction = l.extinction;
+  layer.density_scale = l.densityScale;
+  layer.anvil = l.anvil;
+  layer.shape_period = l.shapePeriod;
+  layer.detail_period = l.detailPeriod;
+  layer.detail_strength = l.detailStrength;
+  layer.curl_period = l.curlPeriod;
+  layer.curl_strength = l.curlStrength;
+  layer.wind_offset = l.windOffset;
+  layer.skew = l.skew;
+  layer.kind = int(l.kind + 0.5);
   layer.stratiform = 0.0;  // set per column by cloudColumnLayer
   layer.stratiform_kind = kCloudStratus;
   return layer;
@@ -158,15 +176,12 @@ float densityAt(CloudLayer layer, vec3 p, vec2 lod) {
 }
 
 // Optical depth towards the sun (or any unit direction `sun`) from p through `layer`, over `length_m`
-// split into n steps growing quadratically (boundaries L (j/n)^2), sampled `m` <= n times: the steps
-// are gathered into m groups of consecutive ones (sizes n / m and n / m + 1, the larger ones farthest),
-// each sampled once at the midpoint of its span (m = n: every step at its midpoint). With fewer samples
-// the step boundaries stay those of n, so going from m to m - 1 (for m >= n / 2) merges one pair of steps
-// and leaves the rest (CloudMarchSettings::lightStepsFalloff). Each sample is pushed sideways within a
-// cone of half-angle atan(cone) by a fixed kernel (Schneider 2015's cone sampling, deterministic here).
-// Only the first `taken` groups are marched (m: all; fewer: the rest comes from the deep shadow map,
-// clouds/deep_shadow_map.glsl, from L (taken / m)^2 on when m = n).
-float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m, int taken, float length_m, float cone, vec2 lod) {
+// split into n steps growing quadratically (boundaries L (j/n)^2), each sampled at the midpoint of its
+// span. Each sample is pushed sideways within a cone of half-angle atan(cone) by a fixed kernel
+// (Schneider 2015's cone sampling, deterministic here; only the bench's first-milestone rows use it).
+// Only the first `taken` steps are marched (n: all; fewer: the rest comes from the deep shadow map,
+// clouds/deep_shadow_map.glsl, from L (taken / n)^2 on).
+float opticalDepthToSunTaken(CloudLayer layer, vec3 p, vec3 sun, int n, int taken, float length_m, float cone, vec2 lod) {
   const vec2 kernel[6] = vec2[6](vec2(0.38, 0.92), vec2(-0.84, 0.28), vec2(0.59, -0.70), vec2(-0.15, -0.48),
                                  vec2(0.95, 0.05), vec2(-0.45, 0.62));
   // Without a cone (a compile-time 0 in the march's specialization) the sideways part is compiled out.
@@ -175,16 +190,11 @@ float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m,
     t1 = normalize(abs(sun.z) < 0.9 ? cross(sun, vec3(0.0, 0.0, 1.0)) : cross(sun, vec3(1.0, 0.0, 0.0)));
     t2 = cross(sun, t1);
   }
-  m = clamp(m, 1, n);
-  int q = n / m;
-  int r = n - q * m;  // the last r groups take q + 1 steps
   float tau = 0.0;
   float previous = 0.0;
-  int last = 0;  // the last step of the group so far
-  taken = min(taken, m);
+  taken = min(taken, n);
   for (int g = 0; g < taken; ++g) {
-    last += q + (g >= m - r ? 1 : 0);
-    float f = float(last) / float(n);
+    float f = float(g + 1) / float(n);
     float next = length_m * f * f;
     float mid = 0.5 * (previous + next);
     vec3 q = p + sun * mid;
@@ -200,7 +210,7 @@ float opticalDepthToSunGrouped(CloudLayer layer, vec3 p, vec3 sun, int n, int m,
 
 // The same with every one of the n steps sampled.
 float opticalDepthToSun(CloudLayer layer, vec3 p, vec3 sun, int n, float length_m, float cone, vec2 lod) {
-  return opticalDepthToSunGrouped(layer, p, sun, n, n, n, length_m, cone, lod);
+  return opticalDepthToSunTaken(layer, p, sun, n, n, length_m, cone, lod);
 }
 
 // Optical depth of every layer but `own` along the sun ray from p (radius r, mu_s = cos of the sun's

@@ -64,33 +64,6 @@ vec2 columnMapOpticalDepths(sampler3D map, int j, CloudLayer layer, vec3 p, floa
   return vec2(above, max(total - above, 0.0));
 }
 
-// The cloud top above p (radius r, in `layer`, index j): the lowest of the map's levels k at or above p
-// with at most `threshold` optical depth T(k) above it (the top, R_t, has none); returns its radius
-// (at least r) and T(k). T(k) falls with k, so a binary search over the levels from p's up finds it in
-// ceil(log2(K + 1)) lookups (the shadowed top, CloudMarchSettings::topEntryShadow).
-vec2 columnMapCloudTop(sampler3D map, int j, CloudLayer layer, vec3 p, float r, float threshold) {
-  vec2 uv = columnMapCoordinate(p, r);
-  float K = cloud.columnMap.w;
-  float slices = columnMapSlices();
-  float thickness = max(layer.top_radius - layer.bottom_radius, 1.0);
-  float z = clamp((r - layer.bottom_radius) / thickness, 0.0, 1.0);
-  float base = float(j) * (K + 1.0);
-  int lo = min(int(ceil(z * K)), int(K + 0.5));
-  int hi = int(K + 0.5);
-  float aboveTop = 0.0;  // T(hi): T(K) = 0
-  for (int i = 0; i < 6 && lo < hi; ++i) {
-    int mid = (lo + hi) / 2;
-    float above = textureLod(map, vec3(uv, (base + float(mid) + 0.5) / slices), 0.0).r;
-    if (above <= threshold) {
-      hi = mid;
-      aboveTop = above;
-    } else {
-      lo = mid + 1;
-    }
-  }
-  return vec2(max(layer.bottom_radius + float(hi) * thickness / K, r), aboveTop);
-}
-
 // The other layers as the ambient's slab sees them (cloudAmbientGroundWeight): their similarity-scaled
 // optical depths above (x) and below (y) layer j at p's column, baked per column and layer by
 // bake_column_ambient.comp (why and how there), read linear.

@@ -13,7 +13,7 @@
 //
 // Where: a plane through c, the camera of its last full bake, perpendicular to that bake's sun, axes u
 // and v (cloud.otherLayerOrigin, AxisU, AxisV, Sun: a sequence re-bakes 1 in 4 to 16 of the rows per frame
-// on the same placement, clouds/cloud_pass.cpp). A point's line is where it projects on the plane,
+// on the same placement, clouds/cloud_maps.cpp). A point's line is where it projects on the plane,
 // (a_u, a_v) = ((p - c).u, (p - c).v). Each axis is log-warped to the texel coordinate
 // (clouds/log_warp.glsl) out to E, the march's largest distance plus the camera's largest move from c
 // (no point the march reaches projects farther). Texels hold up to 4 layers (rgba = layers 4t .. 4t + 3
@@ -56,7 +56,7 @@ float otherLayerMapOpticalDepth(sampler2D map, int own, vec3 p, float r) {
     vec4 depth = textureLod(map, vec2(uv.x, (float(t) + uv.y) / float(tiles)), 0.0);
     for (int c = 0; c < 4; ++c) {
       int j = 4 * t + c;
-      if (j < cloud.image.w && j != own && r < cloud.layers[5 * j].x) tau += depth[c];
+      if (j < cloud.image.w && j != own && r < cloud.layers[j].bottomRadius) tau += depth[c];
     }
   }
   return tau;

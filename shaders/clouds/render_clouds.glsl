@@ -8,7 +8,7 @@
 //     early exit at low transmittance. It alternates stepping to the next sample with cloud and
 //     lighting it, so the lighting runs with most SIMD lanes busy (docs/clouds.md "Keeping SIMD lanes busy");
 //  3. at every step with cloud: sunlight through the atmosphere (transmittance table at the sample)
-//     and through the cloud (a light march of `light steps` in a cone), dual-lobe Henyey-Greenstein,
+//     and through the cloud (a light march of `light steps` along the sun), dual-lobe Henyey-Greenstein,
 //     octave multiple scattering; ambient from the sky irradiance table and the ground; each step
 //     integrated with Hillaire 2016's energy-conserving formula (cloudStepIntegral);
 //  4. aerial perspective to the transmittance-weighted mean depth of the cloud: the air's
@@ -80,8 +80,8 @@ layout(constant_id = 0) const uint kMarchFeatures = 0xffffffffu;
 const bool kOtherLayers = (kMarchFeatures & 1u) != 0u;  // light through the other layers (flag 256, layers > 1)
 const bool kShadowMap = (kMarchFeatures & 2u) != 0u;    // the Beer shadow map
 const bool kWeatherReach = (kMarchFeatures & 4u) != 0u; // empty-space skipping by the coverage reach map
-const bool kLightFalloff = (kMarchFeatures & 8u) != 0u; // light samples by transmittance
-const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's cone
+// 8 is free (the light samples by transmittance, decision 0002).
+const bool kLightCone = (kMarchFeatures & 16u) != 0u;   // the light march's cone (the bench's first milestone)
 const bool kSeveralLayers = (kMarchFeatures & 32u) != 0u;  // more than one layer (else layer 0 throughout)
 const bool kOtherLayerMap = (kMarchFeatures & 64u) != 0u;     // the other layers' light from their map (when baked)
 const bool kOtherLayerMarch = (kMarchFeatures & 128u) != 0u;  // the other layers' light by marching their crossings
@@ -201,15 +201,15 @@ void main() {
   float transportScale = cloudLightTransportScale();
   float phaseMeanCosine = cloudLightPhaseMeanCosine();
   float bottomVisibility = cloud.march.x;
-  float earlyExit = cloud.march.y;
+  float earlyExit = cloud.knobs.earlyExitTransmittance;
   float buildUpScale = cloud.buildUp.x;  // CloudMarchSettings::msBuildUpScale k (0: off)
   bool ambientSlab = cloud.buildUp.y > 0.5;  // CloudMarchSettings::ambientSlab
   // CloudMarchSettings::ambientThroughOtherLayers, where the column map's ambient slices are baked
   bool ambientThroughOthers = kSeveralLayers && cloud.buildUp.z > 0.5;
   float ambientFlow = cloud.buildUp.w;  // CloudMarchSettings::ambientFlow (0: the slab's J alone)
   int coarse = max(int(cloud.march.z + 0.5), 1);
-  float emptyMargin = cloud.stepGrowth.w;  // CloudMarchSettings::emptySpaceMargin, per thickness of the span
-  float cone = kLightCone ? cloud.march.w : 0.0;
+  float emptyMargin = cloud.knobs.emptySpaceMargin;  // per thickness of the span
+  float cone = kLightCone ? cloud.knobs.lightCone : 0.0;
   bool uniformSteps = (cloud.steps.w & 8) != 0;
   bool lightToExit = (cloud.steps.w & 16) != 0;
   bool msZenith = (cloud.steps.w & 32) != 0;
@@ -219,8 +219,6 @@ void main() {
   bool exitRemainder = (cloud.steps.w & 512) != 0;
   bool reflectedLowSunDepth = (cloud.steps.w & 1024) != 0;  // CloudMarchSettings::reflectedLowSunDepth
   float lodScale = cloud.aerial.z;  // CloudMarchSettings::noiseLodScale (0: level 0 everywhere)
-  float lightFalloffStart = cloud.aerial.w;  // CloudMarchSettings::lightStepsFalloffStart T0
-  float lightFalloff = kLightFalloff ? cloud.phaseLight.z : 0.0;  // CloudMarchSettings::lightStepsFalloff (0: lightSteps everywhere)
   float uniformStep = max(total / float(viewSteps), 1e-3);
   float baseStep = max(cloud.stepGrowth.x, 1e-3);
   float growthStart = max(cloud.stepGrowth.y, 1.0);
@@ -338,13 +336,13 @@ void main() {
     if ((kSeveralLayers ? segmentLayer[s] : 0) != phaseLayer) {
       // The layer's octave parameters a, b, c (cloud_sampling.glsl: the w components of its vec4s).
       phaseLayer = kSeveralLayers ? segmentLayer[s] : 0;
-      float a = cloud.layers[5 * phaseLayer + 2].w;
-      float b = cloud.layers[5 * phaseLayer + 3].w;
-      float c = cloud.layers[5 * phaseLayer + 4].w;
-      diffusion = cloud.layerLighting[phaseLayer].x;
-      baseLimb = cloud.layerLighting[phaseLayer].w;
-      reflectWeight = cloud.layerLighting[phaseLayer].y;
-      reflectDepthScale = cloud.layerLighting[phaseLayer].z;
+      float a = cloud.layers[phaseLayer].msA;
+      float b = cloud.layers[phaseLayer].msB;
+      float c = cloud.layers[phaseLayer].msC;
+      diffusion = cloud.layerLighting[phaseLayer].floorWeight;
+      baseLimb = cloud.layerLighting[phaseLayer].baseLimb;
+      reflectWeight = cloud.layerLighting[phaseLayer].reflectWeight;
+      reflectDepthScale = cloud.layerLighting[phaseLayer].reflectDepthScale;
       lowSunMu = cloud.layerLowSun[phaseLayer / 4][phaseLayer % 4];
       float weightScale = cloudOctaveWeightScale(b, octaves);
       for (int o = 0; o < octaves; ++o) {
@@ -396,18 +394,12 @@ void main() {
           // (a grazing sun crosses a 1 km layer over ~11 km: 6 steps there left ~2 km between samples).
           int n = lightScaled && lightToExit ? lightStepsForLength(lightSteps, marchLength, layer.top_radius - layer.bottom_radius, lightSteps)
                                              : lightSteps;
-          // Light samples by transmittance (CloudMarchSettings::lightStepsFalloff k, start T0): where the
-          // camera sees little of this sample's light, m = n min(T / T0, 1)^k samples (at least 4), each
-          // the midpoint of a group of the n steps, so the step boundaries stay those of n samples.
-          int m = lightFalloff > 0.0 ? min(n, max(4, int(ceil(float(n) * pow(min(lightTransmittance / lightFalloffStart, 1.0), lightFalloff)))))
-                                     : n;
           // The deep shadow map where baked and p's sun ray climbs from p on (p.sun > 0): the first
           // `near` of the n steps marched, the rest of the way to the top, from where they end, read
-          // from the map (the falloff's groups are not used then).
+          // from the map.
           bool fromMap = kDeepShadowMap && cloud.deepShadowMap.w > 0.0 && lightToExit && muS > 0.0;
-          int taken = m;
+          int taken = n;
           if (fromMap) {
-            m = n;
             // At least one of the map's level segments (H / (K mu_s) along the sun) is marched: a lit
             // sample lies in cloud, so the density next to it is higher than its segment's mean, which
             // the map's linear interpolation between levels assumes (with a low sun a segment is
@@ -416,7 +408,7 @@ void main() {
             int nearSegment = int(ceil(float(n) * sqrt(min(segment / max(marchLength, 1e-3), 1.0))));
             taken = min(max(int(cloud.deepShadowMap.z + 0.5), nearSegment), n);
           }
-          tau = opticalDepthToSunGrouped(layer, p, sun, n, m, taken, marchLength, cone, lod);
+          tau = opticalDepthToSunTaken(layer, p, sun, n, taken, marchLength, cone, lod);
           lightCount += uint(taken);
           // The map's texel of the line that p and q share (q lies on p's sun ray), projected once for
           // both lookups below.
@@ -494,41 +486,6 @@ void main() {
         tauUp = depths.x;
         tauDown = depths.y;
       }
-      // The shadowed top (CloudMarchSettings::topEntryShadow). The way from the top and the floor assume
-      // sunlight falls on the cloud top above p; under a low sun a taller cloud upsun shadows it. From q,
-      // the cloud top above p (columnMapCloudTop: the lowest column-map level with at most the threshold's
-      // optical depth above it), tau_top is the sun's optical depth from q less q's own straight up, which
-      // the way down tau_up already crosses: ~0 for a sun overhead (its line is the column), the taller
-      // neighbours' shadow under a low one. Both are taken the same way, so that what the maps' texels
-      // blur cancels: the first rise of one deep-map level spacing H / K marched (2 samples each, along
-      // the sun and straight up), the rest read from the deep shadow map and the column map. (Reading both
-      // from the maps alone, or the sun's from q against the column map's T(k), darkened a sun 10 deg from
-      // the zenith by 3-5 %: the maps' vertical interpolation and their different texels.)
-      float tauTop = 0.0;
-      if (kColumnMap && kDeepShadowMap && columnsFromMap && cloud.topEntry.x > 0.5 && cloud.deepShadowMap.w > 0.0 && lightToExit && muS > 0.0 &&
-          (wantTop || wantFloor)) {
-        int topLayer = kSeveralLayers ? segmentLayer[s] : 0;
-        vec3 q = p * (columnMapCloudTop(columnMap, topLayer, layer, p, rp, cloud.topEntry.y).x / rp);
-        vec3 upQ = q / length(q);
-        float rise = (layer.top_radius - layer.bottom_radius) / cloud.deepShadowMap.y;
-        float sunLength = min(rise / max(muS, 1e-3), cloudSunExitDistance(layer, q, sun, lightLength));
-        float upLength = min(rise, cloudSunExitDistance(layer, q, upQ, lightLength));
-        const int topSteps = 2;
-        float tauSunTop = 0.0, tauUpTop = 0.0;
-        for (int k = 0; k < topSteps; ++k) {
-          float f = (float(k) + 0.5) / float(topSteps);
-          tauSunTop += densityAt(layer, q + sun * (f * sunLength), lod);
-          tauUpTop += densityAt(layer, q + upQ * (f * upLength), lod);
-        }
-        lightCount += uint(2 * topSteps);
-        tauSunTop *= layer.extinction * sunLength / float(topSteps);
-        tauUpTop *= layer.extinction * upLength / float(topSteps);
-        vec3 qSun = q + sun * sunLength, qUp = q + upQ * upLength;
-        vec2 planePoint = deepShadowMapPlanePoint(qSun);
-        tauSunTop += deepShadowMapOpticalDepth(deepShadowMap, topLayer, layer, qSun, planePoint, deepShadowMapTexel(planePoint));
-        tauUpTop += columnMapOpticalDepths(columnMap, topLayer, layer, qUp, length(qUp)).x;
-        tauTop = transportScale * max(tauSunTop - tauUpTop, 0.0);
-      }
       int upSteps = !kColumnMarch || columnsFromMap ? 0 : wantTop ? max(lightSteps / 2, 2) : wantFloor || wantAmbientColumn ? floorSteps : 0;
       if (upSteps > 0) {
         tauUp = transportScale * opticalDepthToSun(layer, p, up, upSteps, cloudSunExitDistance(layer, p, up, lightLength), 0.0, lod);
@@ -539,9 +496,9 @@ void main() {
         float attenuation = sunAttenuation[o];
         // The way from the top starts where the sun ray reaches this layer, past the others: tau_up + their tau.
         if (wantTop)
-          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp + tauTop, tauOther, deckLight,
+          attenuation = max(attenuation, topWeight * (throughDeck ? cloudOctaveTransmittanceThroughOthers(octaveScale[o], tauUp, tauOther, deckLight,
                                                                                                           octaveShare[o], msScattered)
-                                                                  : cloudOctaveTransmittance(octaveScale[o], tauUp + tauTop + tauOther, msScattered)));
+                                                                  : cloudOctaveTransmittance(octaveScale[o], tauUp + tauOther, msScattered)));
         msSum += octaveWeight[o] * phaseOctave[o] * attenuation;
       }
       // The layer's low-sun scale (cloudOctaveLowSunScale; 1 when off or the sun is high).
@@ -559,7 +516,7 @@ void main() {
         // The other layers above take from the slab's incident flux what they turn back: for diffuse flux a
         // medium of optical depth tau acts like (1 - g) tau (similarity relation, van de Hulst 1980), so a thin
         // forward-scattering deck above passes most of the flux, scattered, though little of the direct beam.
-        float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * (tauOther + tauTop));
+        float fluxThroughOthers = exp(-(1.0 - phaseMeanCosine) * tauOther);
         msSum = max(msSum, diffusion * fluxThroughOthers * cloudFloorSunFactor(muS) *
                                cloudEddingtonSlabSource(muS, tauUp, tauUp + tauDown, phaseMeanCosine, dot(dir, up)) *
                                cloudBaseLimbFactor(dot(dir, up), tauDown, transmittance, baseLimb));

@@ -77,7 +77,7 @@ TEST_F(CloudShadow, AgreesWithTheLightMarchOnASlab) {
   // most the slab's majorant (stratus 0.05 x 0.2 = 0.01 1/m, density <= 1) and its front depth lies
   // before the end of the march. The slab covers the whole square, and so does the map: every texel's
   // march is its stretch inside the layer, wherever along the sun's azimuth it lies.
-  // The march's length 2 L (clouds/cloud_pass.cpp): L = (top - mid) / mu_s + 1 km + the 40 km square's
+  // The march's length 2 L (clouds/cloud_block.cpp): L = (top - mid) / mu_s + 1 km + the 40 km square's
   // half diagonal x tan(theta_s), mid = 1500 m, top = 2000 m, theta_s = 30 deg.
   const double muS = std::cos(30.0 * shared::kPi / 180.0);
   const double marchLength =

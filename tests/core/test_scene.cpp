@@ -2,6 +2,7 @@
 // kind of bad input the issue names.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -71,6 +72,32 @@ TEST(Scene, UnknownKeyNamesPointerAndAllowedKeys) {
   expectInputError([] { Scene::parse(R"({"camera": {"fov": 60}})", "a.json"); },
                    {"a.json", "/camera/fov", "unknown key", "fov_deg"});
   expectInputError([] { Scene::parse(R"({"colour": 1})", "a.json"); }, {"a.json", "/colour", "unknown key"});
+}
+
+// A key of a measured and removed option (the schema's x-removed) is an error that names the key, says it
+// was removed and points at the decision record that keeps the finding; every such record exists.
+TEST(Scene, RemovedKeyNamesTheKeyAndItsDecision) {
+  expectInputError([] { Scene::parse(R"({"clouds": {"top_entry_shadow": true}})", "r.json"); },
+                   {"r.json", "/clouds/top_entry_shadow", "removed key", "docs/decisions/0001-"});
+  expectInputError([] { Scene::parse(R"({"clouds": {"light_steps_falloff": 1}})", "r.json"); },
+                   {"/clouds/light_steps_falloff", "removed key", "docs/decisions/0002-"});
+  size_t removed = 0;
+  std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& s) {
+    if (s.contains("x-removed"))
+      for (auto it = s["x-removed"].begin(); it != s["x-removed"].end(); ++it) {
+        const std::string why = it.value().get<std::string>();
+        const size_t at = why.find("docs/decisions/");
+        ASSERT_NE(at, std::string::npos) << it.key();
+        const std::string file = why.substr(at, why.find(')', at) - at);
+        EXPECT_TRUE(std::filesystem::exists(test::sourceDir() / file)) << it.key() << ": " << file;
+        EXPECT_FALSE(s["properties"].contains(it.key())) << it.key();
+        ++removed;
+      }
+    if (s.contains("properties"))
+      for (auto it = s["properties"].begin(); it != s["properties"].end(); ++it) walk(it.value());
+  };
+  walk(sceneSchema());
+  EXPECT_EQ(removed, 4u);
 }
 
 TEST(Scene, WrongTypeNamesFoundAndAllowed) {

@@ -82,7 +82,7 @@ TEST_F(CloudBench, QuickRunHasBaselineSweepsAndSamples) {
     EXPECT_EQ(baseline, 1) << scenario;
     EXPECT_EQ(defaults, 1) << scenario;
     EXPECT_EQ(milestone, 1) << scenario;
-    EXPECT_EQ(single, 7) << scenario;
+    EXPECT_EQ(single, 6) << scenario;
     // One layer: the rows about the other layers would give the same image, so they are left out
     //; without the early exit the march goes on.
     EXPECT_LT(ownLayerOnlyError, 0.0) << scenario;
@@ -133,7 +133,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
   config.timingHeight = 90;
   const std::vector<CloudTimingRow> rows = runCloudTiming(context(), config);
   writeCloudTimingOutputs(config, rows);
-  ASSERT_EQ(rows.size(), 36u);
+  ASSERT_EQ(rows.size(), 28u);
   for (const char* scenario : {"cumulus_noon", "stratocumulus_sunset"}) {
     std::map<std::string, double> samples, marchSamples;  // all, and without the per-frame maps' bakes
     for (const auto& r : rows) {
@@ -158,7 +158,7 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
         EXPECT_LT(std::abs(r.biasVsDefault), shadowMap ? 0.6 : 0.25) << r.setting;
       }
     }
-    ASSERT_EQ(samples.size(), 18u) << scenario;
+    ASSERT_EQ(samples.size(), 14u) << scenario;
     // The quality presets: low marches fewer samples than the default, high more; the octaves cost no
     // samples (low with 2 octaves, the earlier preset, marches exactly what low does).
     const std::string low = "quality low (32v/4l/3o)";
@@ -173,19 +173,6 @@ TEST_F(CloudBench, TimingTableHasEverySettingAndOrderedSamples) {
     // 6 to 24 per lit sample), whatever its bake adds.
     const std::string mapOff = "deep_shadow_map off (every light step marched)";
     EXPECT_LT(marchSamples["default"], 0.8 * marchSamples[mapOff]) << scenario;
-    // Light samples by transmittance (with the map off): fewer as the exponent k grows (n T^k, at least 4).
-    EXPECT_LT(samples["light_steps_falloff 0.5, deep_shadow_map off"], samples[mapOff]) << scenario;
-    EXPECT_LT(samples["light_steps_falloff 1, deep_shadow_map off"],
-              samples["light_steps_falloff 0.5, deep_shadow_map off"])
-        << scenario;
-    EXPECT_LT(samples["light_steps_falloff 2, deep_shadow_map off"],
-              samples["light_steps_falloff 1, deep_shadow_map off"])
-        << scenario;
-    // Starting the falloff at T = 0.1 keeps the full counts in front, so it saves less than from T = 1.
-    EXPECT_LT(samples["light_steps_falloff 1 from T 0.1, deep_shadow_map off"], samples[mapOff]) << scenario;
-    EXPECT_GT(samples["light_steps_falloff 1 from T 0.1, deep_shadow_map off"],
-              samples["light_steps_falloff 1, deep_shadow_map off"])
-        << scenario;
     // The growing view steps take fewer samples than the fixed-step baseline at noon; at the sunset the
     // default light march takes up to 4x the baseline's 6 light steps along the long ways (steps per
     // layer thickness), so it takes more.
