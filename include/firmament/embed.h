@@ -70,11 +70,6 @@ struct EmbeddedTargets {
   DepthConvention depthConvention = DepthConvention::Standard;
 };
 
-struct PassTime {
-  std::string label;  // "sky/render_sky", "sky/embed_host_depth", ...
-  double milliseconds = 0.0;
-};
-
 struct EmbeddedFrame {
   bool submittedPreparation = false;  // record() submitted preparation work and waited for it
   bool continued = false;             // the frame continued the previous one (temporal reprojection)
