@@ -29,7 +29,8 @@ struct Sky::Builder::Settings {
   std::vector<std::string> overrides;
   std::string device;
   bool temporal = true;
-  std::vector<std::string> quality;           // "/path=value" knobs, in order
+  std::vector<std::string> quality;  // "/path=value" knobs, in order
+  int framesInFlight = 1;
   std::optional<gpu::AdoptedDevice> adopted;  // embedded mode
 };
 
@@ -249,6 +250,11 @@ Sky::Builder& Sky::Builder::temporalReprojection(bool enabled) {
   settings_->temporal = enabled;
   return *this;
 }
+Sky::Builder& Sky::Builder::framesInFlight(int count) {
+  if (count < 1 || count > 4) throw InputError("framesInFlight(" + std::to_string(count) + "): allowed: 1 to 4");
+  settings_->framesInFlight = count;
+  return *this;
+}
 Sky::Builder& Sky::Builder::quality(const std::string& pathEqualsValue) {
   settings_->quality.push_back(pathEqualsValue);
   return *this;
@@ -267,7 +273,21 @@ struct Sky::Impl {
   bool temporal = true;
   bool continueNext = false;
   int lastWidth = 0, lastHeight = 0;
-  SkyRenderOptions options;   // the quality knobs
+  SkyRenderOptions options;  // the quality knobs
+  // Embedded mode's frames in flight: slot 0 is `renderer`, the others are made at their first record();
+  // each slot continues its own last frame (the one framesInFlight records before).
+  struct Slot {
+    std::unique_ptr<SkyRenderer> renderer;  // null for slot 0
+    bool continues = false;
+    int width = 0, height = 0;
+  };
+  std::vector<Slot> slots = std::vector<Slot>(1);
+  uint64_t recorded = 0;
+  size_t lastSlot = 0;
+  SkyRenderer& slotRenderer(size_t i) {
+    if (i > 0 && !slots[i].renderer) slots[i].renderer = std::make_unique<SkyRenderer>(*context);
+    return i == 0 ? renderer : *slots[i].renderer;
+  }
   SceneSource source;         // what the scene was built from (sequence frames read it again)
   std::optional<Scene> base;  // the scene as built
 
@@ -298,6 +318,7 @@ std::unique_ptr<Sky> Sky::Builder::build() {
   auto impl = std::make_unique<Impl>(options, s.adopted, scene);
   impl->temporal = s.temporal;
   impl->options = quality;
+  impl->slots.resize(size_t(s.framesInFlight));
   impl->source = source;
   impl->base = std::move(scene);
   return std::unique_ptr<Sky>(new Sky(std::move(impl)));
@@ -500,7 +521,10 @@ SkyFrame Sky::render(int width, int height) {
   return frame;
 }
 
-void Sky::restartSequence() { impl_->continueNext = false; }
+void Sky::restartSequence() {
+  impl_->continueNext = false;
+  for (Impl::Slot& slot : impl_->slots) slot.continues = false;
+}
 
 std::string Sky::sceneJson() const { return impl_->document.dump(2) + "\n"; }
 
@@ -564,14 +588,16 @@ EmbeddedFrame Sky::record(const EmbeddedTargets& t) {
   if (m.scene.string("/camera/projection") != "perspective")
     throw InputError("embedded mode: /camera/projection is \"" + m.scene.string("/camera/projection") +
                      "\": allowed: \"perspective\" (the host's depth is a perspective projection)");
-  if (t.width != m.lastWidth || t.height != m.lastHeight) m.continueNext = false;
+  const size_t slot = size_t(m.recorded % m.slots.size());
+  Impl::Slot& s = m.slots[slot];
+  if (t.width != s.width || t.height != s.height) s.continues = false;
   nlohmann::json d = m.document;
   d["camera"]["width"] = t.width;
   d["camera"]["height"] = t.height;
   m.commit(std::move(d));
 
   SkyRenderOptions options = m.options;
-  options.continueSequence = m.temporal && m.continueNext;
+  options.continueSequence = m.temporal && s.continues;
   EmbeddedRecording targets;
   targets.commands = t.commandBuffer;
   targets.colour = t.colour;
@@ -583,8 +609,9 @@ EmbeddedFrame Sky::record(const EmbeddedTargets& t) {
   targets.reversedDepth = t.depthConvention == DepthConvention::Reversed;
   const uint64_t submissions = m.context->submissionCount();
   const auto start = std::chrono::steady_clock::now();
-  RenderResult result = m.renderer.record(m.scene, options, targets);
+  RenderResult result = m.slotRenderer(slot).record(m.scene, options, targets);
   EmbeddedFrame frame;
+  frame.slot = int(slot);
   frame.recordMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.submittedPreparation = m.context->submissionCount() != submissions;
@@ -594,14 +621,16 @@ EmbeddedFrame Sky::record(const EmbeddedTargets& t) {
   frame.cloudsReprojected = result.cloudsReprojected;
   frame.sunZenith_deg = result.view.sunZenith * (180.0 / M_PI);
   frame.sunAzimuth_deg = result.view.sunAzimuth * (180.0 / M_PI);
-  m.continueNext = true;
-  m.lastWidth = t.width;
-  m.lastHeight = t.height;
+  s.continues = true;
+  s.width = t.width;
+  s.height = t.height;
+  m.lastSlot = slot;
+  ++m.recorded;
   return frame;
 }
 
 AtmosphereLookups Sky::lookups() const {
-  const EmbeddedLookups& l = impl_->renderer.lookups();
+  const EmbeddedLookups& l = impl_->slotRenderer(impl_->lastSlot).lookups();
   AtmosphereLookups out;
   if (!l.transmittance) throw InputError("lookups(): no frame recorded yet (call record() first)");
   out.transmittance = l.transmittance->view();

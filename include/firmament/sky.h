@@ -160,6 +160,10 @@ class Sky {
     // Embedded mode (firmament/embed.h): adopt the host's Vulkan objects instead of creating a context.
     // device() is then ignored; render() is unavailable, record() is the frame.
     Builder& embedded(const EmbeddedDevice& device);
+    // Embedded mode: how many frames the host keeps in flight, 1 (default) to 4. record() cycles through
+    // that many sets of per-frame resources, so a frame's command buffer may still run while the next
+    // count - 1 are recorded; the host waits for a frame before the record() count frames later.
+    Builder& framesInFlight(int count);
     std::unique_ptr<class Sky> build();
 
    private:
