@@ -1,9 +1,9 @@
 #pragma once
 // Firmament's public C++ API (docs/api.md): a sky built from a scene file or scene JSON, then per frame
 // a camera, a time and a size in, a linear HDR image and its frame time out. This header includes no
-// other Firmament header, nor Vulkan. Two ways to run: offline, the sky owns a headless Vulkan context
-// and render() returns the image on the CPU; embedded (firmament/embed.h), it adopts a host's Vulkan
-// device and record() records into the host's command buffer.
+// other Firmament header but firmament/error.h, nor Vulkan. Two ways to run: offline, the sky owns a headless Vulkan
+// context and render() returns the image on the CPU; embedded (firmament/embed.h), it adopts a host's Vulkan device and
+// record() records into the host's command buffer.
 //
 //   auto sky = firmament::Sky::Builder().sceneFile("scenes/cumulus.json").build();
 //   sky->setCamera({.heightAboveGround_m = 2, .yaw_deg = 180, .pitch_deg = 10});
