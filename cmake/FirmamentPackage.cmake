@@ -35,6 +35,7 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/package/FirmamentConfigVe
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${firmament_package_archive} DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/include/firmament/sky.h ${PROJECT_SOURCE_DIR}/include/firmament/embed.h
+              ${PROJECT_SOURCE_DIR}/include/firmament/error.h ${PROJECT_SOURCE_DIR}/include/firmament/image.h
               ${PROJECT_SOURCE_DIR}/include/firmament/atmosphere_lookup.glsl
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/firmament)
 install(FILES ${PROJECT_BINARY_DIR}/package/FirmamentConfig.cmake

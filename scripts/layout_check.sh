@@ -10,6 +10,11 @@
 #      $period below, followed by a count) appears in the tracked sources, scripts, scenes or docs.
 #      Scratch folders (/tmp/...) are not named
 #      outside tests and scripts.
+#   4. The tool's rendering commands reach Firmament through the public API only: render, timelapse and
+#      view (samples/firmament/cmd_render.cpp, cmd_timelapse.cpp, cmd_view.cpp, render_outputs.*,
+#      sequence_scene.*) include no Firmament header but include/firmament/ ("firmament/...") and the
+#      tool's own (samples/firmament/, samples/viewer/); docs/decisions/0502 says why the evaluation
+#      commands may still link eval/.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 failed=0
@@ -42,7 +47,15 @@ report "\"$period\" names a time, not a reason: say what and why" \
 report "a scratch folder (/tmp/...) is named outside tests/ and scripts/" \
   "$(git grep --untracked -n '/tmp/' -- . ':!tests/' ':!scripts/' ':!.ci/' 2>/dev/null)"
 
+# 4. The rendering commands use the public API only.
+public_only=(samples/firmament/cmd_render.cpp samples/firmament/cmd_timelapse.cpp samples/firmament/cmd_view.cpp
+  samples/firmament/render_outputs.h samples/firmament/render_outputs.cpp samples/firmament/sequence_scene.h
+  samples/firmament/sequence_scene.cpp)
+report "a rendering command includes an internal header (use include/firmament/, docs/api.md)" \
+  "$(git grep --untracked -n -E '#include "' -- "${public_only[@]}" 2>/dev/null |
+    grep -v -E '#include "(firmament|samples/firmament|samples/viewer)/')"
+
 if [ $failed = 0 ]; then
-  echo "layout_check: the renderer is apart from eval/, sky/ writes no files, no \"$period\" anywhere"
+  echo "layout_check: the renderer is apart from eval/, sky/ writes no files, no \"$period\" anywhere, the rendering commands include only the public API"
 fi
 exit $failed

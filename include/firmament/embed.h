@@ -18,8 +18,9 @@
 //    command buffer or in an earlier submission. Firmament's first command is a full memory barrier
 //    (all commands -> all commands), so no access barrier of the host's is needed, only its layout moves.
 //  - after: Firmament's last command is a full memory barrier; the layouts are as they were.
-//  - one frame in flight: the command buffer of one record() must have finished executing before the
-//    next record() (its uniform blocks and its frame buffers are reused), and before the Sky is destroyed.
+//  - frames in flight (Sky::Builder::framesInFlight(N), default 1): the command buffer of one record()
+//    must have finished executing before the record() N frames later (which reuses its uniform blocks
+//    and frame buffers), and every one before the Sky is destroyed.
 //  - preparation: the first record(), a new size, new atmosphere tables, new cloud noise or a new weather
 //    map submit their work to the given queue and wait on Firmament's own fence inside record(), before
 //    anything is recorded (EmbeddedFrame::submittedPreparation says so). The host must not use that
@@ -70,11 +71,6 @@ struct EmbeddedTargets {
   DepthConvention depthConvention = DepthConvention::Standard;
 };
 
-struct PassTime {
-  std::string label;  // "sky/render_sky", "sky/embed_host_depth", ...
-  double milliseconds = 0.0;
-};
-
 struct EmbeddedFrame {
   bool submittedPreparation = false;  // record() submitted preparation work and waited for it
   bool continued = false;             // the frame continued the previous one (temporal reprojection)
@@ -85,6 +81,7 @@ struct EmbeddedFrame {
   std::vector<PassTime> previousFramePasses;
   double previousFrameGpuMilliseconds = 0.0;
   double sunZenith_deg = 0.0, sunAzimuth_deg = 0.0;
+  int slot = 0;  // which of the framesInFlight sets of per-frame resources this frame used
 };
 
 // firmament/atmosphere_lookup.glsl's FirmamentAtmosphere (4 vec4, std140 and push-constant layout).

@@ -5,15 +5,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/error.h"
-#include "core/log.h"
-#include "core/scene.h"
-#include "gpu/context.h"
+#include "firmament/image.h"
+#include "firmament/sky.h"
 #include "samples/firmament/command.h"
 #include "samples/firmament/render_outputs.h"
 #include "samples/firmament/sequence_scene.h"
-#include "sky/render_plan.h"
-#include "sky/sky_renderer.h"
 
 namespace firmament::cli {
 namespace {
@@ -24,31 +20,31 @@ int runRender(const Args& args) {
   std::vector<std::string> overrides = args.all("set");
   if (auto w = args.get("width")) overrides.push_back("/camera/width=" + *w);
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
-  Scene scene = args.positionals.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, overrides)
-                                         : Scene::load(scenePath, overrides);
-  SkyRenderOptions options;
+  Sky::Builder builder;
+  if (!args.positionals.empty()) builder.sceneFile(scenePath);
+  for (const std::string& o : overrides) builder.set(o);
+  builder.device(args.getOr("device", ""));
+
+  // The quality knobs (firmament::qualityKnobs()), each from its option.
   const std::string multipleScattering = args.getOr("multiple-scattering", "fms");
-  if (multipleScattering == "tables") {
-    options.multipleScattering = MultipleScattering::BrunetonTables;
-  } else if (multipleScattering != "fms") {
+  if (multipleScattering != "tables" && multipleScattering != "fms")
     throw InputError("--multiple-scattering " + multipleScattering + ": allowed: fms, tables");
-  }
-  options.tables.scatteringOrders = args.integer("orders", options.tables.scatteringOrders, 1, 64);
-  options.viewSteps = args.integer("view-steps", options.viewSteps, 1, 4096);
+  builder.quality("/atmosphere/multiple_scattering=" + multipleScattering);
+  if (args.has("orders"))
+    builder.quality("/atmosphere/scattering_orders=" + std::to_string(args.integer("orders", 4, 1, 64)));
+  if (args.has("view-steps"))
+    builder.quality("/atmosphere/view_steps=" + std::to_string(args.integer("view-steps", 32, 1, 4096)));
   if (args.getOr("spectral-samples", "auto") != "auto") {
-    options.luts.spectralSamples = args.integer("spectral-samples", 3, 3, 48);
-    if (options.luts.spectralSamples % 3 != 0)
-      throw InputError("--spectral-samples " + std::to_string(options.luts.spectralSamples) +
+    const int samples = args.integer("spectral-samples", 3, 3, 48);
+    if (samples % 3 != 0)
+      throw InputError("--spectral-samples " + std::to_string(samples) +
                        ": allowed: auto, 3 (three wavelengths) or a multiple of 3 from 6 to 48");
+    builder.quality("/atmosphere/spectral_samples=" + std::to_string(samples));
   }
   std::string method = args.getOr("sky", "lut");
-  if (method == "lut") {
-    options.method = SkyMethod::SkyViewLut;
-  } else if (method == "march") {
-    options.method = SkyMethod::PerPixel;
-  } else {
+  if (method != "lut" && method != "march")
     throw InputError("--sky " + method + ": allowed: lut (sky-view table), march (every pixel)");
-  }
+  builder.quality("/atmosphere/sky=" + method);
 
   if (auto size = args.get("aerial-volume")) {
     // CxRxN: froxel columns, rows, depth slices of the aerial-perspective volume.
@@ -58,21 +54,22 @@ int runRender(const Args& args) {
     if (std::sscanf(size->c_str(), "%d%c%d%c%d%c", &c, &x1, &r, &x2, &n, &tail) != 5 || x1 != 'x' || x2 != 'x' ||
         c < 2 || r < 2 || n < 2 || c > 1024 || r > 1024 || n > 1024)
       throw InputError("--aerial-volume " + *size + ": allowed: CxRxN with each of C, R, N in 2..1024, e.g. 32x32x32");
-    options.aerialPerspective.columns = c;
-    options.aerialPerspective.rows = r;
-    options.aerialPerspective.slices = n;
+    builder.quality("/aerial_perspective/columns=" + std::to_string(c));
+    builder.quality("/aerial_perspective/rows=" + std::to_string(r));
+    builder.quality("/aerial_perspective/slices=" + std::to_string(n));
   }
-  options.aerialPerspective.maxDistance_m = args.number("aerial-volume-depth", 0.0);
-  if (!(options.aerialPerspective.maxDistance_m >= 0.0) || options.aerialPerspective.maxDistance_m > 1e7)
+  const double aerialDepth = args.number("aerial-volume-depth", 0.0);
+  if (!(aerialDepth >= 0.0) || aerialDepth > 1e7)
     throw InputError("--aerial-volume-depth: allowed: 0 (the clouds' march limit) or a distance in metres up to 1e7");
+  if (args.has("aerial-volume-depth"))
+    builder.quality("/aerial_perspective/depth_m=" + formatNumber("%.17g", aerialDepth));
 
-  RenderPlan plan = planRender(scene, planOptions(options));
+  const SkyPlan plan = builder.explain();
   if (args.has("explain")) {
-    std::printf("%s: %dx%d\n%s", scene.source().c_str(), int(scene.integer("/camera/width")),
-                int(scene.integer("/camera/height")), describePlan(plan).c_str());
+    std::printf("%s: %dx%d\n%s", plan.scene.c_str(), plan.width, plan.height, plan.text.c_str());
     if (!args.has("output")) return kExitOk;
   }
-  for (const auto& u : plan.unavailable) logWarning(u.name + ": " + u.reason);
+  for (const auto& u : plan.unavailable) warn(u.name + ": " + u.reason);
 
   std::filesystem::path out = args.getOr("output", "out/" + std::filesystem::path(scenePath).stem().string() + ".exr");
   if (out.extension() != ".exr") throw InputError("-o " + out.string() + ": the output must end in .exr");
@@ -97,70 +94,70 @@ int runRender(const Args& args) {
       (args.has("yaw-rate") || args.has("pitch-rate") || args.has("climb-rate") || args.has("frame-interval")))
     throw InputError(
         "--yaw-rate, --pitch-rate, --climb-rate and --frame-interval describe a sequence: give --frames N (N > 1)");
-  const SequenceSceneSource source{args.positionals.empty() ? std::string() : scenePath, overrides};
-  auto frameScene = [&](int i) {
-    if (i == 0) return scene;
-    const double t = double(i) * interval;
-    CameraPose pose = cameraPoseOf(scene);
-    pose.yaw_deg = std::fmod(pose.yaw_deg + yawRate * t, 360.0);
-    pose.pitch_deg += pitchRate * t;
-    if (pose.pitch_deg < -90.0 || pose.pitch_deg > 90.0)
-      throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " +
-                       std::to_string(pose.pitch_deg) + " deg; allowed: -90 to 90");
-    pose.height_above_ground_m += climbRate * t;
-    return sequenceFrameScene(source, scene, t, pose);
-  };
   auto framePath = [&](int i) {
     if (frames == 1) return out;
     char suffix[32];
     std::snprintf(suffix, sizeof(suffix), "_%04d.exr", i);
     return std::filesystem::path(out).replace_extension("").concat(suffix);
   };
-  for (int i = 1; i < frames; ++i) frameScene(i);  // bad rates fail before anything is written
   // No output may replace the scene file (OUT.json is the stats beside OUT.exr).
   if (!args.positionals.empty())
     for (int i = 0; i < frames; ++i) refuseOverwritingInput(framePath(i), scenePath);
 
   // Phases: device, then render (tables + frame) and write per frame. The bar appears only past one second.
-  auto progress = std::make_unique<Progress>("render", 1 + 2 * frames);
-  gpu::ContextOptions contextOptions;
-  contextOptions.device = args.getOr("device", "");
-  gpu::Context context(contextOptions);
-  logInfo("device: " + context.description());
-  SkyRenderer renderer(context);
+  auto progress = std::make_unique<ProgressBar>("render", 1 + 2 * frames);
+  std::unique_ptr<Sky> sky = builder.build();
+  info("device: " + sky->deviceDescription());
   progress->advance();
-  RenderResult result;
+
+  // Frame i's camera: the built one moved by i times the rates.
+  const SkyCamera camera = sky->camera();
+  auto frameCamera = [&](int i) {
+    const double t = double(i) * interval;
+    CameraPose pose = cameraPoseOf(*sky);
+    pose.yaw_deg = std::fmod(camera.yaw_deg + yawRate * t, 360.0);
+    pose.pitch_deg = camera.pitch_deg + pitchRate * t;
+    if (pose.pitch_deg < -90.0 || pose.pitch_deg > 90.0)
+      throw InputError("--pitch-rate: frame " + std::to_string(i) + " would pitch to " +
+                       std::to_string(pose.pitch_deg) + " deg; allowed: -90 to 90");
+    pose.height_above_ground_m = camera.heightAboveGround_m + climbRate * t;
+    pose.fov_deg = camera.fov_deg;
+    return skyCameraOf(pose, camera);
+  };
+  for (int i = 1; i < frames; ++i)  // bad rates fail before anything is written
+    sky->checkSequenceFrame(double(i) * interval, frameCamera(i));
+
+  SkyFrame frame;
   double ev100 = 0.0;
-  ExposureAdaptation adaptation;  // the auto exposure's state through a sequence
+  EyeAdaptation adaptation;  // the auto exposure's state through a sequence
   for (int i = 0; i < frames; ++i) {
-    const Scene current = frameScene(i);
-    options.continueSequence = i > 0;
-    result = renderer.render(current, options);
+    if (i > 0) sky->setSequenceFrame(double(i) * interval, frameCamera(i));
+    frame = sky->render(plan.width, plan.height);
     progress->advance();
-    ev100 = writeRenderOutputs(framePath(i).string(), current, result, context.description(),
+    ev100 = writeRenderOutputs(framePath(i).string(), frame, Exposure(*sky), sky->deviceDescription(),
                                frames > 1 ? &adaptation : nullptr, i > 0 ? interval : 0.0);
     progress->advance();
     if (frames > 1) {
       char line[200];
-      std::snprintf(line, sizeof(line), "  frame %4d: %9.3f ms%s", i, result.frameMilliseconds,
-                    result.clouds.pixelCount() == 0 ? ""
-                    : result.cloudsReprojected      ? ", clouds reprojected"
-                                                    : ", clouds marched in full");
-      logInfo(line);
+      std::snprintf(line, sizeof(line), "  frame %4d: %9.3f ms%s", i, frame.gpuMilliseconds,
+                    !frame.clouds.rendered    ? ""
+                    : frame.cloudsReprojected ? ", clouds reprojected"
+                                              : ", clouds marched in full");
+      info(line);
     }
   }
   progress.reset();  // ends the bar's line before the summary
   out = framePath(frames - 1);
 
-  for (const auto& t : result.timings) {
+  for (const auto& t : frame.passes) {
     char line[160];
     std::snprintf(line, sizeof(line), "  %-36s %9.3f ms", t.label.c_str(), t.milliseconds);
-    logInfo(line);
+    info(line);
   }
   char summary[256];
   std::snprintf(summary, sizeof(summary), "wrote %s (+ .png, EV100 %.2f; + .json); sun zenith %.3f deg", out.c_str(),
-                ev100, result.view.sunZenith * 180.0 / 3.14159265358979323846);
-  logInfo(summary);
+                ev100, frame.sunZenith_deg);
+  info(summary);
   return kExitOk;
 }
 

@@ -25,21 +25,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "astro/geodetic.h"
-#include "astro/moon.h"
-#include "astro/time.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/exr_io.h"
-#include "core/hash.h"
-#include "core/log.h"
-#include "core/scene.h"
-#include "core/tonemap.h"
-#include "gpu/context.h"
+#include "firmament/image.h"
+#include "firmament/sky.h"
 #include "samples/firmament/command.h"
 #include "samples/firmament/sequence_scene.h"
-#include "sky/scene_weather.h"
-#include "sky/sky_renderer.h"
 
 extern char** environ;
 
@@ -47,7 +36,6 @@ namespace firmament::cli {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr const char* kManifestName = "timelapse.json";
 constexpr int kManifestFormat = 1;
 constexpr int kMaxFrames = 10000000;
@@ -75,7 +63,7 @@ struct Plan {
 
 nlohmann::json manifestOf(const Plan& p) {
   return {{"format", kManifestFormat},
-          {"scene_file", p.scenePath.empty() ? kDefaultSceneName : p.scenePath},
+          {"scene_file", p.scenePath},
           {"scene_hash", p.sceneHash},
           {"from", p.from},
           {"to", p.to},
@@ -96,27 +84,10 @@ nlohmann::json readJson(const fs::path& file) {
   }
 }
 
-// Seconds from a to b (UTC, every day 86400 s).
-double secondsBetween(const astro::UtcTime& a, const astro::UtcTime& b) {
-  auto days = [](int y, int m, int d) {  // days from civil (Hinnant), proleptic Gregorian
-    y -= m <= 2;
-    const int era = (y >= 0 ? y : y - 399) / 400;
-    const int yoe = y - era * 400;
-    const int doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-    const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    return double(era) * 146097.0 + double(doe);
-  };
-  auto seconds = [&](const astro::UtcTime& t) {
-    return days(t.year, t.month, t.day) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 + t.second;
-  };
-  return seconds(b) - seconds(a);
-}
-
-astro::UtcTime parseTime(const std::string& option, const std::string& text) {
+// The canonical form of a time option (InputError naming the option).
+std::string parseTime(const std::string& option, const std::string& text) {
   try {
-    astro::UtcTime t = astro::parseUtc(text);
-    astro::makeAstroTime(t);  // out of the ephemerides' range: InputError
-    return t;
+    return canonicalUtc(text);
   } catch (const InputError& e) {
     throw InputError("--" + option + " " + text + ": " + e.what());
   }
@@ -195,14 +166,6 @@ struct FrameRecord {
   nlohmann::json json;
 };
 
-// ---- exposure over video time ----
-
-// The preview's EV100 for an adapted luminance (as toneMapToSrgb8 computes it).
-double ev100For(double adapted, const ExposureSettings& s) {
-  const double base = s.mode == ExposureSettings::Mode::Auto ? autoEv100ForLuminance(adapted, s) : s.ev100;
-  return base - s.compensationEv;
-}
-
 // ---- progress ----
 
 class FrameProgress {
@@ -210,7 +173,7 @@ class FrameProgress {
   FrameProgress(int total, int done) : total_(total), done_(done) {
     const char* forced = std::getenv("FIRMAMENT_PROGRESS");
     tty_ = forced ? std::strcmp(forced, "1") == 0 : ::isatty(2) != 0;
-    if (logLevel() == LogLevel::Quiet) tty_ = false;
+    if (quietOutput()) tty_ = false;
   }
   ~FrameProgress() {
     if (drawn_) std::fprintf(stderr, "\n");
@@ -235,7 +198,7 @@ class FrameProgress {
       char line[200];
       std::snprintf(line, sizeof(line), "frame %d (%d/%d) %s  %.2f s  ETA %s", frame, done_, total_, utc.c_str(),
                     seconds, etaText);
-      logInfo(line);
+      info(line);
     }
   }
 
@@ -296,12 +259,11 @@ int assemble(const fs::path& dir, const AssembleOptions& options) {
     throw InputError("--assemble " + dir.string() + ": " + std::to_string(missing.size()) + " of " +
                      std::to_string(frames) + " frames are missing (the first: " + std::to_string(missing.front()) +
                      "); render them first (the remaining shards, or the run again with --resume)");
-  const Scene scene = Scene::parse(m["scene"].dump(), manifestPath.string() + "#/scene");
-  const ExposureSettings exposure = exposureFromScene(scene);
+  const Exposure exposure = Exposure::fromSceneJson(m["scene"].dump(), manifestPath.string() + "#/scene");
 
   // The exposure: the eye adaptation (core/tonemap.h) over video time, replayed from the records, so that
   // a frame's PNG is the same whichever process renders it.
-  ExposureAdaptation adaptation;
+  EyeAdaptation adaptation;
   std::ostringstream csv;
   csv << "frame,utc,elapsed_s,sun_altitude_deg,sun_azimuth_deg,moon_altitude_deg,moon_illuminated_fraction,"
          "log_average_cd_m2,adapted_cd_m2,ev100,weather_mean_coverage,weather_cloudy_fraction,"
@@ -311,9 +273,9 @@ int assemble(const fs::path& dir, const AssembleOptions& options) {
     const nlohmann::json r = readJson(dir / (frameStem(i) + ".json"));
     const double adapted = adaptation.update(r.at("log_average_cd_m2").get<double>(), 1.0 / fps, exposure);
     const fs::path png = dir / (frameStem(i) + ".png");
-    double ev100 = ev100For(adapted, exposure);
+    double ev100 = exposure.ev100For(adapted);
     if (!fs::exists(png)) {
-      ev100 = writePngPreview(png, readExr(dir / (frameStem(i) + ".exr")), exposure, &adapted);
+      ev100 = exposure.savePng(loadExr((dir / (frameStem(i) + ".exr")).string()), png.string(), &adapted);
       ++written;
     }
     char line[512];
@@ -330,9 +292,9 @@ int assemble(const fs::path& dir, const AssembleOptions& options) {
                   r.at("wall_s").get<double>());
     csv << line;
   }
-  writeTextFileAtomically(dir / "frames.csv", csv.str());
-  logInfo("wrote " + (dir / "frames.csv").string() + " (" + std::to_string(frames) + " frames; " +
-          std::to_string(written) + " PNGs made now)");
+  writeTextAtomically(dir / "frames.csv", csv.str());
+  info("wrote " + (dir / "frames.csv").string() + " (" + std::to_string(frames) + " frames; " +
+       std::to_string(written) + " PNGs made now)");
   if (!options.video) return kExitOk;
 
   const std::optional<std::string> ffmpeg = findFfmpeg();
@@ -373,7 +335,7 @@ int assemble(const fs::path& dir, const AssembleOptions& options) {
   std::snprintf(summary, sizeof(summary), "wrote %s (%s, %d frames at %g fps, %.1f s to encode)", video.c_str(),
                 options.codec == "h264" ? "H.264 yuv420p" : "H.265 10-bit", frames, fps,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-  logInfo(summary);
+  info(summary);
   return kExitOk;
 }
 
@@ -387,27 +349,16 @@ AssembleOptions assembleOptions(const Args& args) {
 }
 
 // Weather statistics of a frame's map (coverage, cloudy fraction, precipitation, highest top) and the
-// simulation's start and length (one run for the whole sequence: sequence_scene.h).
-nlohmann::json weatherStatistics(const Scene& scene) {
-  if (!scene.hasSection("clouds") || !scene.hasSection("weather")) return nullptr;
-  const CloudWeatherMap map = cloudWeatherMapForScene(scene);
-  const Image& img = map.map;
-  double coverage = 0.0, precipitation = 0.0, top = 0.0;
-  size_t cloudy = 0;
-  for (size_t i = 0; i < img.pixelCount(); ++i) {
-    const float* p = img.pixels.data() + i * size_t(img.channels);
-    coverage += p[0];
-    cloudy += p[0] > 0.5f;
-    precipitation += p[2];
-    if (p[0] > 0.0f) top = std::max(top, double(p[3]));
-  }
-  const double n = double(std::max<size_t>(1, img.pixelCount()));
-  return {{"mean_coverage", coverage / n},
-          {"cloudy_fraction", double(cloudy) / n},
-          {"mean_precipitation_mm_h", precipitation / n},
-          {"max_top_m", top},
-          {"start_utc", astro::formatUtc(sceneWeatherStart(scene))},
-          {"run_h", sceneWeatherRunSeconds(scene) / 3600.0}};
+// simulation's start and length (one run for the whole sequence: Sky::setSequenceFrame).
+nlohmann::json weatherStatistics(const Sky& sky) {
+  const WeatherSummary w = sky.weather();
+  if (!w.present) return nullptr;
+  return {{"mean_coverage", w.meanCoverage},
+          {"cloudy_fraction", w.cloudyFraction},
+          {"mean_precipitation_mm_h", w.meanPrecipitation_mm_h},
+          {"max_top_m", w.maxTop_m},
+          {"start_utc", w.startUtc},
+          {"run_h", w.run_h}};
 }
 
 // Removes what a killed writer of this range's frames left (".frame_NNNNNN.tmp-PID-N.EXT", core/atomic_file.h).
@@ -441,10 +392,9 @@ int runTimelapse(const Args& args) {
   Plan plan;
   plan.scenePath = args.positionals[0];
   plan.dir = *args.get("out");
-  const astro::UtcTime from = parseTime("from", *args.get("from")), to = parseTime("to", *args.get("to"));
-  plan.from = astro::formatUtc(from);
-  plan.to = astro::formatUtc(to);
-  plan.duration_s = secondsBetween(from, to);
+  plan.from = parseTime("from", *args.get("from"));
+  plan.to = parseTime("to", *args.get("to"));
+  plan.duration_s = utcSecondsBetween(plan.from, plan.to);
   if (!(plan.duration_s > 0.0))
     throw InputError("--to " + plan.to + " is not after --from " + plan.from + ": allowed: a later time");
   if (plan.duration_s > 366.0 * 86400.0)
@@ -464,29 +414,41 @@ int runTimelapse(const Args& args) {
   if (auto w = args.get("width")) overrides.push_back("/camera/width=" + *w);
   if (auto h = args.get("height")) overrides.push_back("/camera/height=" + *h);
   overrides.push_back("/time/utc=" + plan.from);
-  const SequenceSceneSource source{plan.scenePath, overrides};
-  const Scene base = source.load();
-  if (base.hasSection("sun"))
-    logWarning(plan.scenePath +
-               ": has a sun section: the sun stays where it says (remove it to let the sun, moon "
-               "and stars follow the clock)");
-  const int width = int(base.integer("/camera/width")), height = int(base.integer("/camera/height"));
+  // Every frame is a still (no temporal reprojection across a time-lapse's steps, docs/decisions/0401): its
+  // pixels depend on its own scene only, so a resumed or sharded run gives the same frames as one
+  // uninterrupted run.
+  Sky::Builder builder;
+  builder.sceneFile(plan.scenePath).device(args.getOr("device", "")).temporalReprojection(false);
+  for (const std::string& o : overrides) builder.set(o);
+  const std::unique_ptr<Sky> sky = builder.build();  // the base scene: time = from
+  auto number = [&](const std::string& pointer) { return nlohmann::json::parse(sky->get(pointer)).get<double>(); };
+  if (!sky->get("/sun").empty())
+    warn(plan.scenePath +
+         ": has a sun section: the sun stays where it says (remove it to let the sun, moon "
+         "and stars follow the clock)");
+  const int width = int(number("/camera/width")), height = int(number("/camera/height"));
   if (video.video && (width % 2 || height % 2))
     throw InputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
                      ": the video (4:2:0 chroma) needs an even width and height; allowed: even sizes, or --no-video");
   std::optional<CameraPath> cameraPath;
   if (auto file = args.get("camera-path")) {
-    cameraPath = CameraPath::load(*file, cameraPoseOf(base));
+    cameraPath = CameraPath::load(*file, cameraPoseOf(*sky));
     plan.cameraPath = cameraPath->hash();
   }
-  plan.scene = base.at("");
-  plan.sceneHash = base.hash();
-  auto frameScene = [&](int i) {
+  plan.scene = nlohmann::json::parse(sky->sceneJson());
+  plan.sceneHash = sky->sceneHash();
+  const SkyCamera baseCamera = sky->camera();
+  // Frame i's scene: the base plan.elapsed(i) later, on the camera path when there is one.
+  auto frameScene = [&](int i, bool check) {
     const double t = plan.elapsed(i);
-    return sequenceFrameScene(source, base, t,
-                              cameraPath ? std::optional<CameraPose>(cameraPath->at(t)) : std::nullopt);
+    if (cameraPath) {
+      const SkyCamera camera = skyCameraOf(cameraPath->at(t), baseCamera);
+      check ? sky->checkSequenceFrame(t, camera) : sky->setSequenceFrame(t, camera);
+    } else {
+      check ? sky->checkSequenceFrame(t) : sky->setSequenceFrame(t);
+    }
   };
-  frameScene(plan.frames - 1);  // a bad scene at the end fails before anything is written
+  frameScene(plan.frames - 1, true);  // a bad scene at the end fails before anything is written
   const Range range = frameRange(args, plan.frames);
 
   // The folder and the resume manifest: a folder of another scene or other options is refused.
@@ -508,10 +470,10 @@ int runTimelapse(const Args& args) {
                          (std::string(key) == "scene_hash" ? "another scene" : "other options") + " (" + key + ": " +
                          (old.contains(key) ? old[key].dump() : "none") + " there, " + manifest[key].dump() +
                          " here): cannot resume it; name another --out folder or delete this one");
-    logInfo("resuming the time-lapse in " + plan.dir.string());
+    info("resuming the time-lapse in " + plan.dir.string());
   } else {
     try {
-      writeTextFileAtomically(manifestPath, manifest.dump(2) + "\n");
+      writeTextAtomically(manifestPath, manifest.dump(2) + "\n");
     } catch (const std::exception& e) {
       throw InputError("--out " + plan.dir.string() + ": cannot write " + kManifestName + ": " + e.what());
     }
@@ -529,26 +491,16 @@ int runTimelapse(const Args& args) {
     std::snprintf(line, sizeof(line), "%s: %d frames (%s to %s, %g fps, %gx)%s%s; frames %d-%d: %d to render",
                   plan.dir.c_str(), plan.frames, plan.from.c_str(), plan.to.c_str(), plan.fps, plan.speed,
                   range.why.empty() ? "" : ", ", range.why.c_str(), range.first, range.last, int(todo.size()));
-    logInfo(line);
+    info(line);
   }
 
-  const ExposureSettings exposure = exposureFromScene(base);
-  const astro::GeodeticLocation location = astro::GeodeticLocation::fromDegrees(
-      base.number("/location/latitude_deg"), base.number("/location/longitude_deg"), base.number("/location/height_m"));
+  const Exposure exposure(*sky);
   if (!todo.empty()) {
-    gpu::ContextOptions contextOptions;
-    contextOptions.device = args.getOr("device", "");
-    gpu::Context context(contextOptions);
-    logInfo("device: " + context.description());
-    SkyRenderer renderer(context);
-    // Every frame is a still (SkyRenderOptions::continueSequence false: no reprojection across a time-lapse's
-    // steps, docs/decisions/0401): its pixels depend on its own scene only, so a resumed or sharded run gives
-    // the same frames as one uninterrupted run.
-    SkyRenderOptions options;
+    info("device: " + sky->deviceDescription());
 
     // The exposure's state before the first frame to render, replayed from the records of the frames before
     // it; when one is missing (another shard's), the PNGs wait for --assemble.
-    ExposureAdaptation adaptation;
+    EyeAdaptation adaptation;
     bool adaptationKnown = true;
     for (int i = 0; i < todo.front() && adaptationKnown; ++i) {
       if (!done(i)) {
@@ -568,52 +520,50 @@ int runTimelapse(const Args& args) {
                             1.0 / plan.fps, exposure);
       }
       previous = i;
-      const Scene scene = frameScene(i);
-      RenderResult result = renderer.render(scene, options);
+      frameScene(i, false);
+      SkyFrame frame = sky->render(width, height);
       // The EXR keeps the scene's metadata but not the per-pass timings: a frame's file is the same whichever
       // process renders it (the timings go to the record).
-      for (auto it = result.image.metadata.begin(); it != result.image.metadata.end();)
-        it = it->first.rfind("firmament.timing", 0) == 0 ? result.image.metadata.erase(it) : std::next(it);
+      for (auto it = frame.metadata.begin(); it != frame.metadata.end();)
+        it = it->first.rfind("firmament.timing", 0) == 0 ? frame.metadata.erase(it) : std::next(it);
       const std::string stem = frameStem(i);
-      writeExr(plan.dir / (stem + ".exr"), result.image);
-      const double logAverage = logAverageLuminance(result.image);
+      saveExr(frame, (plan.dir / (stem + ".exr")).string());
+      const double logAverage = logAverageLuminance(frame);
       double ev100 = std::nan("");
       if (adaptationKnown) {
         const double adapted = adaptation.update(logAverage, 1.0 / plan.fps, exposure);
-        ev100 = writePngPreview(plan.dir / (stem + ".png"), result.image, exposure, &adapted);
+        ev100 = exposure.savePng(frame, (plan.dir / (stem + ".png")).string(), &adapted);
       }
-      const std::string utc = scene.string("/time/utc");
-      const astro::TopocentricPosition moon = astro::moonPosition(astro::makeAstroTime(utc), location);
-      const CameraPose pose = cameraPoseOf(scene);
-      nlohmann::json record = {
-          {"frame", i},
-          {"utc", utc},
-          {"elapsed_s", plan.elapsed(i)},
-          {"sun_altitude_deg", 90.0 - result.view.sunZenith * kRadToDeg},
-          {"sun_azimuth_deg", result.view.sunAzimuth * kRadToDeg},
-          {"moon_altitude_deg", 90.0 - moon.zenith * kRadToDeg},
-          {"moon_illuminated_fraction", astro::moonPhase(astro::makeAstroTime(utc)).illuminatedFraction},
-          {"log_average_cd_m2", logAverage},
-          {"camera",
-           {{"yaw_deg", pose.yaw_deg},
-            {"pitch_deg", pose.pitch_deg},
-            {"height_above_ground_m", pose.height_above_ground_m},
-            {"fov_deg", pose.fov_deg}}},
-          {"weather", weatherStatistics(scene)},
-          {"scene_hash", scene.hash()},
-          {"device", context.description()},
-          {"gpu_frame_ms", result.frameMilliseconds}};
+      const std::string utc = nlohmann::json::parse(sky->get("/time/utc")).get<std::string>();
+      const CameraPose pose = cameraPoseOf(*sky);
+      nlohmann::json record = {{"frame", i},
+                               {"utc", utc},
+                               {"elapsed_s", plan.elapsed(i)},
+                               {"sun_altitude_deg", 90.0 - frame.sunZenith_deg},
+                               {"sun_azimuth_deg", frame.sunAzimuth_deg},
+                               {"moon_altitude_deg", frame.moonAltitude_deg},
+                               {"moon_illuminated_fraction", frame.moonIlluminatedFraction},
+                               {"log_average_cd_m2", logAverage},
+                               {"camera",
+                                {{"yaw_deg", pose.yaw_deg},
+                                 {"pitch_deg", pose.pitch_deg},
+                                 {"height_above_ground_m", pose.height_above_ground_m},
+                                 {"fov_deg", pose.fov_deg}}},
+                               {"weather", weatherStatistics(*sky)},
+                               {"scene_hash", frame.sceneHash},
+                               {"device", sky->deviceDescription()},
+                               {"gpu_frame_ms", frame.gpuMilliseconds}};
       if (std::isfinite(ev100)) record["preview_ev100"] = ev100;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       record["wall_s"] = seconds;
       // The record last: a frame is done when its record exists (its EXR and PNG are there by then).
-      writeTextFileAtomically(plan.dir / (stem + ".json"), record.dump(2) + "\n");
+      writeTextAtomically(plan.dir / (stem + ".json"), record.dump(2) + "\n");
       progress.frameDone(i, utc, seconds);
     }
   }
   if (range.part) {
-    logInfo("frames " + std::to_string(range.first) + "-" + std::to_string(range.last) +
-            " done; once every part is: firmament timelapse --assemble " + plan.dir.string());
+    info("frames " + std::to_string(range.first) + "-" + std::to_string(range.last) +
+         " done; once every part is: firmament timelapse --assemble " + plan.dir.string());
     return kExitOk;
   }
   return assemble(plan.dir, video);

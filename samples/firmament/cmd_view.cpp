@@ -1,6 +1,6 @@
 // `firmament view [SCENE]`: the interactive viewer (docs/viewer.md). A GLFW window, the sky rendered each
 // frame through the public API (include/firmament/sky.h), tone-mapped on the CPU with the scene's
-// exposure (core/tonemap.h), presented with a swapchain of its own (samples/viewer/presenter.h), with
+// exposure (include/firmament/image.h), presented with a swapchain of its own (samples/viewer/presenter.h), with
 // Dear ImGui controls and a fly camera. --script replays inputs with no person at the window.
 // Built only where GLFW and Dear ImGui are found (samples/CMakeLists.txt).
 #define GLFW_INCLUDE_VULKAN
@@ -13,19 +13,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
-#include "astro/time.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/exr_io.h"
-#include "core/log.h"
-#include "core/scene.h"
-#include "core/statistics.h"
-#include "core/tonemap.h"
+#include "firmament/image.h"
 #include "firmament/sky.h"
-#include "gpu/context.h"
 #include "samples/firmament/command.h"
 #include "samples/viewer/fly_camera.h"
 #include "samples/viewer/presenter.h"
@@ -36,9 +30,35 @@ namespace {
 
 using viewer::FlyState;
 
+// A UTC time's fields, from its canonical form "YYYY-MM-DDThh:mm:ss.sssZ" (firmament::canonicalUtc).
+struct UtcFields {
+  int year = 2000, month = 1, day = 1, hour = 0, minute = 0;
+  double second = 0.0;
+};
+UtcFields utcFields(const std::string& utc) {
+  UtcFields t;
+  std::sscanf(canonicalUtc(utc).c_str(), "%d-%d-%dT%d:%d:%lfZ", &t.year, &t.month, &t.day, &t.hour, &t.minute,
+              &t.second);
+  return t;
+}
+
+// The median of the values (the mean of the middle two for an even count); 0 for none.
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// FIRMAMENT_VALIDATION set and not "0": the window's device turns the validation layer on too.
+bool validationRequested() {
+  const char* value = std::getenv("FIRMAMENT_VALIDATION");
+  return value && *value && std::strcmp(value, "0") != 0;
+}
+
 // What the controls edit besides the camera, read from the sky's scene.
 struct Controls {
-  astro::UtcTime utc;
+  UtcFields utc;
   float dayHours = 12.0f;  // UTC hour of day
   int dayOfYear = 172;
   std::vector<float> coverage;  // per cloud layer
@@ -53,7 +73,7 @@ struct Controls {
 const char* kQualities[] = {"low", "default", "high"};
 const char* kWeatherPresets[] = {"clear", "fair-weather", "scattered-showers", "thunderstorm", "overcast", "frontal"};
 
-int dayOfYear(const astro::UtcTime& t) {
+int dayOfYear(const UtcFields& t) {
   static const int before[] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
   const bool leap = (t.year % 4 == 0 && t.year % 100 != 0) || t.year % 400 == 0;
   return before[t.month - 1] + t.day + (leap && t.month > 2 ? 1 : 0);
@@ -130,7 +150,7 @@ class Viewer {
   }
 
   void readControls() {
-    controls_.utc = astro::parseUtc(unquote(sky_->get("/time/utc")));
+    controls_.utc = utcFields(unquote(sky_->get("/time/utc")));
     controls_.dayHours = float(controls_.utc.hour + controls_.utc.minute / 60.0 + controls_.utc.second / 3600.0);
     controls_.dayOfYear = dayOfYear(controls_.utc);
     controls_.coverage.clear();
@@ -153,8 +173,9 @@ class Viewer {
 
   // The controls' time: the date's year, the day of the year and the hour (UTC).
   std::string controlsUtc() const {
-    astro::UtcTime t{controls_.utc.year, 1, 1, 0, 0, 0.0};
-    return astro::formatUtc(astro::addSeconds(t, (controls_.dayOfYear - 1) * 86400.0 + controls_.dayHours * 3600.0));
+    char start[32];
+    std::snprintf(start, sizeof(start), "%04d-01-01T00:00:00Z", controls_.utc.year);
+    return utcPlusSeconds(start, (controls_.dayOfYear - 1) * 86400.0 + controls_.dayHours * 3600.0);
   }
 
   void applyView() {
@@ -168,46 +189,44 @@ class Viewer {
   }
 
   void advanceTime(double hours) {
-    sky_->setTime(astro::formatUtc(astro::addSeconds(astro::parseUtc(unquote(sky_->get("/time/utc"))), hours * 3600)));
+    sky_->setTime(utcPlusSeconds(unquote(sky_->get("/time/utc")), hours * 3600));
     readControls();
   }
 
-  ExposureSettings exposure() const {
-    ExposureSettings e = exposureFromScene(Scene::parse(sky_->sceneJson(), "<view>"));
-    e.mode = controls_.autoExposure ? ExposureSettings::Mode::Auto : ExposureSettings::Mode::Fixed;
-    e.ev100 = controls_.ev100;
-    e.compensationEv = controls_.compensation;
+  Exposure exposure() const {
+    Exposure e(*sky_);
+    e.setAutomatic(controls_.autoExposure);
+    e.setEv100(controls_.ev100);
+    e.setCompensation(controls_.compensation);
     return e;
   }
 
-  Image toImage(const SkyFrame& f) const {
-    Image image(f.width, f.height, 4);
-    image.pixels = f.rgba;
-    image.metadata["firmament.device"] = sky_->deviceDescription();
-    image.metadata["firmament.source"] = "firmament view";
-    return image;
+  // The frame as the viewer shows and saves it: RGBA (A 1 without clouds), the viewer's own metadata.
+  SkyFrame shown(SkyFrame f) const {
+    f.channels = 4;
+    f.metadata = {{"firmament.device", sky_->deviceDescription()}, {"firmament.source", "firmament view"}};
+    return f;
   }
 
   // A still of the view (every pixel marched, as `firmament render` of the saved view renders it):
   // OUT.exr, OUT.png with the viewer's exposure, and the view as OUT.view.json, each written atomically.
   void screenshot(const std::filesystem::path& out) {
     sky_->restartSequence();
-    const SkyFrame f = sky_->render(renderWidth(), renderHeight());
-    const Image image = toImage(f);
-    writeExr(out, image);
-    const double ev = writePngPreview(std::filesystem::path(out).replace_extension(".png"), image, exposure(),
-                                      controls_.autoExposure ? &adaptedLuminance_ : nullptr);
-    writeTextFileAtomically(std::filesystem::path(out).replace_extension(".view.json"), sky_->sceneJson());
+    const SkyFrame f = shown(sky_->render(renderWidth(), renderHeight()));
+    saveExr(f, out.string());
+    const double ev = exposure().savePng(f, std::filesystem::path(out).replace_extension(".png").string(),
+                                         controls_.autoExposure ? &adaptedLuminance_ : nullptr);
+    writeTextAtomically(std::filesystem::path(out).replace_extension(".view.json"), sky_->sceneJson());
     char line[300];
     std::snprintf(line, sizeof(line), "screenshot %s (+ .png, EV100 %.2f; + .view.json): %dx%d, %.1f ms", out.c_str(),
                   ev, f.width, f.height, f.gpuMilliseconds);
-    logInfo(line);
+    info(line);
     frame_ = f;
   }
 
   void save(const std::filesystem::path& out) {
-    writeTextFileAtomically(out, sky_->sceneJson());
-    logInfo("saved the view as " + out.string() + " (firmament render " + out.string() + " reproduces it)");
+    writeTextAtomically(out, sky_->sceneJson());
+    info("saved the view as " + out.string() + " (firmament render " + out.string() + " reproduces it)");
   }
 
   int renderWidth() const { return std::max(1, int(std::lround(framebufferWidth_ * renderScale_))); }
@@ -337,8 +356,8 @@ class Viewer {
   }
 
   int loop() {
-    presenter_ = std::make_unique<viewer::Presenter>(window_, gpu::validationRequestedByEnvironment());
-    logInfo("view: renderer on " + sky_->deviceDescription() + "; window on " + presenter_->deviceName());
+    presenter_ = std::make_unique<viewer::Presenter>(window_, validationRequested());
+    info("view: renderer on " + sky_->deviceDescription() + "; window on " + presenter_->deviceName());
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // writes no imgui.ini
@@ -371,18 +390,16 @@ class Viewer {
       applyView();
       if (!controls_.reprojection) sky_->restartSequence();
       const auto start = std::chrono::steady_clock::now();
-      frame_ = sky_->render(renderWidth(), renderHeight());
-      const Image image = toImage(frame_);
-      const ExposureSettings e = exposure();
-      if (e.mode == ExposureSettings::Mode::Auto)
-        adaptedLuminance_ = adaptation_.update(logAverageLuminance(image), seconds, e);
-      std::vector<uint8_t> srgb =
-          toneMapToSrgb8(image, e, nullptr, e.mode == ExposureSettings::Mode::Auto ? &adaptedLuminance_ : nullptr);
-      std::vector<uint8_t> rgba(image.pixelCount() * 4, 255);
-      const int channels = int(srgb.size() / image.pixelCount());
-      for (size_t i = 0; i < image.pixelCount(); ++i)
+      frame_ = shown(sky_->render(renderWidth(), renderHeight()));
+      const Exposure e = exposure();
+      if (e.automatic()) adaptedLuminance_ = adaptation_.update(logAverageLuminance(frame_), seconds, e);
+      std::vector<uint8_t> srgb = e.toSrgb8(frame_, nullptr, e.automatic() ? &adaptedLuminance_ : nullptr);
+      const size_t pixels = size_t(frame_.width) * size_t(frame_.height);
+      std::vector<uint8_t> rgba(pixels * 4, 255);
+      const int channels = int(srgb.size() / pixels);
+      for (size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = srgb[i * channels + c];
-      presenter_->present(rgba.data(), image.width, image.height, ImGui::GetDrawData());
+      presenter_->present(rgba.data(), frame_.width, frame_.height, ImGui::GetDrawData());
       frameWallMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       wallMs.push_back(frameWallMs_);
       gpuMs.push_back(frame_.gpuMilliseconds);
@@ -397,13 +414,13 @@ class Viewer {
                     wallMs.size(), renderWidth(), renderHeight(),
                     median(std::vector<double>(wallMs.begin() + skip, wallMs.end())),
                     median(std::vector<double>(gpuMs.begin() + skip, gpuMs.end())));
-      logInfo(line);
+      info(line);
     }
     std::vector<std::string> messages = sky_->validationMessages();
     for (const auto& m : presenter_->validationMessages()) messages.push_back(m);
-    for (const auto& m : messages) logWarning("validation: " + m);
+    for (const auto& m : messages) warn("validation: " + m);
     if (!messages.empty()) {
-      logWarning("view: " + std::to_string(messages.size()) + " validation messages");
+      warn("view: " + std::to_string(messages.size()) + " validation messages");
       return kExitRuntime;
     }
     return kExitOk;
@@ -415,7 +432,7 @@ class Viewer {
   FlyState fly_;
   Controls controls_;
   SkyFrame frame_;
-  ExposureAdaptation adaptation_;
+  EyeAdaptation adaptation_;
   double adaptedLuminance_ = 0.0;
   double frameWallMs_ = 0.0;
   int width_ = 960, height_ = 540;

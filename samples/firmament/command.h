@@ -1,9 +1,11 @@
 #pragma once
 // Subcommands of the `firmament` tool. Each cmd_*.cpp registers one with a static Command object;
 // main.cpp dispatches by name, maps exceptions to exit codes and prints help.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,5 +65,25 @@ OptionSpec deviceOption();  // --device NAME|INDEX
 // InputError when `output` (OUT.exr) or a file written beside it (OUT.png, OUT.json) is the input file
 // `input`: a render's stats JSON must not overwrite SCENE.json when -o names SCENE.exr beside it.
 void refuseOverwritingInput(const std::filesystem::path& output, const std::filesystem::path& input);
+
+// The tool's messages on stderr (--quiet hides info, never warnings) and its progress bar (drawn only on a
+// terminal and past one second), for the commands that reach the renderer through the public API only.
+void info(const std::string& message);
+void warn(const std::string& message);
+class ProgressBar {
+ public:
+  ProgressBar(const std::string& label, uint64_t total);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+  void advance();
+
+ private:
+  struct Bar;
+  std::unique_ptr<Bar> bar_;
+};
+bool quietOutput();  // --quiet given
+// Writes a text file atomically (a temporary beside it, then a rename): a kill never leaves half a file.
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace firmament::cli

@@ -7,6 +7,7 @@
 #include <exception>
 #include <string>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "samples/firmament/command.h"
@@ -160,6 +161,20 @@ int Args::integer(const std::string& name, int fallback, int minimum, int maximu
     throw InputError("option --" + name + ": '" + *v + "' is not an integer in [" + std::to_string(minimum) + ", " +
                      std::to_string(maximum) + "]");
   return int(d);
+}
+
+void info(const std::string& message) { ::firmament::logInfo(message); }
+void warn(const std::string& message) { ::firmament::logWarning(message); }
+bool quietOutput() { return ::firmament::logLevel() == LogLevel::Quiet; }
+struct ProgressBar::Bar {
+  Bar(const std::string& label, uint64_t total) : progress(label, total) {}
+  Progress progress;
+};
+ProgressBar::ProgressBar(const std::string& label, uint64_t total) : bar_(std::make_unique<Bar>(label, total)) {}
+ProgressBar::~ProgressBar() = default;
+void ProgressBar::advance() { bar_->progress.advance(); }
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
+  writeTextFileAtomically(path, text);
 }
 
 }  // namespace firmament::cli

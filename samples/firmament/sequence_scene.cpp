@@ -2,57 +2,45 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
-#include "astro/time.h"
-#include "core/error.h"
-#include "core/hash.h"
-#include "sky/scene_weather.h"
+#include "firmament/error.h"
 
 namespace firmament::cli {
+namespace {
 
-Scene SequenceSceneSource::load(const std::vector<std::string>& extra) const {
-  std::vector<std::string> o = overrides;
-  o.insert(o.end(), extra.begin(), extra.end());
-  return path.empty() ? Scene::parse(defaultSceneText(), kDefaultSceneName, o) : Scene::load(path, o);
+// FNV-1a, 64 bit (Fowler, Noll and Vo; offset basis 14695981039346656037, prime 1099511628211), as 16
+// lowercase hex digits: the camera path's identity in a time-lapse's resume manifest.
+std::string fnv1aHex(const std::string& bytes) {
+  uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  char out[17];
+  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(hash));
+  return out;
 }
 
-CameraPose cameraPoseOf(const Scene& scene) {
-  return {scene.number("/camera/yaw_deg"), scene.number("/camera/pitch_deg"),
-          scene.number("/camera/height_above_ground_m"), scene.number("/camera/fov_deg")};
+}  // namespace
+
+CameraPose cameraPoseOf(const Sky& sky) {
+  const SkyCamera c = sky.camera();
+  return {c.yaw_deg, c.pitch_deg, c.heightAboveGround_m, c.fov_deg};
 }
 
-Scene sequenceFrameScene(const SequenceSceneSource& source, const Scene& base, double elapsed_s,
-                         const std::optional<CameraPose>& pose) {
-  std::vector<std::string> o;
-  if (pose) {
-    o.push_back("/camera/yaw_deg=" + roundTripDecimal(pose->yaw_deg));
-    o.push_back("/camera/pitch_deg=" + roundTripDecimal(pose->pitch_deg));
-    o.push_back("/camera/height_above_ground_m=" + roundTripDecimal(pose->height_above_ground_m));
-    o.push_back("/camera/fov_deg=" + roundTripDecimal(pose->fov_deg));
-  }
-  if (base.hasSection("clouds"))
-    o.push_back("/clouds/time_s=" + roundTripDecimal(base.number("/clouds/time_s") + elapsed_s));
-  // The sun follows the clock when the scene takes it from time and location.
-  if (!base.hasSection("sun"))
-    o.push_back("/time/utc=" +
-                astro::formatUtc(astro::addSeconds(astro::parseUtc(base.string("/time/utc")), elapsed_s)));
-  // One weather simulation for the whole sequence: it runs from the solar midnight before the first
-  // frame (or the scene's own /weather/start_utc) to every frame, so a sequence that crosses a solar
-  // midnight runs on through the night instead of starting the day again.
-  if (base.hasSection("weather") && !base.at("/weather").contains("start_utc")) {
-    const double run_s = sceneWeatherRunSeconds(base) + elapsed_s;
-    if (run_s > kSceneWeatherMaxRun_s)
-      throw InputError(base.source() + ": a frame " + roundTripDecimal(elapsed_s / 3600.0) + " h after the first is " +
-                       roundTripDecimal(run_s / 86400.0) +
-                       " days of weather after the solar midnight before the first frame; allowed: at most 7 days");
-    o.push_back("/weather/start_utc=" + astro::formatUtc(sceneWeatherStart(base)));
-  }
-  return source.load(o);
+SkyCamera skyCameraOf(const CameraPose& pose, const SkyCamera& base) {
+  SkyCamera c = base;
+  c.yaw_deg = pose.yaw_deg;
+  c.pitch_deg = pose.pitch_deg;
+  c.heightAboveGround_m = pose.height_above_ground_m;
+  c.fov_deg = pose.fov_deg;
+  return c;
 }
 
 CameraPath CameraPath::load(const std::string& file, const CameraPose& sceneCamera) {
@@ -104,7 +92,7 @@ CameraPath CameraPath::load(const std::string& file, const CameraPose& sceneCame
     }
     path.keys_.push_back(key);
   }
-  path.hash_ = hex16(fnv1a(j.dump()));
+  path.hash_ = fnv1aHex(j.dump());
   return path;
 }
 

@@ -1,23 +1,14 @@
 #pragma once
-// The scene of one frame of a sequence, shared by `render --frames` and `timelapse`: the scene file with
-// its overrides, read again with the frame's clock and camera. A frame's scene depends only on the base
-// scene and the frame's elapsed time and pose, never on the frames before it, so any frame of a sequence
-// can be rebuilt alone (a resumed or sharded time-lapse, docs/timelapse.md).
-#include <optional>
+// The camera of a sequence's frames, shared by `render --frames` and `timelapse`: a pose, and keyframes
+// of poses over the sequence. A frame's scene is the built scene with the frame's elapsed time and pose
+// (Sky::setSequenceFrame, firmament/sky.h), never depending on the frames before it, so any frame of a
+// sequence can be rebuilt alone (a resumed or sharded time-lapse, docs/timelapse.md).
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "firmament/sky.h"
 
 namespace firmament::cli {
-
-// Where a sequence's scenes come from.
-struct SequenceSceneSource {
-  std::string path;                    // the scene file; empty: the built-in default scene
-  std::vector<std::string> overrides;  // --set and the tool's own (/camera/width, /time/utc, ...)
-  // The scene with `overrides` and then `extra` applied.
-  Scene load(const std::vector<std::string>& extra = {}) const;
-};
 
 // A camera placement (the scene's /camera fields it replaces).
 struct CameraPose {
@@ -27,14 +18,10 @@ struct CameraPose {
   double fov_deg = 75.0;
 };
 
-// The camera of `scene`.
-CameraPose cameraPoseOf(const Scene& scene);
-
-// The scene `elapsed_s` after `base` (which `source` loads): the clouds' clock /clouds/time_s advances by
-// elapsed_s and, when the scene has no sun section (the sun follows time and location), so does /time/utc
-// (sun, moon, stars and the weather simulation follow); `pose`, when given, replaces the camera.
-Scene sequenceFrameScene(const SequenceSceneSource& source, const Scene& base, double elapsed_s,
-                         const std::optional<CameraPose>& pose);
+// The camera of the sky's current view.
+CameraPose cameraPoseOf(const Sky& sky);
+// The pose as the sky's camera (roll from `base`).
+SkyCamera skyCameraOf(const CameraPose& pose, const SkyCamera& base);
 
 // Keyframes of the camera over a sequence (timelapse --camera-path FILE), a JSON file:
 //   {"keys": [{"time_s": 0, "yaw_deg": 250, "pitch_deg": 8, "height_above_ground_m": 2, "fov_deg": 75}, ...]}

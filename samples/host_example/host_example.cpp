@@ -4,11 +4,13 @@
 // perspective into its own command buffer, submits, reads the colour back and writes an EXR.
 //
 //   host_example [--out FILE.exr] [--width W] [--height H] [--scene FILE] [--frames N]
-//                [--colour rgba16f|rgba32f] [--reversed-depth] [--check]
+//                [--colour rgba16f|rgba32f] [--reversed-depth] [--check] [--frames-in-flight N]
 //
 // --scene: a scene file instead of the built-in clear view (the camera's orientation is the scene's);
 // --frames N: N frames more after the first, timed (the host's submit to fence, median) beside N
 // offline renders of the same view (Sky::render's GPU time and wall time, medians).
+// --frames-in-flight N (2 to 4): then 3N frames with N in flight (Sky::Builder::framesInFlight), the camera
+// turned 20 degrees each frame, each frame checked against the offline render of its view.
 //
 // The triangles: two at 1 km and two at 8 km, each pair side by side. --check (the CTest entry
 // host_example) renders the frame three times: the triangles bright and black before record()
@@ -34,6 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -332,6 +335,7 @@ struct Options {
   std::string scene;  // empty: kScene
   int width = 64, height = 36;
   int frames = 0;
+  int inFlight = 0;  // --frames-in-flight N (2 to 4): the check of N frames in flight, after the first frame
   bool check = false;
   bool full = false;  // an RGBA32F colour image (else RGBA16F)
 };
@@ -432,8 +436,25 @@ constexpr float kBright = 2000.0f;  // cd/m^2: a sunlit grey wall
 
 // One frame: the triangles drawn before record() (Firmament composites them), or with `lit` after it,
 // shaded by the host with Firmament's lookups (lit.frag).
-Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth, int width,
-                  int height, float brightness, VkFormat colourFormat, Lit* lit = nullptr) {
+// A frame recorded and submitted, not yet waited for (its command buffer, fence and read-back buffer).
+struct PendingFrame {
+  Frame frame;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer cb = VK_NULL_HANDLE;
+  VkBuffer readback = VK_NULL_HANDLE;
+  VkDeviceMemory readbackMemory = VK_NULL_HANDLE;
+  VkDeviceSize bytes = 0;
+  VkQueryPool queries = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  bool full = false;
+  int width = 0, height = 0;
+  std::chrono::steady_clock::time_point submitted;
+};
+
+// Records the frame (geometry: the triangles, else only the cleared colour and depth) and submits it.
+PendingFrame beginFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth,
+                        int width, int height, float brightness, VkFormat colourFormat, Lit* lit,
+                        bool geometry = true) {
   const bool full = colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT;
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.queueFamilyIndex = h.family;
@@ -515,7 +536,7 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
       vkCmdDraw(cb, 3, 1, 0, 0);
     }
   };
-  if (!lit) drawTriangles(pipeline);
+  if (!lit && geometry) drawTriangles(pipeline);
   vkCmdEndRendering(cb);
   // 2. The layouts Firmament expects (docs/api.md): colour GENERAL, depth read-only.
   imageBarrier(cb, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -538,7 +559,8 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   targets.near_m = kNear;
   targets.far_m = kFar;
   targets.depthConvention = reversedDepth ? firmament::DepthConvention::Reversed : firmament::DepthConvention::Standard;
-  Frame frame;
+  PendingFrame pending;
+  Frame& frame = pending.frame;
   vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
   frame.info = sky.record(targets);
   vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
@@ -602,11 +624,33 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cb;
-  const auto start = std::chrono::steady_clock::now();
+  pending.submitted = std::chrono::steady_clock::now();
   check(vkQueueSubmit(h.queue, 1, &submit, fence), "vkQueueSubmit");
+  pending.pool = pool;
+  pending.cb = cb;
+  pending.readback = readback;
+  pending.readbackMemory = readbackMemory;
+  pending.bytes = bytes;
+  pending.queries = queries;
+  pending.fence = fence;
+  pending.full = full;
+  pending.width = width;
+  pending.height = height;
+  return pending;
+}
+
+// Waits for the frame, reads its image back and frees what beginFrame made.
+Frame finishFrame(const Host& h, PendingFrame& p) {
+  Frame frame = std::move(p.frame);
+  const VkFence fence = p.fence;
+  const VkQueryPool queries = p.queries;
+  const VkDeviceMemory readbackMemory = p.readbackMemory;
+  const VkDeviceSize bytes = p.bytes;
+  const bool full = p.full;
+  const int width = p.width, height = p.height;
   check(vkWaitForFences(h.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   frame.submitMilliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - p.submitted).count();
 
   uint64_t ticks[2] = {0, 0};
   check(vkGetQueryPoolResults(h.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
@@ -631,10 +675,16 @@ Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, 
   }
   vkUnmapMemory(h.device, readbackMemory);
   vkDestroyFence(h.device, fence, nullptr);
-  vkDestroyBuffer(h.device, readback, nullptr);
+  vkDestroyBuffer(h.device, p.readback, nullptr);
   vkFreeMemory(h.device, readbackMemory, nullptr);
-  vkDestroyCommandPool(h.device, pool, nullptr);
+  vkDestroyCommandPool(h.device, p.pool, nullptr);
   return frame;
+}
+
+Frame renderFrame(const Host& h, firmament::Sky& sky, const Pipeline& pipeline, Image& colour, Image& depth, int width,
+                  int height, float brightness, VkFormat colourFormat, Lit* lit = nullptr) {
+  PendingFrame pending = beginFrame(h, sky, pipeline, colour, depth, width, height, brightness, colourFormat, lit);
+  return finishFrame(h, pending);
 }
 
 // Beer-Lambert transmittance of the air along a ray from the camera (height h0 above the ground sphere
@@ -871,6 +921,102 @@ int run(const Options& options) {
                 lookups.transmittance ? "ok" : "missing", lookups.aerialPerspective ? "ok" : "missing",
                 lookups.parameters.radii[3]);
   }  // the sky goes before the device (every frame it recorded has finished)
+  if (options.inFlight > 1) {
+    // N frames in flight (docs/api.md, "Frames in flight"): frame i is recorded and submitted while the
+    // N - 1 before it may still run, each into its own colour and depth images; the camera turns 20 degrees a
+    // frame (no preparation: nothing waits for the queue), so a frame that read another's resources would look the
+    // wrong way. Each frame, waited for only when its slot comes round again, must equal the offline render of its own
+    // view.
+    const int n = options.inFlight, count = 3 * n;
+    firmament::Sky::Builder builder, offlineBuilder;
+    if (options.scene.empty()) {
+      builder.sceneJson(kScene);
+      offlineBuilder.sceneJson(kScene);
+    } else {
+      builder.sceneFile(options.scene);
+      offlineBuilder.sceneFile(options.scene);
+    }
+    auto sky = builder.temporalReprojection(false)
+                   .framesInFlight(n)
+                   .embedded({h.instance, h.physical, h.device, h.family, h.queue})
+                   .build();
+    auto offline = offlineBuilder.temporalReprojection(false).build();
+    std::vector<Image> colours, depths;
+    for (int i = 0; i < n; ++i) {
+      colours.push_back(createImage(
+          h, width, height, colourFormat,
+          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+          VK_IMAGE_ASPECT_COLOR_BIT));
+      depths.push_back(createImage(h, width, height, VK_FORMAT_D32_SFLOAT,
+                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                   VK_IMAGE_ASPECT_DEPTH_BIT));
+    }
+    const firmament::SkyCamera start = sky->camera();
+    std::vector<std::optional<PendingFrame>> pending(static_cast<size_t>(n));
+    std::vector<firmament::SkyCamera> cameras(static_cast<size_t>(n));
+    std::vector<firmament::SkyFrame> references;
+    const double tolerance = options.full ? 1e-5 : 2e-3;
+    double worst = 0.0;
+    int overlapped = 0;    // frames submitted while an earlier one had not finished
+    int preparations = 0;  // frames whose record() submitted preparation work (and so waited for the queue)
+    auto relative = [](const std::vector<float>& a, const std::vector<float>& b) {
+      double w = 0.0;
+      for (size_t i = 0; i < a.size(); i += 4)
+        for (int c = 0; c < 3; ++c)
+          w = std::max(w, std::fabs(double(a[i + c]) - b[i + c]) / std::max(std::fabs(double(b[i + c])), 1e-3));
+      return w;
+    };
+    std::vector<std::vector<float>> images;  // in frame order
+    std::vector<firmament::SkyCamera> frameCameras;
+    auto finish = [&](int slot) {
+      Frame f = finishFrame(h, *pending[size_t(slot)]);
+      preparations += f.info.submittedPreparation ? 1 : 0;
+      images.push_back(std::move(f.rgba));
+      frameCameras.push_back(cameras[size_t(slot)]);
+      pending[size_t(slot)].reset();
+    };
+    for (int i = 0; i < count + n; ++i) {
+      const int slot = i % n;
+      if (pending[size_t(slot)]) finish(slot);
+      if (i >= count) continue;
+      for (const auto& p : pending)
+        if (p && vkGetFenceStatus(h.device, p->fence) == VK_NOT_READY) {
+          ++overlapped;
+          break;
+        }
+      cameras[size_t(slot)] = start;
+      cameras[size_t(slot)].yaw_deg = start.yaw_deg + 20.0 * i;
+      sky->setCamera(cameras[size_t(slot)]);
+      pending[size_t(slot)] = beginFrame(h, *sky, pipeline, colours[size_t(slot)], depths[size_t(slot)], width, height,
+                                         kBright, colourFormat, nullptr, false);
+    }
+    for (size_t i = 0; i < images.size(); ++i) {  // the references after the frames: no wait between them
+      offline->setCamera(frameCameras[i]);
+      references.push_back(offline->render(width, height));
+      worst = std::max(worst, relative(images[i], references.back().rgba));
+    }
+    double change = 1e30;  // the smallest change of the sky from one frame's time to the next
+    for (size_t i = 1; i < references.size(); ++i)
+      change = std::min(change, relative(references[i].rgba, references[i - 1].rgba));
+    std::printf(
+        "%d frames in flight: %d frames, %d recorded while an earlier one ran, %d prepared; worst relative "
+        "difference from the offline render of each frame's view %.2e (tolerance %.0e); the sky changes by at "
+        "least %.2e a frame\n",
+        n, count, overlapped, preparations, worst, tolerance, change);
+    if (!(worst <= tolerance)) {
+      std::printf("FAIL: a frame in flight differs from the offline render of its view\n");
+      ++failures;
+    }
+    if (!(change > 10.0 * tolerance)) {
+      std::printf("FAIL: consecutive frames differ too little for the check to see a mix-up\n");
+      ++failures;
+    }
+    if (!offline->validationMessages().empty()) ++failures;
+    for (int i = 0; i < n; ++i) {
+      destroyImage(h, colours[size_t(i)]);
+      destroyImage(h, depths[size_t(i)]);
+    }
+  }
   destroyLit(h, lit);
   vkDestroyPipeline(h.device, pipeline.pipeline, nullptr);
   vkDestroyPipelineLayout(h.device, pipeline.layout, nullptr);
@@ -921,12 +1067,18 @@ int main(int argc, char** argv) {
       options.full = format == "rgba32f";
     } else if (arg == "--reversed-depth") {
       reversedDepth = true;
+    } else if (arg == "--frames-in-flight") {
+      options.inFlight = std::atoi(value().c_str());
+      if (options.inFlight < 2 || options.inFlight > 4) {
+        std::fprintf(stderr, "host_example: --frames-in-flight %d: allowed: 2 to 4\n", options.inFlight);
+        return 2;
+      }
     } else if (arg == "--check") {
       options.check = true;
     } else {
       std::fprintf(stderr,
                    "host_example: unknown option %s (allowed: --out FILE.exr --width W --height H --scene FILE "
-                   "--frames N --colour rgba16f|rgba32f --reversed-depth --check)\n",
+                   "--frames N --frames-in-flight N --colour rgba16f|rgba32f --reversed-depth --check)\n",
                    arg.c_str());
       return 2;
     }
