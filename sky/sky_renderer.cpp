@@ -642,6 +642,9 @@ void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::Command
   terrainView.airSteps = frame.options.viewSteps;
   terrainView.selfShadow = frame.options.terrain.selfShadow;
   terrainView.skyLight = frame.options.terrain.skyLight;
+  terrainView.skyOcclusion = frame.options.terrain.skyOcclusion;
+  terrainView.horizonAzimuths = frame.options.terrain.horizonAzimuths;
+  terrainView.occlusionRays = frame.options.terrain.occlusionRays;
   terrainView.groundOnly = frame.options.terrain.groundOnly;
   if (frame.options.terrain.penumbra) terrainView.sunAngularRadius = luts_.parameters().sun_angular_radius;
   if (frame.clouds) terrainView.deckAsymmetry = cloudPhaseMeanCosine(frame.clouds->lighting);
