@@ -38,13 +38,23 @@ double horizonElevation(const HeightField& f, double R, double x, double y, doub
   const double cx = std::cos(phi), cy = std::sin(phi);
   const double edge = distanceToEdge(f, x, y, cx, cy);
   // The largest tan of the elevation: (h(s) - h0 - s^2 / 2R) / s over the marched distances.
-  double best = -1e30;
+  double best = -1e30, bestS = 0.0;
+  auto at = [&](double s) {
+    const double v = (sampleInside(f, x + s * cx, y + s * cy) - h0 - 0.5 * s * s / R) / s;
+    if (v > best) best = v, bestS = s;
+  };
   const double first = 0.5 * std::min(f.dx, f.dy);
   const double ratio = std::max(stepRatio, 1.0001);
-  for (double s = first; s < edge; s *= ratio)
-    best = std::max(best, (sampleInside(f, x + s * cx, y + s * cy) - h0 - 0.5 * s * s / R) / s);
-  if (edge > 0.0)
-    best = std::max(best, (sampleInside(f, x + edge * cx, y + edge * cy) - h0 - 0.5 * edge * edge / R) / edge);
+  for (double s = first; s < edge; s *= ratio) at(s);
+  if (edge > 0.0) at(edge);
+  // Refined around the highest step, over the steps on either side (16 more samples): a sharp crest
+  // between two steps is otherwise seen up to a step further away (tan of the elevation up to
+  // ratio - 1 low).
+  if (bestS > 0.0) {
+    const double s0 = bestS;
+    for (int k = -8; k <= 8; ++k)
+      if (k != 0 && s0 * std::pow(ratio, k / 8.0) < edge) at(s0 * std::pow(ratio, k / 8.0));
+  }
   // Past the grid, the outside sphere at its height: -D / s - s / 2R (D = h0 - outside) is largest at
   // s = sqrt(2 R D) for D > 0 (the geometric horizon), else at the edge.
   if (f.hasOutside()) {
