@@ -24,7 +24,7 @@ struct Knob {
 
 std::vector<Knob> knobs(bool quick) {
   std::vector<Knob> k;
-  k.push_back({"default", "shadow map 256 over 40 km, penumbra, deck sky light, self-shadow, horizon map 16",
+  k.push_back({"default", "shadow map 256 over 40 km, penumbra, hemisphere deck, self-shadow, horizon map 16",
                [](SkyRenderOptions&) {}});
   k.push_back(
       {"sky_occlusion", "none", [](SkyRenderOptions& o) { o.terrain.skyOcclusion = TerrainSkyOcclusion::None; }});
@@ -36,6 +36,8 @@ std::vector<Knob> knobs(bool quick) {
                  }});
   k.push_back({"penumbra", "off", [](SkyRenderOptions& o) { o.terrain.penumbra = false; }});
   k.push_back({"self_shadow", "off", [](SkyRenderOptions& o) { o.terrain.selfShadow = false; }});
+  k.push_back({"sky_light", "deck of the point's column",
+               [](SkyRenderOptions& o) { o.terrain.skyLight = TerrainSkyLight::Deck; }});
   k.push_back(
       {"sky_light", "clear-sky table", [](SkyRenderOptions& o) { o.terrain.skyLight = TerrainSkyLight::Clear; }});
   for (int size : quick ? std::vector<int>{64, 1024} : std::vector<int>{64, 128, 512, 1024})

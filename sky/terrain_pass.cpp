@@ -35,9 +35,10 @@ struct TerrainBlock {
   int32_t skyOcclusion[4];
   int32_t horizonSize[4];
   float horizonGrid[4];
+  float deck[4];
   int32_t levels[kMaxLevels][4];
 };
-static_assert(sizeof(TerrainBlock) == (20 + kMaxLevels) * 16);
+static_assert(sizeof(TerrainBlock) == (21 + kMaxLevels) * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -180,6 +181,8 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   b.albedoLines[2] = float(a.vegetationMaxSlope), b.albedoLines[3] = float(a.snowLine);
   b.albedoSlopes[0] = float(a.snowLineTransition), b.albedoSlopes[1] = float(a.snowMaxSlope);
   b.albedoSlopes[2] = float(a.slopeTransition);
+  b.deck[0] = float(view.cloudMiddleRadius);
+  b.deck[1] = view.skyLight == TerrainSkyLight::DeckHemisphere ? 1.0f : 0.0f;
   b.skyOcclusion[0] = int(view.skyOcclusion);
   b.skyOcclusion[1] = std::max(view.occlusionRays, 1);
   if (view.skyOcclusion == TerrainSkyOcclusion::HorizonMap) {
@@ -197,8 +200,8 @@ void TerrainPass::recordCast(const TerrainPassView& view, const gpu::TileDispatc
                              const TerrainCloudShadow* shadow) {
   uploadBlock(view, shadow);
   const VkDeviceSize pixels = VkDeviceSize(view.camera.width) * VkDeviceSize(view.camera.height);
-  if (!hits_ || hits_.size() != pixels * 8 * sizeof(float))
-    hits_ = gpu::Buffer(context_, pixels * 8 * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+  if (!hits_ || hits_.size() != pixels * 12 * sizeof(float))
+    hits_ = gpu::Buffer(context_, pixels * 12 * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
                         "terrain hits");
   if (!depth_ || depth_.size() != pixels * sizeof(float))
     depth_ = gpu::Buffer(context_, pixels * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,

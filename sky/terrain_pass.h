@@ -28,8 +28,11 @@ namespace firmament {
 
 // How the ground's sky light is modelled (shaders/terrain/shade_terrain.comp; docs/terrain.md, "Shading").
 enum class TerrainSkyLight {
-  Deck,   // the clear-sky table dimmed by the clouds' Eddington deck transmission, plus the sun's diffuse part
-  Clear,  // the clear-sky table alone: no dimming under cloud, no diffuse sunlight through it
+  Deck,  // the clear-sky table dimmed by the clouds' Eddington deck transmission, plus the sun's diffuse part,
+         // for the slab of the point's own cloud column (an infinite deck)
+  DeckHemisphere,  // the same averaged over the cloud cover the point's hemisphere sees (8 directions to
+                   // the clouds' middle height, each column's optical depth from the shadow map)
+  Clear,           // the clear-sky table alone: no dimming under cloud, no diffuse sunlight through it
 };
 
 // How the sky light excludes the sky the terrain hides (shaders/terrain/cast_terrain.comp; docs/terrain.md,
@@ -43,10 +46,10 @@ enum class TerrainSkyOcclusion {
 // Knobs of the terrain pass that a bench or a test sets (SkyRenderOptions::terrain).
 struct TerrainPassOptions {
   bool selfShadow = true;  // a shadow ray per pixel at the sun
-  TerrainSkyLight skyLight = TerrainSkyLight::Deck;
   // Soft cloud-shadow edges from the sun's disc: the shadow map read over the disc's footprint
   // (shaders/terrain/cast_terrain.comp); off: one lookup at the sun's centre.
   bool penumbra = true;
+  TerrainSkyLight skyLight = TerrainSkyLight::DeckHemisphere;
   TerrainSkyOcclusion skyOcclusion = TerrainSkyOcclusion::HorizonMap;
   int horizonAzimuths = 16;  // the horizon map's azimuths
   int occlusionRays = 16;    // rays per pixel for TerrainSkyOcclusion::Rays
@@ -71,6 +74,9 @@ struct TerrainPassView {
   bool groundOnly = false;  // TerrainPassOptions::groundOnly
   // The sun's angular radius (rad) for the cloud shadows' penumbrae; 0: no penumbra.
   double sunAngularRadius = 0.0;
+  // The clouds' middle radius (m; the mean of the layers' middles): where TerrainSkyLight::DeckHemisphere
+  // reads the cover; 0 without clouds.
+  double cloudMiddleRadius = 0.0;
   // The mean cosine of the clouds' phase function, for the deck's diffuse transmission (Eddington's
   // (1 - g) tau): cloudPhaseMeanCosine of the scene's lighting.
   double deckAsymmetry = 0.85;
@@ -118,8 +124,9 @@ class TerrainPass {
   // Per pixel of the last record(): the distance to the terrain along the view ray (m; 1e30 where it
   // meets none). Valid once the recorded commands ran.
   const gpu::Buffer& depth() const { return depth_; }
-  // Per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun, height,
-  // surface) (shaders/terrain/cast_terrain.comp).
+  // Per pixel three vec4: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
+  // height, sky share), (deck's diffuse sunlight, deck's transmission of sky light, 0, 0)
+  // (shaders/terrain/cast_terrain.comp).
   const gpu::Buffer& hits() const { return hits_; }
 
   // Records the cast alone (the pixels' hits and depth: hits(), depth()) and a barrier; record() runs it

@@ -18,9 +18,10 @@
 #include "terrain/terrain_cast.glsl"
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
-// Two vec4 per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
-// height, sky visibility); t = 1e30 where the ray meets no terrain. Sky visibility: the cosine-weighted
-// share of the sky the surface sees (the isotropic (1 + n.z) / 2 without the terrain's occlusion).
+// Three vec4 per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
+// height, sky visibility), (the deck's diffuse sunlight D, its transmission of sky light T_d, 0, 0);
+// t = 1e30 where the ray meets no terrain. Sky visibility: the cosine-weighted share of the sky the
+// surface sees (the isotropic (1 + n.z) / 2 without the terrain's occlusion).
 layout(std430, set = 0, binding = 3) writeonly buffer TerrainHits { vec4 v[]; }
 hits;
 layout(std430, set = 0, binding = 4) writeonly buffer TerrainDepth { float t[]; }
@@ -28,6 +29,19 @@ depth;
 layout(set = 0, binding = 5) uniform sampler2D cloudShadowMap;  // linear, clamp; 1x1 and unread without clouds
 layout(push_constant) uniform Push { TileDispatch tiles; }
 push;
+
+// Eddington's total (direct + diffuse) transmission of a conservative slab of optical depth tau with
+// asymmetry g for light arriving at cosine mu0 (Shettle & Weinman 1970): 1 at tau = 0.
+float deckTransmission(float tau, float g, float mu0) {
+  float scaled = (1.0 - g) * tau;
+  return ((2.0 / 3.0 + mu0) + (2.0 / 3.0 - mu0) * exp(-tau / mu0)) / (4.0 / 3.0 + scaled);
+}
+
+// The deck's (diffuse sunlight, transmission of sky light) under a slab of vertical optical depth tauV:
+// D = T(tauV, mu_s) - e^(-tauV / mu_s) (the direct beam is the shadow's), T_d = T(tauV, 1/2).
+vec2 deckDiffuse(float tauV, float g, float mu0) {
+  return vec2(max(deckTransmission(tauV, g, mu0) - exp(-tauV / mu0), 0.0), min(deckTransmission(tauV, g, 0.5), 1.0));
+}
 
 // The cosine-weighted share of the sky seen at p (normal n, inside the grid) past the horizons of the
 // map (bilinear between texels per azimuth): (2 / A) sum_k slice_k (common/terrain_sky_visibility.glsl).
@@ -94,6 +108,7 @@ void main() {
   float visibility = 1.0;
   float cloudDepth = 0.0;
   float skyVisibility = 1.0;
+  vec2 deck = vec2(0.0, 1.0);
   if (hit.hit) {
     vec3 sun = terrain.sun_direction.xyz;
     vec3 p = origin + dir * hit.t;
@@ -137,9 +152,36 @@ void main() {
         }
         cloudDepth = -log(max(transmittance / 8.0, 1.0e-30));
       }
+      // The deck's diffuse light: the slab of the point's own column (tau_v = tau mu_s), or
+      // (deck.y) the mean over 8 directions cosine-weighted about the zenith (an equal-area spiral:
+      // sin(theta) = sqrt((k + 1/2) / 8)) of the slab of the column each meets at the clouds' middle
+      // height (its tau_max along the sun line in the map): a shadow beside clear sky gets the gaps'
+      // light and less of the clouds' diffuse sunlight, a lit point beside clouds some of it.
+      float mu0 = max(dot(up, sun), 0.05);
+      float g = terrain.albedo_rock.w;
+      deck = deckDiffuse(cloudDepth * mu0, g, mu0);
+      float above = terrain.deck.x - length(p);
+      if (terrain.deck.y > 0.5 && above > 0.0) {
+        vec3 east = normalize(cross(vec3(0.0, 1.0, 0.0), up));
+        vec3 north = cross(up, east);
+        vec2 sum = vec2(0.0);
+        for (int k = 0; k < 8; ++k) {
+          float sine = sqrt((float(k) + 0.5) / 8.0), angle = 2.39996323 * float(k);
+          float cosine = sqrt(1.0 - sine * sine);
+          vec3 d = sine * (cos(angle) * east + sin(angle) * north) + cosine * up;
+          vec3 q = p + d * (above / cosine);
+          vec3 cq = cloudShadowCoordinate(q, terrain.shadow_centre.xyz, terrain.shadow_u.xyz, terrain.shadow_v.xyz, sun,
+                                          terrain.shadow_centre.w, terrain.shadow_u.w);
+          float tauColumn = cloudShadowCovers(cq) ? textureLod(cloudShadowMap, cq.xy, 0.0).z : cloudDepth;
+          sum += deckDiffuse(tauColumn * mu0, g, mu0);
+        }
+        deck = sum / 8.0;
+      }
     }
+    if (terrain.heights.z > 0.5) deck = vec2(0.0, 1.0);  // the clear-sky table alone
   }
-  hits.v[2u * index] = vec4(hit.normal, hit.t);
-  hits.v[2u * index + 1u] = vec4(visibility, cloudDepth, hit.height, skyVisibility);
+  hits.v[3u * index] = vec4(hit.normal, hit.t);
+  hits.v[3u * index + 1u] = vec4(visibility, cloudDepth, hit.height, skyVisibility);
+  hits.v[3u * index + 2u] = vec4(deck, 0.0, 0.0);
   depth.t[index] = hit.t;
 }

@@ -42,20 +42,14 @@ layout(push_constant) uniform Push {
 }
 push;
 
-// Eddington's total (direct + diffuse) transmission of a conservative slab of optical depth tau with
-// asymmetry g for light arriving at cosine mu0 (Shettle & Weinman 1970): 1 at tau = 0.
-float deckTransmission(float tau, float g, float mu0) {
-  float scaled = (1.0 - g) * tau;
-  return ((2.0 / 3.0 + mu0) + (2.0 / 3.0 - mu0) * exp(-tau / mu0)) / (4.0 / 3.0 + scaled);
-}
-
 void main() {
   uvec2 tile_pixel;
   if (!tilePixel(push.tiles, tile_pixel)) return;
   uint index = tile_pixel.y * push.tiles.width + tile_pixel.x;
-  vec4 h0 = hits.v[2u * index];
+  vec4 h0 = hits.v[3u * index];
   if (!(h0.w < 1.0e29)) return;  // no terrain: the sky stays
-  vec4 h1 = hits.v[2u * index + 1u];
+  vec4 h1 = hits.v[3u * index + 1u];
+  vec4 h2 = hits.v[3u * index + 2u];
   AtmosphereParameters atmosphere = atmosphereFromBlock();
   CameraParameters camera =
       cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
@@ -104,16 +98,9 @@ void main() {
   vec3 skyLight = irradianceLookup(skyIrradianceLut, atmosphere, rGround, muS);
   float visibility = h1.x;
   float tau = max(h1.y, 0.0);
-  float g = terrain.albedo_rock.w;
-  float mu0 = max(muS, 0.05);
-  float tauV = tau * mu0;
   float direct = exp(-tau);
-  float diffuseSun = max(deckTransmission(tauV, g, mu0) - exp(-tauV / mu0), 0.0);
-  float diffuseSky = min(deckTransmission(tauV, g, 0.5), 1.0);
-  if (terrain.heights.z > 0.5) {  // the clear-sky table alone
-    diffuseSun = 0.0;
-    diffuseSky = 1.0;
-  }
+  float diffuseSun = h2.x;  // the deck's (terrain/cast_terrain.comp)
+  float diffuseSky = h2.y;
   float skyShare = h1.w;  // S, the share of the sky the surface sees (terrain/cast_terrain.comp)
   float cosine = max(dot(normal, sun), 0.0);
   vec3 groundSun = throughput * sunLight * (visibility * direct * cosine + max(muS, 0.0) * diffuseSun * skyShare) / kPi;

@@ -34,6 +34,7 @@ layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
   ivec4 sky_occlusion;   // the sky the terrain hides: mode (0 none, 1 horizon map, 2 rays), rays per pixel, unused, unused
   ivec4 horizon_size;    // horizon map: texels east, texels north, azimuths, unused
   vec4 horizon_grid;     // horizon map: plane position of texel (0, 0), texel spacing east and north (m)
+  vec4 deck;             // the clouds' middle radius (m; 0: none), 1 = deck light from the cover the hemisphere sees, unused, unused
   ivec4 levels[kTerrainMaxLevels];  // per pyramid level: offset of its minima in the pyramid buffer, width, height, unused
 } terrain;
 
