@@ -34,7 +34,8 @@ double sampleInside(const HeightField& f, double x, double y) {
 
 }  // namespace
 
-double horizonElevation(const HeightField& f, double R, double x, double y, double h0, double phi, double stepRatio) {
+double horizonElevation(const HeightField& f, double R, double x, double y, double h0, double phi, double stepRatio,
+                        double top) {
   const double cx = std::cos(phi), cy = std::sin(phi);
   const double edge = distanceToEdge(f, x, y, cx, cy);
   // The largest tan of the elevation: (h(s) - h0 - s^2 / 2R) / s over the marched distances.
@@ -45,15 +46,34 @@ double horizonElevation(const HeightField& f, double R, double x, double y, doub
   };
   const double first = 0.5 * std::min(f.dx, f.dy);
   const double ratio = std::max(stepRatio, 1.0001);
-  for (double s = first; s < edge; s *= ratio) at(s);
-  if (edge > 0.0) at(edge);
-  // Refined around the highest step, over the steps on either side (16 more samples): a sharp crest
-  // between two steps is otherwise seen up to a step further away (tan of the elevation up to
-  // ratio - 1 low).
-  if (bestS > 0.0) {
+  // No step past the one where even the field's highest sample would stand lower than the best so far
+  // ((top - h0 - s^2 / 2R) / s falls with s).
+  bool reachedEdge = true;
+  for (double s = first; s < edge; s *= ratio) {
+    if ((top - h0 - 0.5 * s * s / R) / s <= best) {
+      reachedEdge = false;
+      break;
+    }
+    at(s);
+  }
+  if (edge > 0.0 && reachedEdge) at(edge);
+  // Refined around the highest step, over the steps on either side, twice (8 samples a side at
+  // ratio^(1/8), then at ratio^(1/64)): a sharp crest between two steps is otherwise seen up to a step
+  // further away (the tan of its elevation up to ratio - 1 low).
+  thread_local double factorsRatio = 0.0;
+  thread_local double factors[2][17];
+  if (factorsRatio != ratio) {
+    for (int level = 0; level < 2; ++level)
+      for (int k = -8; k <= 8; ++k) factors[level][k + 8] = std::pow(ratio, k / (level == 0 ? 8.0 : 64.0));
+    factorsRatio = ratio;
+  }
+  for (int level = 0; level < 2; ++level) {
     const double s0 = bestS;
-    for (int k = -8; k <= 8; ++k)
-      if (k != 0 && s0 * std::pow(ratio, k / 8.0) < edge) at(s0 * std::pow(ratio, k / 8.0));
+    if (!(s0 > 0.0)) break;
+    for (int k = 0; k < 17; ++k) {
+      const double s = s0 * factors[level][k];
+      if (k != 8 && s < edge) at(s);
+    }
   }
   // Past the grid, the outside sphere at its height: -D / s - s / 2R (D = h0 - outside) is largest at
   // s = sqrt(2 R D) for D > 0 (the geometric horizon), else at the edge.
@@ -63,6 +83,10 @@ double horizonElevation(const HeightField& f, double R, double x, double y, doub
     best = std::max(best, (-d - 0.5 * s * s / R) / s);
   }
   return best > -1e29 ? std::atan(best) : -0.5 * kPi;
+}
+
+double horizonElevation(const HeightField& f, double R, double x, double y, double h0, double phi, double stepRatio) {
+  return horizonElevation(f, R, x, y, h0, phi, stepRatio, f.maxHeight());
 }
 
 HorizonMap bakeHorizonMap(const HeightField& f, double R, const HorizonMapSettings& settings) {
@@ -77,6 +101,13 @@ HorizonMap bakeHorizonMap(const HeightField& f, double R, const HorizonMapSettin
   map.x0 = f.x0, map.y0 = f.y0;
   map.dx = f.dx * map.stride, map.dy = f.dy * map.stride;
   map.elevation.assign(size_t(map.width) * size_t(map.height) * size_t(map.azimuths), 0.0f);
+  // The march reads the texels' own samples (every stride-th): a field that stays in the cache.
+  HeightField strided(map.width, map.height, map.x0, map.y0, map.dx, map.dy);
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) strided.at(i, j) = f.at(i * map.stride, j * map.stride);
+  strided.outsideHeight = f.outsideHeight;
+  const HeightField& field = map.stride > 1 ? strided : f;
+  const double top = f.maxHeight();
   const int threads = settings.threads > 0 ? settings.threads : std::max(1, int(std::thread::hardware_concurrency()));
   std::atomic<int> next{0};
   auto work = [&] {
@@ -87,7 +118,7 @@ HorizonMap bakeHorizonMap(const HeightField& f, double R, const HorizonMapSettin
         for (int k = 0; k < map.azimuths; ++k) {
           const double phi = 2.0 * kPi * (k + 0.5) / map.azimuths;
           map.elevation[(size_t(j) * size_t(map.width) + size_t(i)) * size_t(map.azimuths) + size_t(k)] =
-              float(horizonElevation(f, R, x, y, h0, phi, settings.stepRatio));
+              float(horizonElevation(field, R, x, y, h0, phi, settings.stepRatio, top));
         }
       }
   };

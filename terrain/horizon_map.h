@@ -18,8 +18,8 @@ namespace firmament::terrain {
 
 struct HorizonMapSettings {
   int azimuths = 16;
-  int maxTexels = 513;      // the grid's texels a side at most (every stride-th sample above it)
-  double stepRatio = 1.08;  // each step's distance over the previous one
+  int maxTexels = 257;      // the grid's texels a side at most (every stride-th sample above it)
+  double stepRatio = 1.12;  // each step's distance over the previous one
   int threads = 0;          // 0: all cores
 };
 
@@ -42,5 +42,8 @@ HorizonMap bakeHorizonMap(const HeightField& field, double planetRadius, const H
 // plane direction (cos φ, sin φ), marched as bakeHorizonMap does.
 double horizonElevation(const HeightField& field, double planetRadius, double x, double y, double h0, double phi,
                         double stepRatio);
+// The same with the field's highest sample given (the march stops where nothing higher can be found).
+double horizonElevation(const HeightField& field, double planetRadius, double x, double y, double h0, double phi,
+                        double stepRatio, double fieldTop);
 
 }  // namespace firmament::terrain

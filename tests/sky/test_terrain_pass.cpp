@@ -202,10 +202,10 @@ TEST_F(TerrainPassTest, CloudsStopAtTheTerrain) {
 // front of a straight cliff 400 m high (a height map, 10 m samples), against the closed form of a
 // horizontal point that sees the cliff's top at elevation alpha straight ahead: (1 + cos alpha) / 2
 // (tests/terrain/test_horizon_map.cpp derives it), tan(alpha) = (400 - d^2 / 2R) / d at distance d from
-// the top edge, over the plain's pixels 150-1400 m from it (alpha 16-69 deg). Measured (lavapipe, 40 x 24
-// pixels, 760 on the plain): the horizon map within 0.0052 per pixel (its 16 sectors and the bilinear
-// horizons between 10 m texels; tolerance 0.01); 32 rays per pixel: mean over the pixels +0.0012
-// (tolerance 0.02: their binomial noise, 0.07 a pixel, over some 400 pixels at 32 x 18).
+// the top edge, over the plain's pixels 150-1400 m from it (alpha 16-69 deg). Measured (lavapipe, 448
+// pixels on the plain): the horizon map within 0.0037 per pixel (its 16 sectors and the bilinear
+// horizons between 20 m texels: the 401-sample field strided to 201; tolerance 0.01); 32 rays per pixel:
+// mean over the pixels +0.0020 (tolerance 0.02: their binomial noise, 0.07 a pixel, over 448 pixels).
 TEST_F(TerrainPassTest, SkyShareBeforeACliffIsOnePlusCosineOverTwo) {
   const std::filesystem::path dir = test::scratchDir("terrain_pass_cliff");
   terrain::HeightField map(401, 3, -2000.0, -2000.0, 10.0, 2000.0);
