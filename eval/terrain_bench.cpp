@@ -24,10 +24,20 @@ struct Knob {
 
 std::vector<Knob> knobs(bool quick) {
   std::vector<Knob> k;
+  k.push_back({"default", "shadow map 256 over 40 km, penumbra, hemisphere deck, self-shadow, horizon map 16",
+               [](SkyRenderOptions&) {}});
   k.push_back(
-      {"default", "shadow map 256 over 40 km, penumbra, deck sky light, self-shadow", [](SkyRenderOptions&) {}});
+      {"sky_occlusion", "none", [](SkyRenderOptions& o) { o.terrain.skyOcclusion = TerrainSkyOcclusion::None; }});
+  k.push_back({"sky_occlusion", "horizon map 8", [](SkyRenderOptions& o) { o.terrain.horizonAzimuths = 8; }});
+  for (int rays : quick ? std::vector<int>{8} : std::vector<int>{8, 32})
+    k.push_back({"sky_occlusion", "rays " + std::to_string(rays), [rays](SkyRenderOptions& o) {
+                   o.terrain.skyOcclusion = TerrainSkyOcclusion::Rays;
+                   o.terrain.occlusionRays = rays;
+                 }});
   k.push_back({"penumbra", "off", [](SkyRenderOptions& o) { o.terrain.penumbra = false; }});
   k.push_back({"self_shadow", "off", [](SkyRenderOptions& o) { o.terrain.selfShadow = false; }});
+  k.push_back({"sky_light", "deck of the point's column",
+               [](SkyRenderOptions& o) { o.terrain.skyLight = TerrainSkyLight::Deck; }});
   k.push_back(
       {"sky_light", "clear-sky table", [](SkyRenderOptions& o) { o.terrain.skyLight = TerrainSkyLight::Clear; }});
   for (int size : quick ? std::vector<int>{64, 1024} : std::vector<int>{64, 128, 512, 1024})

@@ -656,9 +656,17 @@ void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::Command
   terrainView.airSteps = frame.options.viewSteps;
   terrainView.selfShadow = frame.options.terrain.selfShadow;
   terrainView.skyLight = frame.options.terrain.skyLight;
+  terrainView.skyOcclusion = frame.options.terrain.skyOcclusion;
+  terrainView.horizonAzimuths = frame.options.terrain.horizonAzimuths;
+  terrainView.occlusionRays = frame.options.terrain.occlusionRays;
   terrainView.groundOnly = frame.options.terrain.groundOnly;
   if (frame.options.terrain.penumbra) terrainView.sunAngularRadius = luts_.parameters().sun_angular_radius;
-  if (frame.clouds) terrainView.deckAsymmetry = cloudPhaseMeanCosine(frame.clouds->lighting);
+  if (frame.clouds) {
+    terrainView.deckAsymmetry = cloudPhaseMeanCosine(frame.clouds->lighting);
+    const std::vector<shared::CloudLayer> layers = sharedCloudLayers(*frame.clouds, luts_.parameters().bottom_radius);
+    for (const shared::CloudLayer& l : layers)
+      terrainView.cloudMiddleRadius += 0.5 * (l.bottom_radius + l.top_radius) / double(layers.size());
+  }
   std::vector<const gpu::Image*> irradiance;
   for (size_t b = 0; b < luts_.batchCount(); ++b) irradiance.push_back(&fmsSkyIrradiance_[b]->irradiance());
   terrain_->record(terrainView, luts_, irradiance, *frame.output, frame.tiles, commands, shadow);

@@ -32,9 +32,13 @@ struct TerrainBlock {
   float albedoSnow[4];
   float albedoLines[4];
   float albedoSlopes[4];
+  int32_t skyOcclusion[4];
+  int32_t horizonSize[4];
+  float horizonGrid[4];
+  float deck[4];
   int32_t levels[kMaxLevels][4];
 };
-static_assert(sizeof(TerrainBlock) == (17 + kMaxLevels) * 16);
+static_assert(sizeof(TerrainBlock) == (21 + kMaxLevels) * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -66,7 +70,8 @@ TerrainPass::TerrainPass(gpu::Context& context)
       cast_(context,
             {"terrain/cast_terrain",
              {gpu::BindingType::UniformBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer,
-              gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::SampledImage},
+              gpu::BindingType::StorageBuffer, gpu::BindingType::StorageBuffer, gpu::BindingType::SampledImage,
+              gpu::BindingType::StorageBuffer},
              sizeof(TilePush)}),
       shade_(context,
              {"terrain/shade_terrain",
@@ -80,6 +85,23 @@ TerrainPass::TerrainPass(gpu::Context& context)
       linearClamp_(context, gpu::Filter::Linear, gpu::AddressMode::Clamp) {
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   shadowPlaceholder_.upload(zero, sizeof(zero));
+  horizonBuffer_ = gpu::Buffer(context_, sizeof(zero), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+                               "terrain horizon placeholder");
+  horizonBuffer_.upload(zero, sizeof(zero));
+}
+
+const terrain::HorizonMap& TerrainPass::horizonMap(int azimuths) {
+  if (!resolved_) throw std::logic_error("TerrainPass: prepare before horizonMap");
+  horizonSeconds_ = 0.0;
+  if (horizon_ && horizon_->azimuths == azimuths) return *horizon_;
+  terrain::HorizonMapSettings settings;
+  settings.azimuths = std::clamp(azimuths, 1, 64);
+  horizon_ = std::make_unique<terrain::HorizonMap>(terrain::bakeHorizonMap(resolved_->field, planetRadius_, settings));
+  horizonBuffer_ = gpu::Buffer(context_, horizon_->elevation.size() * sizeof(float), gpu::BufferUsage::Storage,
+                               gpu::MemoryLocation::Device, "terrain horizon map");
+  horizonBuffer_.upload(horizon_->elevation);
+  horizonSeconds_ = horizon_->seconds;
+  return *horizon_;
 }
 
 bool TerrainPass::prepare(const Scene& scene, double planetRadius) {
@@ -115,6 +137,7 @@ bool TerrainPass::prepare(const Scene& scene, double planetRadius) {
   pyramid_.upload(packed);
   resolveSeconds_ = resolved->seconds;
   resolved_ = std::move(resolved);
+  horizon_.reset();
   key_ = key;
   planetRadius_ = planetRadius;
   return true;
@@ -158,6 +181,16 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   b.albedoLines[2] = float(a.vegetationMaxSlope), b.albedoLines[3] = float(a.snowLine);
   b.albedoSlopes[0] = float(a.snowLineTransition), b.albedoSlopes[1] = float(a.snowMaxSlope);
   b.albedoSlopes[2] = float(a.slopeTransition);
+  b.deck[0] = float(view.cloudMiddleRadius);
+  b.deck[1] = view.skyLight == TerrainSkyLight::DeckHemisphere ? 1.0f : 0.0f;
+  b.skyOcclusion[0] = int(view.skyOcclusion);
+  b.skyOcclusion[1] = std::max(view.occlusionRays, 1);
+  if (view.skyOcclusion == TerrainSkyOcclusion::HorizonMap) {
+    const terrain::HorizonMap& h = horizonMap(view.horizonAzimuths);
+    b.horizonSize[0] = h.width, b.horizonSize[1] = h.height, b.horizonSize[2] = h.azimuths;
+    b.horizonGrid[0] = float(h.x0), b.horizonGrid[1] = float(h.y0), b.horizonGrid[2] = float(h.dx);
+    b.horizonGrid[3] = float(h.dy);
+  }
   for (size_t k = 0; k < levels_.size(); ++k)
     for (int c = 0; c < 4; ++c) b.levels[k][c] = levels_[k][c];
   block_.upload(&b, sizeof(b));
@@ -167,14 +200,14 @@ void TerrainPass::recordCast(const TerrainPassView& view, const gpu::TileDispatc
                              const TerrainCloudShadow* shadow) {
   uploadBlock(view, shadow);
   const VkDeviceSize pixels = VkDeviceSize(view.camera.width) * VkDeviceSize(view.camera.height);
-  if (!hits_ || hits_.size() != pixels * 8 * sizeof(float))
-    hits_ = gpu::Buffer(context_, pixels * 8 * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
+  if (!hits_ || hits_.size() != pixels * 12 * sizeof(float))
+    hits_ = gpu::Buffer(context_, pixels * 12 * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
                         "terrain hits");
   if (!depth_ || depth_.size() != pixels * sizeof(float))
     depth_ = gpu::Buffer(context_, pixels * sizeof(float), gpu::BufferUsage::Storage, gpu::MemoryLocation::Device,
                          "terrain depth");
   const gpu::Image& shadowMap = shadow && shadow->map ? *shadow->map : shadowPlaceholder_;
-  commands.bind(cast_, {block_, heights_, pyramid_, hits_, depth_, {shadowMap, linearClamp_}});
+  commands.bind(cast_, {block_, heights_, pyramid_, hits_, depth_, {shadowMap, linearClamp_}, horizonBuffer_});
   TilePush castPush{tiles};
   commands.pushConstants(castPush);
   commands.dispatchTiles(tiles, "terrain/cast_terrain");

@@ -21,23 +21,38 @@
 #include "gpu/dispatch.h"
 #include "gpu/image.h"
 #include "gpu/pipeline.h"
+#include "terrain/horizon_map.h"
 #include "terrain/scene_terrain.h"
 
 namespace firmament {
 
 // How the ground's sky light is modelled (shaders/terrain/shade_terrain.comp; docs/terrain.md, "Shading").
 enum class TerrainSkyLight {
-  Deck,   // the clear-sky table dimmed by the clouds' Eddington deck transmission, plus the sun's diffuse part
-  Clear,  // the clear-sky table alone: no dimming under cloud, no diffuse sunlight through it
+  Deck,  // the clear-sky table dimmed by the clouds' Eddington deck transmission, plus the sun's diffuse part,
+         // for the slab of the point's own cloud column (an infinite deck)
+  DeckHemisphere,  // the same averaged over the cloud cover the point's hemisphere sees (8 directions to
+                   // the clouds' middle height, each column's optical depth from the shadow map)
+  Clear,           // the clear-sky table alone: no dimming under cloud, no diffuse sunlight through it
+};
+
+// How the sky light excludes the sky the terrain hides (shaders/terrain/cast_terrain.comp; docs/terrain.md,
+// "Sky light the terrain hides"; decision 0205).
+enum class TerrainSkyOcclusion {
+  None,        // (1 + n.z) / 2: an isotropic sky over a tilted plane, nothing hidden
+  HorizonMap,  // the horizons of a map baked once per terrain (terrain/horizon_map.h), sliced per pixel
+  Rays,        // occlusionRays rays per pixel, cosine-weighted, cast in the height field
 };
 
 // Knobs of the terrain pass that a bench or a test sets (SkyRenderOptions::terrain).
 struct TerrainPassOptions {
   bool selfShadow = true;  // a shadow ray per pixel at the sun
-  TerrainSkyLight skyLight = TerrainSkyLight::Deck;
   // Soft cloud-shadow edges from the sun's disc: the shadow map read over the disc's footprint
   // (shaders/terrain/cast_terrain.comp); off: one lookup at the sun's centre.
   bool penumbra = true;
+  TerrainSkyLight skyLight = TerrainSkyLight::DeckHemisphere;
+  TerrainSkyOcclusion skyOcclusion = TerrainSkyOcclusion::HorizonMap;
+  int horizonAzimuths = 16;  // the horizon map's azimuths
+  int occlusionRays = 16;    // rays per pixel for TerrainSkyOcclusion::Rays
   // The ground's own radiance at the surface, without the air between camera and ground (eval's ground
   // reference compares this); the sky's pixels stay.
   bool groundOnly = false;
@@ -53,9 +68,15 @@ struct TerrainPassView {
   int airSteps = 32;       // the air march's steps to the ground (the sky's view steps)
   bool selfShadow = true;  // a shadow ray per pixel at the sun
   TerrainSkyLight skyLight = TerrainSkyLight::Deck;
+  TerrainSkyOcclusion skyOcclusion = TerrainSkyOcclusion::None;
+  int horizonAzimuths = 16;
+  int occlusionRays = 16;
   bool groundOnly = false;  // TerrainPassOptions::groundOnly
   // The sun's angular radius (rad) for the cloud shadows' penumbrae; 0: no penumbra.
   double sunAngularRadius = 0.0;
+  // The clouds' middle radius (m; the mean of the layers' middles): where TerrainSkyLight::DeckHemisphere
+  // reads the cover; 0 without clouds.
+  double cloudMiddleRadius = 0.0;
   // The mean cosine of the clouds' phase function, for the deck's diffuse transmission (Eddington's
   // (1 - g) tau): cloudPhaseMeanCosine of the scene's lighting.
   double deckAsymmetry = 0.85;
@@ -86,6 +107,11 @@ class TerrainPass {
   double groundUnderCamera() const;
   // Seconds the last resolution took (0 when reused).
   double resolveSeconds() const { return resolveSeconds_; }
+  // The horizon map of the resolved terrain with `azimuths` directions (terrain/horizon_map.h), baked on
+  // the CPU and uploaded by the first call (or record() with TerrainSkyOcclusion::HorizonMap), kept
+  // with the terrain. horizonSeconds(): the last bake's time (0 when reused).
+  const terrain::HorizonMap& horizonMap(int azimuths);
+  double horizonSeconds() const { return horizonSeconds_; }
 
   // Records the cast (a barrier after) and the shading of each spectral batch into `frame` (RGBA32F,
   // the view's pixels, row-major; the sky written before, a barrier between). skyIrradiance[b]: batch b's
@@ -98,8 +124,9 @@ class TerrainPass {
   // Per pixel of the last record(): the distance to the terrain along the view ray (m; 1e30 where it
   // meets none). Valid once the recorded commands ran.
   const gpu::Buffer& depth() const { return depth_; }
-  // Per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun, height,
-  // surface) (shaders/terrain/cast_terrain.comp).
+  // Per pixel three vec4: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
+  // height, sky share), (deck's diffuse sunlight, deck's transmission of sky light, 0, 0)
+  // (shaders/terrain/cast_terrain.comp).
   const gpu::Buffer& hits() const { return hits_; }
 
   // Records the cast alone (the pixels' hits and depth: hits(), depth()) and a barrier; record() runs it
@@ -122,6 +149,9 @@ class TerrainPass {
   std::string key_;
   double planetRadius_ = 0.0;
   double resolveSeconds_ = 0.0;
+  double horizonSeconds_ = 0.0;
+  std::unique_ptr<terrain::HorizonMap> horizon_;  // of the resolved terrain
+  gpu::Buffer horizonBuffer_;
   std::vector<glm::ivec4> levels_;  // offset, width, height, 0 per pyramid level
   float fieldTop_ = 0.0f;
   gpu::Buffer block_;

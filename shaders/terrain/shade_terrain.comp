@@ -4,12 +4,13 @@
 // terrain (terrain/cast_terrain.comp): the air between the camera and the ground (the clear-sky
 // integrand of atmosphere/air_integrand.glsl, marched with the sky's own quadratic steps, so a flat
 // terrain at the ground sphere's height is the sky's ground) and the Lambertian ground,
-//   L = T_air [ (albedo / pi) (E_sun T_sun (V e^-tau max(n.s, 0) + mu_s D(tau_v, mu_s) (1 + n.z) / 2)
-//                              + E_sky T_d(tau_v) (1 + n.z) / 2) ] + L_air,
+//   L = T_air [ (albedo / pi) (E_sun T_sun (V e^-tau max(n.s, 0) + mu_s D(tau_v, mu_s) S)
+//                              + E_sky T_d(tau_v) S) ] + L_air,
 // with V the sun's visibility past the terrain, tau the clouds' optical depth along the sun line (Beer
 // shadow map), tau_v = tau mu_s their vertical optical depth, D the part of the deck's transmission
 // that is diffuse and T_d the deck's transmission of the sky's diffuse light (Eddington's conservative
-// slab, docs/terrain.md "Shading"), (1 + n.z) / 2 the share of an isotropic sky a tilted surface sees.
+// slab, docs/terrain.md "Shading"), S the cosine-weighted share of the sky the surface sees past the
+// terrain (the cast's: the horizon map's, or (1 + n.z) / 2, an isotropic sky over a tilted surface).
 // Clear sky, flat ground: L = T_air (albedo / pi)(E_sun T_sun mu_s + E_sky) + L_air, the sky's ground.
 // Light with the sun's spectrum and light with the sky's are converted with their own matrices; the
 // albedo (linear Rec.709) multiplies after the conversion.
@@ -41,20 +42,14 @@ layout(push_constant) uniform Push {
 }
 push;
 
-// Eddington's total (direct + diffuse) transmission of a conservative slab of optical depth tau with
-// asymmetry g for light arriving at cosine mu0 (Shettle & Weinman 1970): 1 at tau = 0.
-float deckTransmission(float tau, float g, float mu0) {
-  float scaled = (1.0 - g) * tau;
-  return ((2.0 / 3.0 + mu0) + (2.0 / 3.0 - mu0) * exp(-tau / mu0)) / (4.0 / 3.0 + scaled);
-}
-
 void main() {
   uvec2 tile_pixel;
   if (!tilePixel(push.tiles, tile_pixel)) return;
   uint index = tile_pixel.y * push.tiles.width + tile_pixel.x;
-  vec4 h0 = hits.v[2u * index];
+  vec4 h0 = hits.v[3u * index];
   if (!(h0.w < 1.0e29)) return;  // no terrain: the sky stays
-  vec4 h1 = hits.v[2u * index + 1u];
+  vec4 h1 = hits.v[3u * index + 1u];
+  vec4 h2 = hits.v[3u * index + 2u];
   AtmosphereParameters atmosphere = atmosphereFromBlock();
   CameraParameters camera =
       cameraFromBlock(terrain.camera_forward, terrain.camera_right, terrain.camera_up, terrain.image);
@@ -103,20 +98,13 @@ void main() {
   vec3 skyLight = irradianceLookup(skyIrradianceLut, atmosphere, rGround, muS);
   float visibility = h1.x;
   float tau = max(h1.y, 0.0);
-  float g = terrain.albedo_rock.w;
-  float mu0 = max(muS, 0.05);
-  float tauV = tau * mu0;
   float direct = exp(-tau);
-  float diffuseSun = max(deckTransmission(tauV, g, mu0) - exp(-tauV / mu0), 0.0);
-  float diffuseSky = min(deckTransmission(tauV, g, 0.5), 1.0);
-  if (terrain.heights.z > 0.5) {  // the clear-sky table alone
-    diffuseSun = 0.0;
-    diffuseSky = 1.0;
-  }
-  float tilt = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
+  float diffuseSun = h2.x;  // the deck's (terrain/cast_terrain.comp)
+  float diffuseSky = h2.y;
+  float skyShare = h1.w;  // S, the share of the sky the surface sees (terrain/cast_terrain.comp)
   float cosine = max(dot(normal, sun), 0.0);
-  vec3 groundSun = throughput * sunLight * (visibility * direct * cosine + max(muS, 0.0) * diffuseSun * tilt) / kPi;
-  vec3 groundSky = throughput * skyLight * (diffuseSky * tilt) / kPi;
+  vec3 groundSun = throughput * sunLight * (visibility * direct * cosine + max(muS, 0.0) * diffuseSun * skyShare) / kPi;
+  vec3 groundSky = throughput * skyLight * (diffuseSky * skyShare) / kPi;
   float slopeCosine = clamp(dot(normal, up), -1.0, 1.0);
   vec3 albedo = terrainAlbedo(h1.z, slopeCosine, terrainAlbedoParameters());
   vec3 rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike +

@@ -31,8 +31,18 @@ layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
   vec4 albedo_snow;
   vec4 albedo_lines;     // tree line (m), its transition (m), vegetation's steepest slope (rad), snow line (m)
   vec4 albedo_slopes;    // snow line's transition (m), snow's steepest slope (rad), slope transition (rad), unused
+  ivec4 sky_occlusion;   // the sky the terrain hides: mode (0 none, 1 horizon map, 2 rays), rays per pixel, unused, unused
+  ivec4 horizon_size;    // horizon map: texels east, texels north, azimuths, unused
+  vec4 horizon_grid;     // horizon map: plane position of texel (0, 0), texel spacing east and north (m)
+  vec4 deck;             // the clouds' middle radius (m; 0: none), 1 = deck light from the cover the hemisphere sees, unused, unused
   ivec4 levels[kTerrainMaxLevels];  // per pyramid level: offset of its minima in the pyramid buffer, width, height, unused
 } terrain;
+
+// Horizon elevations (rad, terrain/horizon_map.h): per texel (row-major from the south-west) its
+// azimuths' values. Define TERRAIN_HORIZON_BINDING to read them.
+#ifdef TERRAIN_HORIZON_BINDING
+layout(std430, set = 0, binding = TERRAIN_HORIZON_BINDING) readonly buffer TerrainHorizons { float v[]; } terrainHorizons;
+#endif
 
 // Heights (m above R), nx x ny, row-major from the south-west sample.
 layout(std430, set = 0, binding = TERRAIN_HEIGHTS_BINDING) readonly buffer TerrainHeights { float h[]; } terrainHeights;

@@ -102,13 +102,13 @@ TEST_F(TerrainReference, SlabShadowMatchesThePathTracersTransmittedDirectLight) 
       const glm::dvec3 p = camera + d * double(run.depth[i]);
       const glm::dvec3 ground = glm::normalize(p) * (R + 500.0);  // the flat ground at 500 m
       const glm::dvec3 sun = glm::normalize(view.sunDirection);
-      const double tauGpu = run.hits[8 * i + 5];
+      const double tauGpu = run.hits[12 * i + 5];
       const double tauCpu = cloudOpticalDepthAlong(*run.medium, ground, sun, 5.0);
       worst = std::max(worst, std::abs(tauGpu - tauCpu));
       EXPECT_NEAR(tauGpu, tauCpu, 0.01 + 0.01 * tauCpu) << "pixel " << x << "," << y;
       const double tGpu = std::exp(-tauGpu);
       const double tCpu = tracer.pixel(ground, sun, i).transmittance;
-      sumGpu += tGpu, sumCpu += tCpu, tauMean += run.hits[8 * i + 5];
+      sumGpu += tGpu, sumCpu += tCpu, tauMean += run.hits[12 * i + 5];
       ++pixels;
     }
   ASSERT_GT(pixels, 100);
