@@ -11,6 +11,8 @@
 #include "astro/geodetic.h"
 #include "astro/moon.h"
 #include "astro/time.h"
+#include "clouds/cloud_knobs.h"
+#include "clouds/cloud_settings.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/hash.h"
@@ -135,6 +137,35 @@ const std::vector<Knob>& knobTable() {
   return table;
 }
 
+// The cloud march's knobs, "/clouds/march/ID" for each row of the knob table (clouds/cloud_knobs.h,
+// docs/clouds/knobs.md): set over the scene's /clouds/quality preset; unset, the preset decides.
+const std::string kCloudMarchPrefix = "/clouds/march/";
+
+const CloudKnob* findCloudKnob(const std::string& path) {
+  if (path.rfind(kCloudMarchPrefix, 0) != 0) return nullptr;
+  const std::string id = path.substr(kCloudMarchPrefix.size());
+  std::string ids;
+  for (const CloudKnob& k : cloudMarchKnobs()) {
+    if (k.id == id) return &k;
+    ids += (ids.empty() ? "" : ", ") + k.id;
+  }
+  throw InputError("quality " + path + ": no such cloud knob; allowed: " + kCloudMarchPrefix + "{" + ids + "}");
+}
+
+nlohmann::json knobJson(int v) { return v; }
+nlohmann::json knobJson(double v) { return v; }
+nlohmann::json knobJson(bool v) { return v; }
+nlohmann::json knobJson(AerialPerspective v) { return aerialPerspectiveName(v); }
+
+// The override of the knob with this identifier as JSON; null where none is set.
+nlohmann::json cloudOverrideValue(const CloudOverrides& o, const std::string& id) {
+#define FIRMAMENT_CLOUD_KNOB(type, name, value, lo, hi, scene, doc) \
+  if (id == cloudKnobIdentifier(#name)) return o.name ? knobJson(*o.name) : nlohmann::json(nullptr);
+#include "clouds/cloud_march_knobs.def"
+#undef FIRMAMENT_CLOUD_KNOB
+  return nullptr;
+}
+
 const Knob& findKnob(const std::string& path) {
   for (const Knob& k : knobTable())
     if (k.info.path == path) return k;
@@ -147,8 +178,16 @@ void applyQuality(SkyRenderOptions& options, const std::string& pathEqualsValue)
   const size_t eq = pathEqualsValue.find('=');
   if (eq == std::string::npos || eq == 0 || pathEqualsValue[0] != '/')
     throw InputError("quality " + pathEqualsValue + ": allowed: /path=value (e.g. /atmosphere/view_steps=64)");
-  const Knob& knob = findKnob(pathEqualsValue.substr(0, eq));
   const std::string text = pathEqualsValue.substr(eq + 1);
+  if (const CloudKnob* cloud = findCloudKnob(pathEqualsValue.substr(0, eq))) {
+    try {
+      options.clouds.set(cloud->id, text);
+    } catch (const InputError& e) {
+      throw InputError("quality " + pathEqualsValue + ": " + e.what());
+    }
+    return;
+  }
+  const Knob& knob = findKnob(pathEqualsValue.substr(0, eq));
   nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
   if (value.is_discarded()) value = text;  // a bare word: a string
   knob.set(options, value, pathEqualsValue);
@@ -217,6 +256,10 @@ const std::vector<QualityKnob>& qualityKnobs() {
   static const std::vector<QualityKnob> list = [] {
     std::vector<QualityKnob> l;
     for (const Knob& k : knobTable()) l.push_back(k.info);
+    for (const CloudKnob& k : cloudMarchKnobs())
+      l.push_back(
+          {kCloudMarchPrefix + k.id, "null", cloudKnobAllowed(k),
+           std::string(k.doc) + " (null: the scene's /clouds/quality preset; its default preset: " + k.value + ")"});
     return l;
   }();
   return list;
@@ -369,7 +412,10 @@ void Sky::setQuality(const std::string& pathEqualsValue) {
   impl_->options = o;
 }
 
-std::string Sky::quality(const std::string& path) const { return findKnob(path).get(impl_->options).dump(); }
+std::string Sky::quality(const std::string& path) const {
+  if (const CloudKnob* cloud = findCloudKnob(path)) return cloudOverrideValue(impl_->options.clouds, cloud->id).dump();
+  return findKnob(path).get(impl_->options).dump();
+}
 
 SkyPlan Sky::plan() const { return planOf(impl_->scene, impl_->options); }
 

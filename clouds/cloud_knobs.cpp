@@ -17,7 +17,9 @@ std::string knobText(double v) {
   return s.str();
 }
 
-std::string rangeText(const CloudKnob& k) {
+}  // namespace
+
+std::string cloudKnobAllowed(const CloudKnob& k) {
   const std::string type = k.type;
   if (type == "bool") return "true, false";
   if (type == "AerialPerspective") return "volume, march, off";
@@ -25,8 +27,6 @@ std::string rangeText(const CloudKnob& k) {
   s << (type == "int" ? "integer" : "number") << " in [" << k.min << ", " << k.max << "]";
   return s.str();
 }
-
-}  // namespace
 
 std::string cloudKnobIdentifier(const std::string& name) {
   std::string id;
@@ -70,7 +70,7 @@ std::string cloudMarchKnobsMarkdown() {
       "| --- | --- | --- | --- | --- | --- |\n";
   for (const CloudKnob& k : cloudMarchKnobs()) {
     std::ostringstream row;
-    row << "| `" << k.id << "` | `" << k.name << "` | " << rangeText(k) << " | `" << k.value << "` | ";
+    row << "| `" << k.id << "` | `" << k.name << "` | " << cloudKnobAllowed(k) << " | `" << k.value << "` | ";
     if (*k.scene)
       row << "`" << k.scene << "`";
     else

@@ -23,6 +23,9 @@ const std::vector<CloudKnob>& cloudMarchKnobs();
 // docs/clouds/knobs.md: a Markdown table of the knobs (a test checks the file is current).
 std::string cloudMarchKnobsMarkdown();
 
+// The values a knob allows, as text: "integer in [1, 256]", "true, false", "volume, march, off".
+std::string cloudKnobAllowed(const CloudKnob& knob);
+
 // "lightSteps" -> "light_steps"; "maxDistance_m" -> "max_distance_m".
 std::string cloudKnobIdentifier(const std::string& name);
 

@@ -80,6 +80,7 @@ PlanOptions planOptions(const SkyRenderOptions& options) {
   plan.aerialPerspective = options.clouds.aerialPerspective;
   plan.cloudResolutionDivisor = options.clouds.resolutionDivisor;
   plan.cloudShadowMap = options.clouds.beerShadowMap;
+  plan.cloudDeepShadowMap = options.clouds.deepShadowMap;
   plan.cloudLightShafts = options.clouds.lightShafts;
   plan.cloudTemporalUpdate = options.clouds.temporalUpdate;
   plan.cloudLightThroughOtherLayers = options.clouds.lightThroughOtherLayers;

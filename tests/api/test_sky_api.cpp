@@ -49,6 +49,29 @@ TEST(SkyApi, QualityKnobsAreNamedByPathAndChecked) {
   EXPECT_NE(m.find("lut, march"), std::string::npos) << m;
 }
 
+// Every row of the cloud march's knob table (clouds/cloud_knobs.h) is a quality knob /clouds/march/ID,
+// with the table's range; the plan follows it, and a bad value or name is refused naming what is allowed.
+TEST(SkyApi, CloudMarchKnobsAreQualityKnobsByTheirIdentifiers) {
+  const auto& knobs = firmament::qualityKnobs();
+  const auto lightSteps = std::find_if(knobs.begin(), knobs.end(), [](const firmament::QualityKnob& k) {
+    return k.path == "/clouds/march/light_steps";
+  });
+  ASSERT_NE(lightSteps, knobs.end());
+  EXPECT_EQ(lightSteps->allowed, "integer in [1, 256]");
+  EXPECT_EQ(lightSteps->defaultValue, "null");
+  const std::string cumulus = (firmament::test::sourceDir() / "scenes" / "cumulus.json").string();
+  EXPECT_TRUE(hasPass(Sky::Builder().sceneFile(cumulus).explain(), "clouds/bake_deep_shadow"));
+  EXPECT_FALSE(hasPass(Sky::Builder().sceneFile(cumulus).quality("/clouds/march/deep_shadow_map=false").explain(),
+                       "clouds/bake_deep_shadow"));
+  std::string m =
+      inputErrorOf([&] { Sky::Builder().sceneFile(cumulus).quality("/clouds/march/light_steps=0").explain(); });
+  EXPECT_NE(m.find("quality /clouds/march/light_steps=0"), std::string::npos) << m;
+  EXPECT_NE(m.find("[1, 256]"), std::string::npos) << m;
+  m = inputErrorOf([&] { Sky::Builder().sceneFile(cumulus).quality("/clouds/march/steps=3").explain(); });
+  EXPECT_NE(m.find("no such cloud knob"), std::string::npos) << m;
+  EXPECT_NE(m.find("light_steps"), std::string::npos) << m;
+}
+
 TEST(SkyApi, ThePlanFollowsTheSceneAndTheKnobs) {
   // No clouds section: no cloud pass runs, and the plan says why they are left out.
   const firmament::SkyPlan clear = Sky::Builder().sceneJson(kClear).explain();
@@ -75,6 +98,12 @@ TEST(SkyApi, SequenceFramesMoveTheClockFromTheBuiltScene) {
   EXPECT_EQ(sky->quality("/atmosphere/view_steps"), "48");
   EXPECT_FALSE(inputErrorOf([&] { sky->setQuality("/atmosphere/view_steps=-1"); }).empty());
   EXPECT_EQ(sky->quality("/atmosphere/view_steps"), "48");  // a refused knob leaves it
+  // A cloud march knob: null (the scene's quality preset decides) until set.
+  EXPECT_EQ(sky->quality("/clouds/march/light_steps"), "null");
+  sky->setQuality("/clouds/march/light_steps=12");
+  EXPECT_EQ(sky->quality("/clouds/march/light_steps"), "12");
+  sky->setQuality("/clouds/march/aerial_perspective=march");
+  EXPECT_EQ(sky->quality("/clouds/march/aerial_perspective"), "\"march\"");
 
   const std::string built = sky->get("/time/utc");
   sky->checkSequenceFrame(7200.0);
