@@ -285,10 +285,13 @@ PixelRect moonDiscPixelRect(const shared::CameraParameters& camera, const glm::d
     lo[0] = 0.0;
     hi[0] = camera.width;
   }
-  rect.x0 = std::max(0, int(std::floor(lo[0])) - 1);
-  rect.y0 = std::max(0, int(std::floor(lo[1])) - 1);
-  rect.x1 = std::min(camera.width, int(std::ceil(hi[0])) + 1);
-  rect.y1 = std::min(camera.height, int(std::ceil(hi[1])) + 1);
+  // A point of the circle near 90 deg from a perspective camera's axis projects millions of pixels out:
+  // clamp to just outside the image before converting (an int overflow otherwise).
+  const double w = camera.width, h = camera.height;
+  rect.x0 = std::max(0, int(std::floor(std::clamp(lo[0], -2.0, w + 2.0))) - 1);
+  rect.y0 = std::max(0, int(std::floor(std::clamp(lo[1], -2.0, h + 2.0))) - 1);
+  rect.x1 = std::min(camera.width, int(std::ceil(std::clamp(hi[0], -2.0, w + 2.0))) + 1);
+  rect.y1 = std::min(camera.height, int(std::ceil(std::clamp(hi[1], -2.0, h + 2.0))) + 1);
   if (rect.empty()) rect = PixelRect{};
   return rect;
 }
