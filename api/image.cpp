@@ -10,9 +10,10 @@ namespace firmament {
 namespace {
 
 // The frame as the renderer's image: RGB when the frame has no clouds, as the renderer returned it.
-Image toImage(const SkyFrame& frame) {
+// `who` prefixes the error for a frame whose pixels do not match its size.
+Image toImage(const SkyFrame& frame, const std::string& who = "") {
   if (frame.width < 1 || frame.height < 1 || frame.rgba.size() != size_t(frame.width) * size_t(frame.height) * 4)
-    throw InputError("the frame's pixels (" + std::to_string(frame.rgba.size()) + " floats) are not " +
+    throw InputError(who + "the frame's pixels (" + std::to_string(frame.rgba.size()) + " floats) are not " +
                      std::to_string(frame.width) + "x" + std::to_string(frame.height) + " RGBA");
   const int channels = frame.channels == 3 ? 3 : 4;
   Image image(frame.width, frame.height, channels);
@@ -97,5 +98,7 @@ SkyFrame loadExr(const std::string& path) {
   frame.metadata = image.metadata;
   return frame;
 }
+
+void saveExr(const SkyFrame& frame, const std::string& path) { writeExr(path, toImage(frame, "saveExr: ")); }
 
 }  // namespace firmament

@@ -578,22 +578,6 @@ std::string Sky::deviceDescription() const { return impl_->context->description(
 
 std::vector<std::string> Sky::validationMessages() const { return impl_->context->validationMessages(); }
 
-void saveExr(const SkyFrame& frame, const std::string& path) {
-  if (frame.width < 1 || frame.height < 1 || frame.rgba.size() != size_t(frame.width) * size_t(frame.height) * 4)
-    throw InputError("saveExr: the frame's pixels (" + std::to_string(frame.rgba.size()) + " floats) are not " +
-                     std::to_string(frame.width) + "x" + std::to_string(frame.height) + " RGBA");
-  const int channels = frame.channels == 3 ? 3 : 4;
-  Image image(frame.width, frame.height, channels);
-  if (channels == 4) {
-    image.pixels = frame.rgba;
-  } else {
-    for (size_t i = 0; i < image.pixelCount(); ++i)
-      for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = frame.rgba[i * 4 + c];
-  }
-  image.metadata = frame.metadata;
-  writeExr(path, image);
-}
-
 std::vector<const char*> embeddedDeviceExtensions() { return gpu::requiredDeviceExtensions(); }
 
 void enableEmbeddedDeviceFeatures(VkPhysicalDevice physicalDevice, VkPhysicalDeviceFeatures2& features,

@@ -56,17 +56,9 @@ std::string aimedCamera(double azimuthRad, double elevationRad, double fovDeg, i
   return text;
 }
 
-// Sum over the image of (luminance with - without) x pixel solid angle: the illuminance a term adds.
+// The illuminance a term adds (sky/night_pass.h).
 double addedIlluminance(const RenderResult& with, const RenderResult& without) {
-  const shared::CameraParameters& c = with.view.camera;
-  double sum = 0.0;
-  for (int y = 0; y < c.height; ++y)
-    for (int x = 0; x < c.width; ++x) {
-      const size_t i = (size_t(y) * c.width + x) * 4;
-      sum += (luminanceRec709(with.image.pixels.data() + i) - luminanceRec709(without.image.pixels.data() + i)) *
-             pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
-    }
-  return sum;
+  return firmament::addedIlluminance(with.view.camera, with.image.pixels.data(), without.image.pixels.data());
 }
 
 // The GPU time of the passes whose label starts with one of `prefixes`, median over repeats, rendering

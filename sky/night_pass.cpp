@@ -209,6 +209,17 @@ double pixelSolidAngle(const shared::CameraParameters& camera, glm::dvec2 p) {
   return side * side * cosine * cosine * cosine;
 }
 
+double addedIlluminance(const shared::CameraParameters& camera, const float* withRgba, const float* withoutRgba) {
+  double sum = 0.0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const size_t i = (size_t(y) * camera.width + x) * 4;
+      sum += (luminanceRec709(withRgba + i) - luminanceRec709(withoutRgba + i)) *
+             pixelSolidAngle(camera, glm::dvec2(x + 0.5, y + 0.5));
+    }
+  return sum;
+}
+
 namespace {
 
 // splatPointLights into the pixels of `rect` (an image of rect's size, row by row).

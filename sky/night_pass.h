@@ -32,6 +32,9 @@ struct PointLight {
 std::vector<float> splatPointLights(const shared::CameraParameters& camera, const std::vector<PointLight>& lights);
 // The solid angle (sr) of the pixel centred at `pixelCentre` (pixel units) for the camera's projection.
 double pixelSolidAngle(const shared::CameraParameters& camera, glm::dvec2 pixelCentre);
+// The illuminance (lx) a term adds to a frame: the sum over the image of (luminance of `with` minus
+// `without`, both RGBA cd/m^2 of this camera's size) x the pixel's solid angle.
+double addedIlluminance(const shared::CameraParameters& camera, const float* withRgba, const float* withoutRgba);
 
 // The pixels the Moon's disc can touch: its circle of angular radius plus two pixels projected, clamped
 // to the image; empty when the Moon is out of the view. x1, y1 are one past the last.

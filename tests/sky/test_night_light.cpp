@@ -210,15 +210,7 @@ TEST_F(NightLightTest, MoonDiscPixelsSumToItsIlluminanceAtAnyResolution) {
     noDisc.night.moonDisc = false;
     const RenderResult with = renderer().render(scene(json), options);
     const RenderResult without = renderer().render(scene(json), noDisc);
-    const shared::CameraParameters& c = with.view.camera;
-    double sum = 0.0;
-    for (int y = 0; y < c.height; ++y)
-      for (int x = 0; x < c.width; ++x) {
-        const size_t i = (size_t(y) * c.width + x) * 4;
-        const double d =
-            luminanceRec709(with.image.pixels.data() + i) - luminanceRec709(without.image.pixels.data() + i);
-        sum += d * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
-      }
+    const double sum = addedIlluminance(with.view.camera, with.image.pixels.data(), without.image.pixels.data());
     sums[k++] = sum;
     std::printf("%d px: disc %.5f lx, reference %.5f lx (%.5f above the air)\n", width, sum, expected,
                 moon.illuminanceLux);
@@ -265,15 +257,14 @@ TEST_F(NightLightTest, DaytimeMoonDiscPixelsSumToItsIlluminanceTimesTheTransmitt
     ASSERT_FALSE(without.night.dayMoonDisc);
     const shared::CameraParameters& c = with.view.camera;
     const double pixel = c.fov / c.width;
-    double sum = 0.0, nightSum = 0.0, outside = 0.0;
+    const double sum = addedIlluminance(c, with.image.pixels.data(), without.image.pixels.data());
+    const double nightSum = addedIlluminance(c, night.image.pixels.data(), without.image.pixels.data());
+    double outside = 0.0;
     for (int y = 0; y < c.height; ++y)
       for (int x = 0; x < c.width; ++x) {
         const size_t i = (size_t(y) * c.width + x) * 4;
-        const double sky = luminanceRec709(without.image.pixels.data() + i);
-        const double d = luminanceRec709(with.image.pixels.data() + i) - sky;
-        sum += d * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
-        nightSum +=
-            (luminanceRec709(night.image.pixels.data() + i) - sky) * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
+        const double d =
+            luminanceRec709(with.image.pixels.data() + i) - luminanceRec709(without.image.pixels.data() + i);
         bool valid = false;
         const glm::dvec3 dir = shared::cameraRayDirection(c, glm::dvec2(x + 0.5, y + 0.5), valid);
         if (std::acos(std::min(1.0, glm::dot(dir, moon.directionEnu))) > moon.angularRadius + 2.0 * pixel)
@@ -313,12 +304,12 @@ TEST_F(NightLightTest, DaytimeQuarterMoonIsSeenAgainstTheBlueSky) {
   const RenderResult without = renderer().render(scene(json), noDisc);
   ASSERT_TRUE(with.night.dayMoonDisc);
   const shared::CameraParameters& c = with.view.camera;
-  double lit = 0.0, ring = 0.0, ringCount = 0.0;
+  const double lit = addedIlluminance(c, with.image.pixels.data(), without.image.pixels.data());
+  double ring = 0.0, ringCount = 0.0;
   for (int y = 0; y < c.height; ++y)
     for (int x = 0; x < c.width; ++x) {
       const size_t i = (size_t(y) * c.width + x) * 4;
       const double sky = luminanceRec709(without.image.pixels.data() + i);
-      lit += (luminanceRec709(with.image.pixels.data() + i) - sky) * pixelSolidAngle(c, glm::dvec2(x + 0.5, y + 0.5));
       bool valid = false;
       const glm::dvec3 dir = shared::cameraRayDirection(c, glm::dvec2(x + 0.5, y + 0.5), valid);
       const double angle = std::acos(std::min(1.0, glm::dot(dir, moon.directionEnu)));
