@@ -5,7 +5,10 @@
 #
 # What is rendered: every scene under scenes/ at its own size, every scene file under eval/scenarios/
 # (the benchmark and calibration scenes; not the index files) at its own size, and a three-frame
-# reprojected sequence of scenes/cumulus.json (the temporal history). Each build gets an empty cache folder of its own
+# reprojected sequence of scenes/cumulus.json (the temporal history). A scenario whose terrain is a raster
+# relative to its file (eval/scenarios/terrain/dem_luxembourg.json: terra/elev.tif) reads it from the
+# test rasters scripts/fetch_test_dems.sh puts under build/test-data/dem (fetched first if missing;
+# FIRMAMENT_DEM_DIR overrides the folder), as `bench terrain --dem-dir` does. Each build gets an empty cache folder of its own
 # (FIRMAMENT_CACHE_DIR), so neither reads the other's atmosphere tables or noise textures.
 # The pixels are compared with NEW_FIRMAMENT's `compare` (its "identical" field: every float equal);
 # the EXR headers differ anyway (timings). Exit code 0: all identical; 1: some differ; 2: bad usage.
@@ -37,6 +40,18 @@ if [ -d eval/scenarios ]; then
   done < <(find eval/scenarios -name '*.json' ! -name index.json | sort)
 fi
 cases+=("cumulus_sequence|scenes/cumulus.json|--frames 3 --yaw-rate 0.5")
+
+# A relative "terrain"/"file" missing beside its scene is read from the test rasters (--dem-dir's convention).
+dem_dir=${FIRMAMENT_DEM_DIR:-build/test-data/dem}
+if grep -lq '"kind": "gdal"' scenes/*.json eval/scenarios/terrain/*.json 2>/dev/null; then
+  scripts/fetch_test_dems.sh "$dem_dir" || { echo "compare_builds: cannot fetch the test rasters into $dem_dir" >&2; exit 2; }
+  dem_dir=$(realpath "$dem_dir")
+  for i in "${!cases[@]}"; do
+    IFS='|' read -r name scene extra <<<"${cases[$i]}"
+    file=$(sed -n 's/.*"kind": "gdal", "file": "\([^"/][^"]*\)".*/\1/p' "$scene")
+    [ -n "$file" ] && [ ! -f "$(dirname "$scene")/$file" ] && cases[$i]="$name|$scene|$extra --set /terrain/file=$dem_dir/$file"
+  done
+fi
 
 failed=0
 compared=0
