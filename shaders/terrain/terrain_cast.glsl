@@ -252,8 +252,8 @@ TerrainCastHit terrainFinish(float t, int surface, vec3 normal, float height) {
 }
 
 // The first hit in [tMin, tMax] of the ray o + t d (d unit) with radius r and cosine mu at o, on the
-// surface of the level of detail `lod` (terrainLodNone(): the field itself).
-TerrainCastHit terrainCastLod(vec3 o, vec3 d, float r, float mu, float tMin, float tMax, TerrainLodRay lod) {
+// surface of the level of detail `lod` (terrainLodNone(): the field itself). terrainCastLod calls it.
+TerrainCastHit terrainCastWalk(vec3 o, vec3 d, float r, float mu, float tMin, float tMax, TerrainLodRay lod) {
   float R = terrain.camera_position.w;
   bool hasOutside = terrain.grid_size.w != 0;
   float outsideHeight = terrain.heights.x;
@@ -431,7 +431,21 @@ TerrainCastHit terrainCastLod(vec3 o, vec3 d, float r, float mu, float tMin, flo
 }
 
 TerrainCastHit terrainCast(vec3 o, vec3 d, float r, float mu, float tMin, float tMax) {
-  return terrainCastLod(o, d, r, mu, tMin, tMax, terrainLodNone());
+  return terrainCastWalk(o, d, r, mu, tMin, tMax, terrainLodNone());
+}
+
+// The same on the surface of the level of detail `lod`: the field's own walk up to where the footprint
+// passes one cell (there the surface is the field), the LOD walk beyond. Two walks, not one: the walk
+// that carries the levels costs ~4x on lavapipe even where every level is 0 (its loop's larger state),
+// so the near part keeps the lean one.
+TerrainCastHit terrainCastLod(vec3 o, vec3 d, float r, float mu, float tMin, float tMax, TerrainLodRay lod) {
+  float tLod = lod.slope > 0.0 ? (1.0 - lod.base) / lod.slope : (lod.base > 1.0 ? -kTerrainInfinity : kTerrainInfinity);
+  if (tLod > tMin) {
+    TerrainCastHit near = terrainCast(o, d, r, mu, tMin, min(tMax, tLod));
+    if (near.hit || tLod >= tMax) return near;
+    tMin = tLod;
+  }
+  return terrainCastWalk(o, d, r, mu, tMin, tMax, lod);
 }
 
 #endif  // FIRMAMENT_TERRAIN_CAST_GLSL
