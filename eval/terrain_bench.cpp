@@ -124,6 +124,7 @@ std::vector<TerrainBenchRow> runTerrainBench(gpu::Context& context, const Terrai
                                       : emptyCloudMedium(sceneGroundRadius(scene, cloudView));
     TerrainReferenceSettings rs;
     rs.skyDirections = directions;
+    rs.pixelSide = config.referencePixelSide;
     rs.threads = config.threads;
     if (config.quick) rs.skyTableZenith = 8, rs.skyTableSamples = 4;
     const TerrainReferenceImage reference = renderTerrainReference(
