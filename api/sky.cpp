@@ -133,6 +133,15 @@ const std::vector<Knob>& knobTable() {
          o.aerialPerspective.maxDistance_m = v.get<double>();
        },
        [](const SkyRenderOptions& o) -> nlohmann::json { return o.aerialPerspective.maxDistance_m; }},
+      {{"/terrain/lod_footprint", "0.7", "0 (off) or a number from 0.25 to 8",
+        "the terrain's level of detail: the field filtered to cells of this many pixel footprints where "
+        "that passes its cell (0: the finest samples at every distance)"},
+       [](SkyRenderOptions& o, const nlohmann::json& v, const std::string& w) {
+         const double x = v.is_number() ? v.get<double>() : -1.0;
+         if (!(x == 0.0 || (x >= 0.25 && x <= 8.0))) notAllowed(w, "0 (off) or a number from 0.25 to 8");
+         o.terrain.lodFootprint = x;
+       },
+       [](const SkyRenderOptions& o) -> nlohmann::json { return o.terrain.lodFootprint; }},
   };
   return table;
 }

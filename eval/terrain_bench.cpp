@@ -24,7 +24,7 @@ struct Knob {
 
 std::vector<Knob> knobs(bool quick) {
   std::vector<Knob> k;
-  k.push_back({"default", "shadow map 256 over 40 km, penumbra, hemisphere deck, self-shadow, horizon map 16",
+  k.push_back({"default", "shadow map 256 over 40 km, penumbra, hemisphere deck, self-shadow, horizon map 16, LOD 0.7",
                [](SkyRenderOptions&) {}});
   k.push_back(
       {"sky_occlusion", "none", [](SkyRenderOptions& o) { o.terrain.skyOcclusion = TerrainSkyOcclusion::None; }});
@@ -44,6 +44,9 @@ std::vector<Knob> knobs(bool quick) {
     k.push_back(
         {"shadow_map_size", std::to_string(size), [size](SkyRenderOptions& o) { o.clouds.shadowMapSize = size; }});
   k.push_back({"shadow_map_extent", "20 km", [](SkyRenderOptions& o) { o.clouds.shadowMapExtent = 20000.0; }});
+  for (double footprint : quick ? std::vector<double>{0.0} : std::vector<double>{0.0, 1.0})
+    k.push_back({"lod_footprint", footprint == 0.0 ? "0 (off)" : "1",
+                 [footprint](SkyRenderOptions& o) { o.terrain.lodFootprint = footprint; }});
   return k;
 }
 
@@ -121,6 +124,7 @@ std::vector<TerrainBenchRow> runTerrainBench(gpu::Context& context, const Terrai
                                       : emptyCloudMedium(sceneGroundRadius(scene, cloudView));
     TerrainReferenceSettings rs;
     rs.skyDirections = directions;
+    rs.pixelSide = config.referencePixelSide;
     rs.threads = config.threads;
     if (config.quick) rs.skyTableZenith = 8, rs.skyTableSamples = 4;
     const TerrainReferenceImage reference = renderTerrainReference(

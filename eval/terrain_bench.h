@@ -19,6 +19,9 @@ struct TerrainBenchConfig {
   int repeats = 3;
   int threads = 0;
   int skyDirections = 0;  // reference hemisphere directions per pixel (0: 64, --quick 16)
+  // The reference's view rays per pixel, pixelSide² (TerrainReferenceSettings::pixelSide): the pixel's
+  // area, which the terrain's level of detail filters to (3: 9 sub-pixels; 1: the pixel's centre).
+  int referencePixelSide = 3;
   int timingWidth = 640, timingHeight = 360;
   std::filesystem::path demDir = "build/test-data/dem";  // scripts/fetch_test_dems.sh's folder
   std::string environmentNote;

@@ -144,21 +144,26 @@ TerrainReferenceImage renderTerrainReference(const Scene& scene, const SceneView
   out.height = view.camera.height;
   out.pixels.resize(size_t(out.width) * size_t(out.height));
 
-  // The view rays' hits first: the sky table spans their heights.
-  std::vector<terrain::TerrainHit> hits(out.pixels.size());
+  // The view rays' hits first (pixelSide² per pixel): the sky table spans their heights.
+  const int pixelSide = std::max(settings.pixelSide, 1);
+  const size_t perPixel = size_t(pixelSide) * size_t(pixelSide);
+  std::vector<terrain::TerrainHit> hits(out.pixels.size() * perPixel);
   double hMin = 1e30, hMax = -1e30;
   for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      bool valid = false;
-      const glm::dvec3 d = shared::cameraRayDirection(view.camera, glm::dvec2(x + 0.5, y + 0.5), valid);
-      if (!valid) continue;
-      terrain::TerrainRay ray;
-      ray.origin = camera;
-      ray.direction = d;
-      terrain::TerrainHit& h = hits[size_t(y) * size_t(out.width) + size_t(x)];
-      h = walk.intersect(ray);
-      if (h.hit) hMin = std::min(hMin, h.height), hMax = std::max(hMax, h.height);
-    }
+    for (int x = 0; x < out.width; ++x)
+      for (size_t j = 0; j < perPixel; ++j) {
+        bool valid = false;
+        const glm::dvec2 at(x + (double(j % size_t(pixelSide)) + 0.5) / pixelSide,
+                            y + (double(j / size_t(pixelSide)) + 0.5) / pixelSide);
+        const glm::dvec3 d = shared::cameraRayDirection(view.camera, at, valid);
+        if (!valid) continue;
+        terrain::TerrainRay ray;
+        ray.origin = camera;
+        ray.direction = d;
+        terrain::TerrainHit& h = hits[(size_t(y) * size_t(out.width) + size_t(x)) * perPixel + j];
+        h = walk.intersect(ray);
+        if (h.hit) hMin = std::min(hMin, h.height), hMax = std::max(hMax, h.height);
+      }
   if (hMin > hMax) hMin = hMax = 0.0;
   const SkyRadianceTable sky(view.atmosphere, sun, R, hMin, hMax, settings, threads);
 
@@ -197,81 +202,100 @@ TerrainReferenceImage renderTerrainReference(const Scene& scene, const SceneView
   }
   if (nDisc > 1) disc.erase(disc.begin());  // the centre stands in only for a single sample
 
-  const int side = std::max(1, int(std::lround(std::sqrt(double(std::max(settings.skyDirections, 1))))));
+  const int side =
+      std::max(1, int(std::lround(std::sqrt(double(std::max(settings.skyDirections, 1)) / double(perPixel)))));
   const int nSky = side * side;
   std::atomic<size_t> next{0};
   auto work = [&] {
-    for (size_t i = next++; i < out.pixels.size(); i = next++) {
-      const terrain::TerrainHit& h = hits[i];
-      TerrainReferencePixel& px = out.pixels[i];
-      if (!h.hit) continue;
-      px.hit = true;
-      px.t = h.t;
-      const glm::dvec3 p = h.position;
-      const glm::dvec3 up = glm::normalize(p);
-      glm::dvec3 n = h.normal;
-      if (h.surface == terrain::TerrainSurface::Field) n = smoothNormal(field, h.plane, R);
-      const glm::dvec3 origin = p + 0.01 * h.normal + 0.01 * up;
-      auto blocked = [&](glm::dvec3 d) {
-        terrain::TerrainRay ray;
-        ray.origin = origin;
-        ray.direction = d;
-        ray.tMin = 0.02;
-        return walk.intersect(ray).hit;
-      };
-      // The sun over its disc.
-      double sunShare = 0.0, visibility = 0.0;
-      for (const glm::dvec3& s : disc) {
-        const double cosine = glm::dot(n, s);
-        if (cosine <= 0.0 || blocked(s)) continue;
-        const double transmittance =
-            clouds ? std::exp(-cloudOpticalDepthAlong(medium, p, s, settings.cloudStep_m)) : 1.0;
-        sunShare += cosine * transmittance / disc.size();
-        visibility += transmittance / disc.size();
-      }
-      const glm::dvec3 sunRgb = sunToRgb * tracer.sunIrradianceAt(p) * (sunShare / shared::kPi);
-      // The hemisphere, cosine-weighted about the shading normal, jittered strata.
-      std::mt19937_64 random(settings.seed * 0x9E3779B97F4A7C15ull + i);
-      std::uniform_real_distribution<double> unit(0.0, 1.0);
-      glm::dvec3 na, nb;
-      basis(n, na, nb);
-      glm::dvec3 skySum(0.0);
-      double sumY = 0.0, sumY2 = 0.0;
-      int occluded = 0;
-      for (int k = 0; k < nSky; ++k) {
-        const double u1 = ((k / side) + unit(random)) / side, u2 = ((k % side) + unit(random)) / side;
-        const double rr = std::sqrt(u1), phi = 2.0 * shared::kPi * u2;
-        const glm::dvec3 d =
-            glm::normalize(rr * std::cos(phi) * na + rr * std::sin(phi) * nb + std::sqrt(1.0 - u1) * n);
-        glm::dvec3 l(0.0);
-        if (blocked(d)) {
-          ++occluded;
-        } else {
-          const glm::dvec3 clear = skyToRgb * sky(d, h.height);
-          if (clouds) {
-            const CloudPathTracer::PixelResult c = tracer.pixel(origin, d, i * uint64_t(nSky) + uint64_t(k));
-            l = c.rgb + c.transmittance * clear;
-          } else {
-            l = clear;
-          }
+    for (size_t pixel = next++; pixel < out.pixels.size(); pixel = next++) {
+      TerrainReferencePixel& px = out.pixels[pixel];
+      TerrainReferencePixel sum;
+      double errors2 = 0.0;
+      int count = 0;
+      for (size_t j = 0; j < perPixel; ++j) {
+        // Sample i: the sub-pixel's (the pixel's own index for pixelSide 1).
+        const size_t i = pixel * perPixel + j;
+        const terrain::TerrainHit& h = hits[i];
+        if (!h.hit) continue;
+        if (count == 0 || h.t < px.t) px.t = h.t;
+        ++count;
+        px.hit = true;
+        const glm::dvec3 p = h.position;
+        const glm::dvec3 up = glm::normalize(p);
+        glm::dvec3 n = h.normal;
+        if (h.surface == terrain::TerrainSurface::Field) n = smoothNormal(field, h.plane, R);
+        const glm::dvec3 origin = p + 0.01 * h.normal + 0.01 * up;
+        auto blocked = [&](glm::dvec3 d) {
+          terrain::TerrainRay ray;
+          ray.origin = origin;
+          ray.direction = d;
+          ray.tMin = 0.02;
+          return walk.intersect(ray).hit;
+        };
+        // The sun over its disc.
+        double sunShare = 0.0, visibility = 0.0;
+        for (const glm::dvec3& s : disc) {
+          const double cosine = glm::dot(n, s);
+          if (cosine <= 0.0 || blocked(s)) continue;
+          const double transmittance =
+              clouds ? std::exp(-cloudOpticalDepthAlong(medium, p, s, settings.cloudStep_m)) : 1.0;
+          sunShare += cosine * transmittance / disc.size();
+          visibility += transmittance / disc.size();
         }
-        skySum += l;
-        const double y = luminanceRec709(l.x, l.y, l.z);
-        sumY += y, sumY2 += y * y;
+        const glm::dvec3 sunRgb = sunToRgb * tracer.sunIrradianceAt(p) * (sunShare / shared::kPi);
+        // The hemisphere, cosine-weighted about the shading normal, jittered strata.
+        std::mt19937_64 random(settings.seed * 0x9E3779B97F4A7C15ull + i);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        glm::dvec3 na, nb;
+        basis(n, na, nb);
+        glm::dvec3 skySum(0.0);
+        double sumY = 0.0, sumY2 = 0.0;
+        int occluded = 0;
+        for (int k = 0; k < nSky; ++k) {
+          const double u1 = ((k / side) + unit(random)) / side, u2 = ((k % side) + unit(random)) / side;
+          const double rr = std::sqrt(u1), phi = 2.0 * shared::kPi * u2;
+          const glm::dvec3 d =
+              glm::normalize(rr * std::cos(phi) * na + rr * std::sin(phi) * nb + std::sqrt(1.0 - u1) * n);
+          glm::dvec3 l(0.0);
+          if (blocked(d)) {
+            ++occluded;
+          } else {
+            const glm::dvec3 clear = skyToRgb * sky(d, h.height);
+            if (clouds) {
+              const CloudPathTracer::PixelResult c = tracer.pixel(origin, d, i * uint64_t(nSky) + uint64_t(k));
+              l = c.rgb + c.transmittance * clear;
+            } else {
+              l = clear;
+            }
+          }
+          skySum += l;
+          const double y = luminanceRec709(l.x, l.y, l.z);
+          sumY += y, sumY2 += y * y;
+        }
+        const double slopeCosine = std::clamp(glm::dot(n, up), -1.0, 1.0);
+        const glm::dvec3 albedo = shared::terrainAlbedo(h.height, slopeCosine, albedoParameters);
+        const glm::dvec3 skyRgb = skySum / double(nSky);
+        const double sunY = luminanceRec709(albedo.x * sunRgb.x, albedo.y * sunRgb.y, albedo.z * sunRgb.z);
+        const double skyY = luminanceRec709(albedo.x * skyRgb.x, albedo.y * skyRgb.y, albedo.z * skyRgb.z);
+        sum.sunLuminance += sunY;
+        sum.skyLuminance += skyY;
+        sum.sunVisibility += visibility;
+        sum.skyOcclusion += double(occluded) / nSky;
+        // The hemisphere's standard error, scaled by the albedo's luminance weight (grey enough).
+        const double meanY = sumY / nSky;
+        const double var = std::max(sumY2 / nSky - meanY * meanY, 0.0) / std::max(nSky - 1, 1);
+        const double skyRgbY = luminanceRec709(skyRgb.x, skyRgb.y, skyRgb.z);
+        const double error = std::sqrt(var) * (skyRgbY > 0.0 ? skyY / skyRgbY : 0.0);
+        errors2 += error * error;
       }
-      const double slopeCosine = std::clamp(glm::dot(n, up), -1.0, 1.0);
-      const glm::dvec3 albedo = shared::terrainAlbedo(h.height, slopeCosine, albedoParameters);
-      const glm::dvec3 skyRgb = skySum / double(nSky);
-      px.sunLuminance = luminanceRec709(albedo.x * sunRgb.x, albedo.y * sunRgb.y, albedo.z * sunRgb.z);
-      px.skyLuminance = luminanceRec709(albedo.x * skyRgb.x, albedo.y * skyRgb.y, albedo.z * skyRgb.z);
+      if (count == 0) continue;
+      // The mean over the sub-pixels that see terrain (the ground's light where the pixel shows ground).
+      px.sunLuminance = sum.sunLuminance / count;
+      px.skyLuminance = sum.skyLuminance / count;
       px.luminance = px.sunLuminance + px.skyLuminance;
-      px.sunVisibility = visibility;
-      px.skyOcclusion = double(occluded) / nSky;
-      // The hemisphere's standard error, scaled by the albedo's luminance weight (grey enough).
-      const double meanY = sumY / nSky;
-      const double var = std::max(sumY2 / nSky - meanY * meanY, 0.0) / std::max(nSky - 1, 1);
-      const double skyRgbY = luminanceRec709(skyRgb.x, skyRgb.y, skyRgb.z);
-      px.standardError = std::sqrt(var) * (skyRgbY > 0.0 ? px.skyLuminance / skyRgbY : 0.0);
+      px.sunVisibility = sum.sunVisibility / count;
+      px.skyOcclusion = sum.skyOcclusion / count;
+      px.standardError = std::sqrt(errors2) / count;
     }
   };
   std::vector<std::thread> pool;

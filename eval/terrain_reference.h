@@ -35,8 +35,12 @@
 namespace firmament {
 
 struct TerrainReferenceSettings {
-  int skyDirections = 64;     // cosine-weighted hemisphere directions per pixel
-  int sunDiscSamples = 8;     // directions over the sun's disc per pixel
+  int skyDirections = 64;  // cosine-weighted hemisphere directions per pixel
+  int sunDiscSamples = 8;  // directions over the sun's disc per pixel (per sub-pixel)
+  // pixelSide × pixelSide view rays per pixel at the centres of equal sub-pixels, each with its own hit,
+  // the sun's disc and skyDirections / pixelSide² of the hemisphere: the pixel's area, which a renderer
+  // that filters the terrain (its level of detail) renders. 1: the pixel's centre.
+  int pixelSide = 1;
   int skyTableZenith = 12;    // clear-sky radiance table: zenith bands over the upper hemisphere
   int skyTableSamples = 8;    // the atmosphere reference's paths per table direction
   double cloudStep_m = 10.0;  // the march of the clouds' optical depth along the sun's rays
@@ -52,7 +56,7 @@ struct TerrainReferencePixel {
   double sunVisibility = 0.0;  // <V e^-tau>_disc: 1 lit, 0 in full shadow
   double skyLuminance = 0.0;   // the hemisphere's part
   double skyOcclusion = 0.0;   // share of the cosine-weighted hemisphere the terrain hides
-  double t = 0.0;              // distance to the hit along the view ray (m)
+  double t = 0.0;              // distance to the hit along the view ray (m; the nearest sub-pixel's)
 };
 
 struct TerrainReferenceImage {

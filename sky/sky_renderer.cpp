@@ -661,6 +661,7 @@ void SkyRenderer::recordTerrain(Frame& frame, RenderResult& result, gpu::Command
   terrainView.horizonAzimuths = frame.options.terrain.horizonAzimuths;
   terrainView.occlusionRays = frame.options.terrain.occlusionRays;
   terrainView.groundOnly = frame.options.terrain.groundOnly;
+  terrainView.lodFootprint = frame.options.terrain.lodFootprint;
   if (frame.options.terrain.penumbra) terrainView.sunAngularRadius = luts_.parameters().sun_angular_radius;
   if (frame.clouds) {
     terrainView.deckAsymmetry = cloudPhaseMeanCosine(frame.clouds->lighting);

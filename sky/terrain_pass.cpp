@@ -7,11 +7,14 @@
 #include "common/cloud_lighting.glsl"
 #include "core/error.h"
 #include "terrain/min_max_pyramid.h"
+#include "terrain/terrain_lod.h"
 
 namespace firmament {
 namespace {
 
 constexpr int kMaxLevels = 16;  // kTerrainMaxLevels in shaders/terrain/terrain_block.glsl
+// The highest LOD level: cells 256 times the field's (decision 0206).
+constexpr int kMaxLodLevel = 8;
 
 // std140 mirror of TerrainBlock in shaders/terrain/terrain_block.glsl.
 struct TerrainBlock {
@@ -36,9 +39,10 @@ struct TerrainBlock {
   int32_t horizonSize[4];
   float horizonGrid[4];
   float deck[4];
+  float lod[4];
   int32_t levels[kMaxLevels][4];
 };
-static_assert(sizeof(TerrainBlock) == (21 + kMaxLevels) * 16);
+static_assert(sizeof(TerrainBlock) == (22 + kMaxLevels) * 16);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -63,6 +67,13 @@ struct ShadePush {
 
 double cloudPhaseMeanCosine(const CloudLightingSettings& l) {
   return shared::cloudPhaseMeanCosine(l.gForward, l.gBack, l.backWeight, l.alpha);
+}
+
+double cameraPixelAngle(const shared::CameraParameters& camera) {
+  const double width = std::max(camera.width, 1);
+  if (camera.projection == shared::kProjectionEquirectangular) return 2.0 * shared::kPi / width;
+  if (camera.projection == shared::kProjectionFisheye) return camera.fov / width;
+  return 2.0 * std::tan(0.5 * camera.fov) / width;
 }
 
 TerrainPass::TerrainPass(gpu::Context& context)
@@ -115,23 +126,40 @@ bool TerrainPass::prepare(const Scene& scene, double planetRadius) {
   auto resolved = std::make_unique<terrain::ResolvedTerrain>(terrain::resolveSceneTerrain(scene, planetRadius));
   const terrain::HeightField& field = resolved->field;
   if (field.nx < 2 || field.ny < 2) throw InputError("terrain: the height field needs at least 2 x 2 samples");
-  const terrain::MinMaxPyramid pyramid(field);
+  const terrain::TerrainLod lod = terrain::buildTerrainLod(field, kMaxLodLevel);
+  const terrain::MinMaxPyramid& pyramid = lod.levelBounds[0];
   if (pyramid.levels() > kMaxLevels)
     throw InputError("terrain: resolution " + std::to_string(std::max(field.nx, field.ny)) +
                      " needs more than 16 pyramid levels; allowed: up to 32769 samples a side");
+  lodLevels_ = int(lod.levels.size()) - 1;
+  // Pyramid level L's group: the bounds of LOD levels k = 0 ... min(L, lodLevels_) over its nodes
+  // (terrain_block.glsl terrainLodNodeRange); the heights, then LOD levels 1 ... lodLevels_'s samples.
   std::vector<float> packed;
+  std::vector<float> heights = field.heights;
   levels_.clear();
-  for (int k = 0; k < pyramid.levels(); ++k) {
-    const terrain::MinMaxLevel& level = pyramid.level(k);
+  for (int L = 0; L < pyramid.levels(); ++L) {
+    const terrain::MinMaxLevel& level = pyramid.level(L);
     levels_.push_back({int(packed.size()), level.width, level.height, 0});
-    packed.insert(packed.end(), level.minimum.begin(), level.minimum.end());
-    packed.insert(packed.end(), level.maximum.begin(), level.maximum.end());
+    for (int k = 0; k <= std::min(L, lodLevels_); ++k) {
+      const terrain::MinMaxLevel& bounds = lod.levelBounds[size_t(k)].level(L - k);
+      if (bounds.width != level.width || bounds.height != level.height)
+        throw std::logic_error("TerrainPass: a LOD level's bounds do not match the pyramid's nodes");
+      packed.insert(packed.end(), bounds.minimum.begin(), bounds.minimum.end());
+      packed.insert(packed.end(), bounds.maximum.begin(), bounds.maximum.end());
+    }
+    if (L >= 1 && L <= lodLevels_) {
+      const terrain::HeightField& h = lod.levels[size_t(L)];
+      if (h.nx != level.width + 1 || h.ny != level.height + 1)
+        throw std::logic_error("TerrainPass: a LOD level's samples do not match the pyramid's nodes");
+      levels_.back()[3] = int(heights.size());
+      heights.insert(heights.end(), h.heights.begin(), h.heights.end());
+    }
   }
   fieldTop_ = pyramid.fieldMax();
   if (field.hasOutside()) fieldTop_ = std::max(fieldTop_, float(field.outsideHeight));
-  heights_ = gpu::Buffer(context_, field.heights.size() * sizeof(float), gpu::BufferUsage::Storage,
+  heights_ = gpu::Buffer(context_, heights.size() * sizeof(float), gpu::BufferUsage::Storage,
                          gpu::MemoryLocation::Device, "terrain heights");
-  heights_.upload(field.heights);
+  heights_.upload(heights);
   pyramid_ = gpu::Buffer(context_, packed.size() * sizeof(float), gpu::BufferUsage::Storage,
                          gpu::MemoryLocation::Device, "terrain pyramid");
   pyramid_.upload(packed);
@@ -183,6 +211,9 @@ void TerrainPass::uploadBlock(const TerrainPassView& view, const TerrainCloudSha
   b.albedoSlopes[2] = float(a.slopeTransition);
   b.deck[0] = float(view.cloudMiddleRadius);
   b.deck[1] = view.skyLight == TerrainSkyLight::DeckHemisphere ? 1.0f : 0.0f;
+  // The camera's cone in field cells per metre of distance; the walk's LOD starts where it passes one.
+  b.lod[0] = float(std::max(view.lodFootprint, 0.0) * cameraPixelAngle(view.camera) / std::max(f.dx, f.dy));
+  b.lod[1] = float(lodLevels_);
   b.skyOcclusion[0] = int(view.skyOcclusion);
   b.skyOcclusion[1] = std::max(view.occlusionRays, 1);
   if (view.skyOcclusion == TerrainSkyOcclusion::HorizonMap) {

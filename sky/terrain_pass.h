@@ -53,6 +53,11 @@ struct TerrainPassOptions {
   TerrainSkyOcclusion skyOcclusion = TerrainSkyOcclusion::HorizonMap;
   int horizonAzimuths = 16;  // the horizon map's azimuths
   int occlusionRays = 16;    // rays per pixel for TerrainSkyOcclusion::Rays
+  // Level of detail by distance (terrain/terrain_lod.h, docs/terrain.md "Level of detail"): the surface is
+  // the field filtered to cells of lodFootprint × the pixel's cone width (distance × pixel angle) wherever
+  // that exceeds the field's cell; 0: the field's own samples at every distance (point sampling). 0.7:
+  // the least error against 4 × 4 sub-pixels and their own frame-to-frame change in a pan (decision 0206).
+  double lodFootprint = 0.7;
   // The ground's own radiance at the surface, without the air between camera and ground (eval's ground
   // reference compares this); the sky's pixels stay.
   bool groundOnly = false;
@@ -71,7 +76,8 @@ struct TerrainPassView {
   TerrainSkyOcclusion skyOcclusion = TerrainSkyOcclusion::None;
   int horizonAzimuths = 16;
   int occlusionRays = 16;
-  bool groundOnly = false;  // TerrainPassOptions::groundOnly
+  bool groundOnly = false;    // TerrainPassOptions::groundOnly
+  double lodFootprint = 0.0;  // TerrainPassOptions::lodFootprint
   // The sun's angular radius (rad) for the cloud shadows' penumbrae; 0: no penumbra.
   double sunAngularRadius = 0.0;
   // The clouds' middle radius (m; the mean of the layers' middles): where TerrainSkyLight::DeckHemisphere
@@ -87,6 +93,10 @@ struct TerrainPassView {
 // (1 + alpha (1 + 2 g^2) / 3) (Draine 2003, ApJ 598, 1017; HG's g for alpha = 0). The default dual HG
 // (0.8, -0.3, w 0.3): 0.47.
 double cloudPhaseMeanCosine(const CloudLightingSettings& lighting);
+
+// The angle (rad) one pixel spans at the image's centre: 2 tan(fov / 2) / width for a perspective
+// camera, fov / width for the equidistant fisheye, 2 pi / width for the equirectangular.
+double cameraPixelAngle(const shared::CameraParameters& camera);
 
 // The clouds' Beer shadow map and where it lies (clouds/cloud_pass.h ShadowPlacement).
 struct TerrainCloudShadow {
@@ -152,7 +162,9 @@ class TerrainPass {
   double horizonSeconds_ = 0.0;
   std::unique_ptr<terrain::HorizonMap> horizon_;  // of the resolved terrain
   gpu::Buffer horizonBuffer_;
-  std::vector<glm::ivec4> levels_;  // offset, width, height, 0 per pyramid level
+  // Per pyramid level: offset of its group of LOD bounds, width, height, offset of the LOD level's heights.
+  std::vector<glm::ivec4> levels_;
+  int lodLevels_ = 0;  // the highest LOD level (terrain/terrain_lod.h)
   float fieldTop_ = 0.0f;
   gpu::Buffer block_;
   gpu::Buffer heights_;

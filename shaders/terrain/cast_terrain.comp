@@ -19,7 +19,8 @@
 
 layout(local_size_x = FIRMAMENT_TILE_SIZE, local_size_y = FIRMAMENT_TILE_SIZE) in;
 // Three vec4 per pixel: (normal, t), (sun visibility past the terrain, cloud optical depth to the sun,
-// height, sky visibility), (the deck's diffuse sunlight D, its transmission of sky light T_d, 0, 0);
+// height, sky visibility), (the deck's diffuse sunlight D, its transmission of sky light T_d, the level
+// of detail at the hit, 0);
 // t = 1e30 where the ray meets no terrain. Sky visibility: the cosine-weighted share of the sky the
 // surface sees (the isotropic (1 + n.z) / 2 without the terrain's occlusion).
 layout(std430, set = 0, binding = 3) writeonly buffer TerrainHits { vec4 v[]; }
@@ -69,7 +70,7 @@ float horizonSkyVisibility(vec3 p, vec3 up, vec3 n, float R) {
 
 // The same share from `count` rays cosine-weighted about n (an equal-area spiral turned by a per-pixel
 // angle): the share of them that leave the terrain.
-float raySkyVisibility(vec3 p, vec3 up, vec3 n, int count, uvec2 pixel) {
+float raySkyVisibility(vec3 p, vec3 up, vec3 n, int count, uvec2 pixel, TerrainLodRay lod) {
   vec3 a = normalize(cross(abs(n.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0), n));
   vec3 b = cross(n, a);
   uint seed = pixel.x * 1973u + pixel.y * 9277u + 26699u;
@@ -83,7 +84,8 @@ float raySkyVisibility(vec3 p, vec3 up, vec3 n, int count, uvec2 pixel) {
     float u = (float(k) + 0.5) / float(count);
     float radius = sqrt(u), angle = 2.39996323 * float(k) + turn;
     vec3 d = normalize(radius * cos(angle) * a + radius * sin(angle) * b + sqrt(1.0 - u) * n);
-    TerrainCastHit blocker = terrainCast(start, d, rs, clamp(dot(start, d) / rs, -1.0, 1.0), 0.0, kTerrainInfinity);
+    TerrainCastHit blocker =
+        terrainCastLod(start, d, rs, clamp(dot(start, d) / rs, -1.0, 1.0), 0.0, kTerrainInfinity, lod);
     if (!(blocker.hit && blocker.t > 1.0)) ++open;
   }
   return float(open) / float(count);
@@ -100,11 +102,16 @@ void main() {
   TerrainCastHit hit = terrainNoHit();
   vec3 origin = terrain.camera_position.xyz;
   float R = terrain.camera_position.w;
+  // Level of detail: the pixel's cone, terrain.lod.x field cells wide per metre of distance.
+  TerrainLodRay cameraLod = TerrainLodRay(0.0, terrain.lod.x);
   if (valid) {
     float r = length(origin);
     float mu = clamp(dot(origin, dir) / r, -1.0, 1.0);
-    hit = terrainCast(origin, dir, r, mu, 0.0, kTerrainInfinity);
+    hit = terrainCastLod(origin, dir, r, mu, 0.0, kTerrainInfinity, cameraLod);
   }
+  float lambda = hit.hit ? terrainLodLevel(cameraLod, hit.t) : 0.0;
+  // The shadow and occlusion rays meet the surface the camera sees at the hit: its level, kept along them.
+  TerrainLodRay pointLod = TerrainLodRay(terrain.lod.x * (hit.hit ? hit.t : 0.0), 0.0);
   float visibility = 1.0;
   float cloudDepth = 0.0;
   float skyVisibility = 1.0;
@@ -116,20 +123,20 @@ void main() {
     // Field points shade with the smooth normal (the cast's exact one stays for walls and the outside).
     if (hit.surface == 1) {
       vec2 plane = terrainPlanePoint(p, R);
-      vec3 smoothNormal = terrainSmoothNormal(plane, R);
+      vec3 smoothNormal = terrainLodSmoothNormal(plane, lambda, R);
       if (dot(smoothNormal, smoothNormal) > 0.5) hit.normal = smoothNormal;
     }
     skyVisibility = 0.5 * (1.0 + clamp(dot(hit.normal, up), -1.0, 1.0));
     if (terrain.sky_occlusion.x == 1 && hit.surface == 1) skyVisibility = horizonSkyVisibility(p, up, hit.normal, R);
     if (terrain.sky_occlusion.x == 2)
-      skyVisibility = raySkyVisibility(p, up, hit.normal, terrain.sky_occlusion.y, tile_pixel);
+      skyVisibility = raySkyVisibility(p, up, hit.normal, terrain.sky_occlusion.y, tile_pixel, pointLod);
     // The shadow ray starts 2 m out along the normal and 0.5 m up: the hit's float position is good to
     // ~0.5 m at the planet's radius, and a start under the surface would shadow the point itself.
     if (terrain.sun_direction.w > 0.5 && dot(hit.normal, sun) > 0.0 && dot(up, sun) > -0.1) {
       vec3 start = p + 2.0 * hit.normal + 0.5 * up;
       float rs = length(start);
       float mus = clamp(dot(start, sun) / rs, -1.0, 1.0);
-      TerrainCastHit blocker = terrainCast(start, sun, rs, mus, 0.0, kTerrainInfinity);
+      TerrainCastHit blocker = terrainCastLod(start, sun, rs, mus, 0.0, kTerrainInfinity, pointLod);
       if (blocker.hit && blocker.t > 1.0) visibility = 0.0;
     }
     if (terrain.shadow_v.w > 0.5) {
@@ -182,6 +189,6 @@ void main() {
   }
   hits.v[3u * index] = vec4(hit.normal, hit.t);
   hits.v[3u * index + 1u] = vec4(visibility, cloudDepth, hit.height, skyVisibility);
-  hits.v[3u * index + 2u] = vec4(deck, 0.0, 0.0);
+  hits.v[3u * index + 2u] = vec4(deck, lambda, 0.0);
   depth.t[index] = hit.t;
 }

@@ -35,7 +35,11 @@ layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
   ivec4 horizon_size;    // horizon map: texels east, texels north, azimuths, unused
   vec4 horizon_grid;     // horizon map: plane position of texel (0, 0), texel spacing east and north (m)
   vec4 deck;             // the clouds' middle radius (m; 0: none), 1 = deck light from the cover the hemisphere sees, unused, unused
-  ivec4 levels[kTerrainMaxLevels];  // per pyramid level: offset of its minima in the pyramid buffer, width, height, unused
+  vec4 lod;              // level of detail (terrain/terrain_lod.h): the camera's footprint in cells per metre of distance (0: off), the highest LOD level, unused, unused
+  // Per pyramid level L: offset of its group in the pyramid buffer (the minima then maxima of LOD level
+  // k's bounds, for k = 0 … min(L, highest LOD level)), width, height, and for 1 <= L <= the highest
+  // LOD level the offset of LOD level L's heights in the heights buffer.
+  ivec4 levels[kTerrainMaxLevels];
 } terrain;
 
 // Horizon elevations (rad, terrain/horizon_map.h): per texel (row-major from the south-west) its
@@ -44,7 +48,8 @@ layout(std140, set = 0, binding = TERRAIN_BLOCK_BINDING) uniform TerrainBlock {
 layout(std430, set = 0, binding = TERRAIN_HORIZON_BINDING) readonly buffer TerrainHorizons { float v[]; } terrainHorizons;
 #endif
 
-// Heights (m above R), nx x ny, row-major from the south-west sample.
+// Heights (m above R), nx x ny, row-major from the south-west sample; then the LOD levels 1, 2, ...
+// (terrain/terrain_lod.h), (width + 1) x (height + 1) of pyramid level k each, at their offsets.
 layout(std430, set = 0, binding = TERRAIN_HEIGHTS_BINDING) readonly buffer TerrainHeights { float h[]; } terrainHeights;
 // Per level: width x height minima, then width x height maxima (row 0 south).
 layout(std430, set = 0, binding = TERRAIN_PYRAMID_BINDING) readonly buffer TerrainPyramid { float v[]; } terrainPyramid;
@@ -59,6 +64,26 @@ vec2 terrainNodeRange(int level, int i, int j) {
   ivec4 l = terrain.levels[level];
   int k = l.x + j * l.y + i;
   return vec2(terrainPyramid.v[k], terrainPyramid.v[k + l.y * l.z]);
+}
+
+// The bounds of LOD level k's surface over the pyramid node (level, i, j): from the node's own entry of
+// level k's bounds, or, for a node smaller than level k's cells, from the cell it lies in.
+vec2 terrainLodNodeRange(int k, int level, int i, int j) {
+  if (level < k) {
+    i >>= k - level;
+    j >>= k - level;
+    level = k;
+  }
+  ivec4 l = terrain.levels[level];
+  int n = l.y * l.z;
+  int at = l.x + 2 * k * n + j * l.y + i;
+  return vec2(terrainPyramid.v[at], terrainPyramid.v[at + n]);
+}
+
+// Sample (i, j) of LOD level k >= 1: (width + 1) x (height + 1) samples of pyramid level k's cells.
+float terrainLodAt(int k, int i, int j) {
+  ivec4 l = terrain.levels[k];
+  return terrainHeights.h[l.w + j * (l.y + 1) + i];
 }
 
 TerrainAlbedoParameters terrainAlbedoParameters() {
