@@ -68,20 +68,32 @@ std::string oneOf(const nlohmann::json& v, std::initializer_list<const char*> na
 
 const std::vector<Knob>& knobTable() {
   static const std::vector<Knob> table = {
-      {{"/atmosphere/multiple_scattering", "\"fms\"", "fms, tables",
-        "fms: Hillaire 2020's f_ms table and a march; tables: Bruneton 2017's 4D tables of N orders"},
+      {{"/atmosphere/multiple_scattering", "\"auto\"", "auto, fms, tables",
+        "auto: f_ms with the sun up, Bruneton 2017's 4D tables in twilight (blended from -2 to -6 deg; f_ms always "
+        "with clouds or terrain); fms: Hillaire 2020's f_ms table and a march; tables: the 4D tables of N orders"},
        [](SkyRenderOptions& o, const nlohmann::json& v, const std::string& w) {
-         o.multipleScattering = oneOf(v, {"fms", "tables"}, w) == "tables" ? MultipleScattering::BrunetonTables
-                                                                           : MultipleScattering::HillaireFms;
+         const std::string name = oneOf(v, {"auto", "fms", "tables"}, w);
+         o.multipleScattering = name == "tables" ? MultipleScattering::BrunetonTables
+                                : name == "fms"  ? MultipleScattering::HillaireFms
+                                                 : MultipleScattering::Auto;
        },
        [](const SkyRenderOptions& o) -> nlohmann::json {
-         return o.multipleScattering == MultipleScattering::BrunetonTables ? "tables" : "fms";
+         return o.multipleScattering == MultipleScattering::BrunetonTables ? "tables"
+                : o.multipleScattering == MultipleScattering::HillaireFms  ? "fms"
+                                                                           : "auto";
        }},
-      {{"/atmosphere/scattering_orders", "4", "an integer from 1 to 64", "scattering orders of the 4D tables"},
+      {{"/atmosphere/scattering_orders", "4", "an integer from 1 to 64",
+        "scattering orders of the 4D tables (--multiple-scattering tables)"},
        [](SkyRenderOptions& o, const nlohmann::json& v, const std::string& w) {
          o.tables.scatteringOrders = integerIn(v, 1, 64, w);
        },
        [](const SkyRenderOptions& o) -> nlohmann::json { return o.tables.scatteringOrders; }},
+      {{"/atmosphere/twilight_scattering_orders", "4", "an integer from 1 to 64",
+        "scattering orders of the 4D tables the auto form reads in twilight"},
+       [](SkyRenderOptions& o, const nlohmann::json& v, const std::string& w) {
+         o.twilightTables.scatteringOrders = integerIn(v, 1, 64, w);
+       },
+       [](const SkyRenderOptions& o) -> nlohmann::json { return o.twilightTables.scatteringOrders; }},
       {{"/atmosphere/spectral_samples", "\"auto\"", "auto, 3, or a multiple of 3 from 6 to 48",
         "wavelengths: auto (3, or 12 with the sun within 15 deg of the horizon or below), or N integrated to "
         "luminance"},

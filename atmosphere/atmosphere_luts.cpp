@@ -64,6 +64,15 @@ AtmosphereLuts::Update AtmosphereLuts::update(const AtmosphereSettings& atmosphe
       "atmosphere-luts-v3/" + atmosphere.hash() + "/" + settings.hash() + "/" + context_.description() + "/" + code;
   Update result;
   if (key == key_) return result;
+  // Without the Sun's distance, and with or without Psi_ms alike (the transmittance and the blocks the
+  // tables read do not depend on either).
+  AtmosphereSettings unscaled = atmosphere;
+  unscaled.solarIrradianceScale = 1.0;
+  AtmosphereLutSettings withPsi = settings;
+  withPsi.multipleScatteringLut = true;
+  unscaledKey_ =
+      "atmosphere-luts-v3/" + unscaled.hash() + "/" + withPsi.hash() + "/" + context_.description() + "/" + code;
+  solarIrradianceScale_ = atmosphere.solarIrradianceScale;
 
   // Parameters and tables of every batch (kept when only their contents change).
   std::vector<SpectralBatch> spectra = spectralBatches(settings.spectralSamples, settings.wavelengthsNm);

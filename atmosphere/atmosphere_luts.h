@@ -76,6 +76,11 @@ class AtmosphereLuts {
   // Wavelength-independent geometry (radii) of the current atmosphere.
   const shared::AtmosphereParameters& parameters() const { return batches_.at(0).parameters; }
   const std::string& key() const { return key_; }
+  // The key with the atmosphere's solar irradiance scale (the Sun's distance) and the Psi_ms switch left
+  // out, and that scale: tables built on the transmittance and linear in the light (scattering_tables.h)
+  // are keyed by the first and rescaled by the second.
+  const std::string& unscaledKey() const { return unscaledKey_; }
+  double solarIrradianceScale() const { return solarIrradianceScale_; }
 
  private:
   gpu::Context& context_;
@@ -89,6 +94,8 @@ class AtmosphereLuts {
   gpu::Image sunRadiance_;
   gpu::Sampler linearClamp_;
   std::string key_;  // atmosphere hash + settings hash + device of the current tables
+  std::string unscaledKey_;
+  double solarIrradianceScale_ = 1.0;
 };
 
 }  // namespace firmament

@@ -2,7 +2,10 @@
 
 #include <cstdio>
 
+#include "atmosphere/table_file.h"
 #include "core/error.h"
+#include "core/hash.h"
+#include "gpu/shaders.h"
 
 namespace firmament {
 namespace {
@@ -21,6 +24,15 @@ TablePush tablePush(const ScatteringTableSettings& s, int value0, int value1 = 0
 }
 
 uint32_t groups(int n, int local) { return uint32_t((n + local - 1) / local); }
+
+TableData download(const gpu::Image& image) {
+  return TableData{image.width(), image.height(), image.depth(), 4, image.downloadFloats()};
+}
+
+bool fits(const TableData& data, const gpu::Image& image) {
+  return data.width == image.width() && data.height == image.height() && data.depth == image.depth() &&
+         data.channels == 4 && data.values.size() == size_t(data.width) * data.height * data.depth * 4;
+}
 
 }  // namespace
 
@@ -86,9 +98,14 @@ void ScatteringTables::allocate(const ScatteringTableSettings& s) {
   }
 }
 
-bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableSettings& s,
+bool ScatteringTables::update(const AtmosphereLuts& luts, size_t batch, const ScatteringTableSettings& s,
                               gpu::CommandList& commands) {
-  std::string key = luts.key() + "/" + s.hash();
+  static const std::string code = gpu::shaderCodeHash(
+      {"atmosphere/direct_irradiance", "atmosphere/single_scattering", "atmosphere/scattering_density",
+       "atmosphere/indirect_irradiance", "atmosphere/multiple_scattering"});
+  std::string key =
+      "scattering-tables-v1/" + luts.unscaledKey() + "/batch" + std::to_string(batch) + "/" + s.hash() + "/" + code;
+  source_ = "memory";
   if (key == key_) return false;
   if (s.scatteringOrders < 1 || s.nuSize < 2 || s.muSSize < 2 || s.muSize < 4 || s.muSize % 2 != 0 || s.rSize < 2 ||
       s.irradianceWidth < 2 || s.irradianceHeight < 2 || s.integrationSteps < 1 || s.densityThetaSamples < 1 ||
@@ -97,11 +114,30 @@ bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableS
                      "): orders >= 1, sizes >= 2 with mu even, density theta samples 1..16");
   allocate(s);
   settings_ = s;
+  solarIrradianceScale_ = luts.solarIrradianceScale();
+  // The disk cache: the summed scattering, single Mie and ground irradiance, at the scale they hold.
+  pendingFile_.clear();
+  if (!context_.cacheDir().empty()) {
+    const std::filesystem::path file = context_.cacheDir() / "tables" / ("scattering-" + hex16(fnv1a(key)) + ".bin");
+    const auto tables = readTableFile(file, key);
+    if (tables && tables->size() == 4 && fits((*tables)[0], scattering_) && fits((*tables)[1], deltaMie_) &&
+        fits((*tables)[2], irradiance_) && (*tables)[3].values.size() == 1) {
+      scattering_.uploadFloats((*tables)[0].values);
+      deltaMie_.uploadFloats((*tables)[1].values);
+      irradiance_.uploadFloats((*tables)[2].values);
+      solarIrradianceScale_ = (*tables)[3].values[0];
+      key_ = key;
+      source_ = "disk cache";
+      return false;
+    }
+    pendingFile_ = file;
+  }
+  source_ = "computed";
 
   const int tableWidth = s.nuSize * s.muSSize;
   const gpu::Sampler& linear = luts.linearClamp();
-  const gpu::Buffer& block = luts.atmosphereBlock();
-  const gpu::Image& transmittance = luts.transmittance();
+  const gpu::Buffer& block = luts.batch(batch).block;
+  const gpu::Image& transmittance = luts.batch(batch).transmittance;
 
   // 1. Direct irradiance (lights the ground for order 2); the sky irradiance table starts at zero.
   commands.bind(directIrradiancePipeline_, {block, {transmittance, linear}, deltaIrradiance_, irradiance_});
@@ -145,6 +181,13 @@ bool ScatteringTables::update(const AtmosphereLuts& luts, const ScatteringTableS
   }
   key_ = key;
   return true;
+}
+
+void ScatteringTables::store() {
+  if (pendingFile_.empty()) return;
+  TableData scale{1, 1, 1, 1, {float(solarIrradianceScale_)}};
+  writeTableFile(pendingFile_, key_, {download(scattering_), download(deltaMie_), download(irradiance_), scale});
+  pendingFile_.clear();
 }
 
 }  // namespace firmament

@@ -2,12 +2,16 @@
 // Bruneton 2017's precomputed scattering ("Precomputed Atmospheric Scattering: a New Implementation"):
 // N scattering orders summed into a 4D table S(r, mu, mu_s, nu), single Mie scattering in a second
 // 4D table, and the sky's irradiance on the ground E_sky(r, mu_s). Built on the GPU from the
-// transmittance table of AtmosphereLuts, and kept until the atmosphere or the settings change (keyed by
-// both hashes). docs/atmosphere-tables.md describes the algorithm, the choices and their cost.
+// transmittance table of one of AtmosphereLuts' spectral batches, and kept until the atmosphere or the
+// settings change (keyed by both hashes). The tables are linear in the solar irradiance, so the Sun's
+// distance is not in the key: they keep the scale they were computed at (solarIrradianceScale()) and a
+// reader multiplies by the current scale over it. docs/atmosphere-tables.md describes the algorithm,
+// the choices and their cost.
 //
 //   ScatteringTables tables(context);
 //   gpu::CommandList list(context);
 //   if (luts.update(atmosphere, lutSettings, list) | tables.update(luts, tableSettings, list)) list.submitAndWait();
+#include <filesystem>
 #include <string>
 
 #include "atmosphere/atmosphere_luts.h"
@@ -35,14 +39,31 @@ struct ScatteringTableSettings {
   shared::ScatteringTableSize tableSize() const { return {nuSize, muSSize, muSize, rSize}; }
 };
 
+// The tables the default frame reads in twilight (SkyRenderOptions::twilightTables, decision 0158): four
+// orders (8 and 16 change the twilight's ground illuminance by under 3 %) at a quarter of the default
+// size (mu and r halved: under 1 % there).
+inline constexpr ScatteringTableSettings kTwilightTableSettings = [] {
+  ScatteringTableSettings s;
+  s.muSize = 64;
+  s.rSize = 16;
+  return s;
+}();
+
 class ScatteringTables {
  public:
   explicit ScatteringTables(gpu::Context& context);
 
   // Makes the tables match `luts` (its parameters, block and transmittance, which must already be
   // current or recorded earlier into `commands`) and `settings`. Records the passes and returns true
-  // when stale; false when the cached tables are current.
-  bool update(const AtmosphereLuts& luts, const ScatteringTableSettings& settings, gpu::CommandList& commands);
+  // when stale; false when the tables are current (in memory, or read from the disk cache,
+  // Context::cacheDir, when a file for the key exists). After recorded passes have run, store() writes
+  // them to the disk cache.
+  bool update(const AtmosphereLuts& luts, const ScatteringTableSettings& settings, gpu::CommandList& commands) {
+    return update(luts, 0, settings, commands);
+  }
+  // The same from the wavelengths of `luts`' spectral batch `batch`.
+  bool update(const AtmosphereLuts& luts, size_t batch, const ScatteringTableSettings& settings,
+              gpu::CommandList& commands);
 
   // Rayleigh single scattering + every higher order divided by p_R(nu) (multiply by p_R at lookup).
   const gpu::Image& scattering() const { return scattering_; }
@@ -52,6 +73,11 @@ class ScatteringTables {
   const gpu::Image& irradiance() const { return irradiance_; }
   const ScatteringTableSettings& settings() const { return settings_; }
   const std::string& key() const { return key_; }
+  // The atmosphere's solar irradiance scale the tables hold (AtmosphereLuts::solarIrradianceScale).
+  double solarIrradianceScale() const { return solarIrradianceScale_; }
+  // "memory", "disk cache" or "computed": where the last update() found the tables.
+  const std::string& source() const { return source_; }
+  void store();  // the computed tables to the disk cache (nothing when none are pending or no cache)
 
  private:
   void allocate(const ScatteringTableSettings& settings);
@@ -71,6 +97,9 @@ class ScatteringTables {
   gpu::Image scattering_;
   ScatteringTableSettings settings_;
   std::string key_;
+  double solarIrradianceScale_ = 1.0;
+  std::string source_ = "memory";
+  std::filesystem::path pendingFile_;  // where store() writes the tables just recorded (empty: nothing)
 };
 
 }  // namespace firmament

@@ -231,10 +231,15 @@ std::vector<BenchKnob> atmosphereBenchKnobs(bool quick) {
   add("fms_sky_irradiance_steps", "f_ms form: the ground's skylight, march steps per direction",
       std::to_string(d.fmsSkyIrradiance.marchSteps),
       ints({4, 8, 16, 32}, [](SkyRenderOptions& o, int v) { o.fmsSkyIrradiance.marchSteps = v; }), true);
-  const char* kShippedMode = d.multipleScattering == MultipleScattering::HillaireFms ? "f_ms" : "tables";
-  add("multiple_scattering", "f_ms: Hillaire 2020's Psi_ms (all orders, isotropic); tables: Bruneton 2017's 4D tables",
+  const char* kShippedMode = d.multipleScattering == MultipleScattering::HillaireFms      ? "f_ms"
+                             : d.multipleScattering == MultipleScattering::BrunetonTables ? "tables"
+                                                                                          : "auto";
+  add("multiple_scattering",
+      "auto: f_ms with the sun above -2 deg, the 4D tables below -6 deg, blended between; f_ms: Hillaire 2020's "
+      "Psi_ms (all orders, isotropic); tables: Bruneton 2017's 4D tables",
       kShippedMode,
-      {{"f_ms", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::HillaireFms; }},
+      {{"auto", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::Auto; }},
+       {"f_ms", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::HillaireFms; }},
        {"tables", [](SkyRenderOptions& o) { o.multipleScattering = MultipleScattering::BrunetonTables; }}},
       true);
   // The tables form's own knobs switch the form on (the shipped form is f_ms): their default marks

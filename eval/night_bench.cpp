@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <memory>
 #include <numbers>
 
 #include "astro/moon_photometry.h"
@@ -363,18 +365,33 @@ NightBenchRow moonlitSkyRow(SkyRenderer& renderer, const NightBenchConfig& confi
   return r;
 }
 
-// The twilight: the ground's horizontal illuminance from the sky at sun -6, -9, -12 deg (2026-06-21 evening),
-// the frame's 180-deg fisheye against the reference over the hemisphere (midpoints in cos z and azimuth).
+// The GPU time of the 4D tables' precompute in a render (0 when they were current).
+double tablePrecomputeMilliseconds(const RenderResult& r) {
+  double ms = 0.0;
+  for (const gpu::PassTiming& t : r.timings)
+    for (const char* label :
+         {"atmosphere/direct_irradiance", "atmosphere/single_scattering", "atmosphere/scattering_density",
+          "atmosphere/indirect_irradiance", "atmosphere/multiple_scattering"})
+      if (t.label == label) ms += t.milliseconds;
+  return ms;
+}
+
+// The twilight: the ground's horizontal illuminance from the sky at the configured sun altitudes (-6, -9,
+// -12 deg by default; 2026-06-21 evening), the frame's 180-deg fisheye against the reference over the
+// hemisphere (midpoints in cos z and azimuth).
 std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchConfig& config) {
   std::vector<NightBenchRow> rows;
   SkyRenderOptions off;
   off.night.enabled = false;
-  for (double altitude : {-6.0, -9.0, -12.0}) {
+  std::map<std::string, std::unique_ptr<SkyRenderer>> tableRenderers;
+  for (double altitude : config.twilightAltitudesDeg) {
     char utc[32] = "";
-    for (int minute = 19 * 60; minute < 23 * 60; ++minute) {
+    bool found = false;
+    for (int minute = 16 * 60; minute < 23 * 60 && !found; ++minute) {
       std::snprintf(utc, sizeof(utc), "2026-06-21T%02d:%02d:00Z", minute / 60, minute % 60);
-      if (astro::sunPosition(astro::makeAstroTime(utc), place()).elevation() / kDegree <= altitude) break;
+      found = astro::sunPosition(astro::makeAstroTime(utc), place()).elevation() / kDegree <= altitude;
     }
+    if (!found) continue;  // checkNightBenchConfig keeps the altitudes within the evening's range
     const int size = config.quick ? 32 : 64;
     const Scene scene = sceneAt(utc, aimedCamera(0.0, kPi / 2, 180.0, size, size, "fisheye"));
     const RenderResult a = renderer.render(scene, off);
@@ -430,7 +447,7 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
       return sum;
     };
     const double frameAtDirections = atDirections(a);
-    char quantity[80], note[400];
+    char quantity[96], note[400];
     std::snprintf(quantity, sizeof(quantity), "ground illuminance from the sky, sun %.0f deg", altitude);
     NightBenchRow r = row("twilight", quantity, "lx", frameAtDirections, referenceLux);
     r.referenceSeconds = seconds(start);
@@ -444,18 +461,42 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
     r.note = note;
     rows.push_back(r);
     // The same sky from the frame's other ways of computing it: which approximation the difference is in.
-    SkyRenderOptions perPixel = off, tables = off, three = off;
+    std::vector<std::pair<std::string, SkyRenderOptions>> variants;
+    SkyRenderOptions fms = off;
+    fms.multipleScattering = MultipleScattering::HillaireFms;
+    variants.push_back({"f_ms, sky-view table", fms});
+    SkyRenderOptions perPixel = fms;
     perPixel.method = SkyMethod::PerPixel;
-    tables.multipleScattering = MultipleScattering::BrunetonTables;
+    variants.push_back({"f_ms, marched per pixel", perPixel});
+    SkyRenderOptions three = fms;
     three.luts.spectralSamples = 3;  // as with clouds, and as the frame light's tables below
-    for (const auto& [name, options] :
-         {std::pair<const char*, const SkyRenderOptions&>{"f_ms, marched per pixel", perPixel},
-          {"Bruneton's 4D tables, 4 orders", tables},
-          {"f_ms, sky-view table, 3 wavelengths", three}}) {
-      const RenderResult v = renderer.render(scene, options);
-      std::snprintf(quantity, sizeof(quantity), "the same, %s", name);
+    variants.push_back({"f_ms, sky-view table, 3 wavelengths", three});
+    SkyRenderOptions tables = off;
+    tables.multipleScattering = MultipleScattering::BrunetonTables;
+    tables.tables.scatteringOrders = 4;
+    tables.luts.spectralSamples = 3;
+    variants.push_back({"Bruneton's 4D tables, 4 orders, 3 wavelengths", tables});
+    // The twilight tables' size (kTwilightTableSettings) at each order count asked for, at the frame's wavelengths.
+    for (int orders : config.twilightTableOrders) {
+      tables.tables = kTwilightTableSettings;
+      tables.tables.scatteringOrders = orders;
+      tables.luts.spectralSamples = a.spectralSamples;
+      variants.push_back({"the twilight 4D tables, " + std::to_string(orders) + " orders, " +
+                              std::to_string(a.spectralSamples) + " wavelengths",
+                          tables});
+    }
+    for (const auto& [name, options] : variants) {
+      // The 4D tables are independent of the sun: one renderer per table setting keeps each computed once.
+      SkyRenderer& own =
+          options.multipleScattering == MultipleScattering::HillaireFms
+              ? renderer
+              : *tableRenderers.try_emplace(name, std::make_unique<SkyRenderer>(renderer.context())).first->second;
+      const RenderResult v = own.render(scene, options);
+      std::snprintf(quantity, sizeof(quantity), "the same, %s", name.c_str());
       NightBenchRow variant = row("twilight", quantity, "lx", atDirections(v), referenceLux);
-      variant.passes = "sky/*";
+      const double precompute = tablePrecomputeMilliseconds(v);
+      variant.passes = precompute > 0.0 ? "the 4D tables' precompute (atmosphere/*)" : "sky/*";
+      variant.passMs = precompute;
       std::snprintf(note, sizeof(note), "%s; %d wavelengths", utc, v.spectralSamples);
       variant.note = note;
       rows.push_back(variant);
@@ -472,13 +513,15 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
                                     {R"(/clouds={"layers": [{"kind": "cumulus", "bottom_m": 1500, "top_m": 2500,
                                         "coverage": 0.0}], "quality": "low", "seed": 1})"});
       const RenderResult v = renderer.render(clouded, withClouds);
-      NightBenchRow table = row("twilight", "the same, the tables' ground illuminance (frame light)", "lx",
-                                v.light.sunGroundLux, referenceLux);
-      table.passes = "sky/frame_light (CPU read-back)";
-      std::snprintf(note, sizeof(note), "%s; direct plus the ground's skylight table, %d wavelengths", utc,
-                    v.spectralSamples);
-      table.note = note;
-      rows.push_back(table);
+      if (v.night.run) {  // the frame light is chosen in night frames only (sun below +10 deg)
+        NightBenchRow table = row("twilight", "the same, the tables' ground illuminance (frame light)", "lx",
+                                  v.light.sunGroundLux, referenceLux);
+        table.passes = "sky/frame_light (CPU read-back)";
+        std::snprintf(note, sizeof(note), "%s; direct plus the ground's skylight table, %d wavelengths", utc,
+                      v.spectralSamples);
+        table.note = note;
+        rows.push_back(table);
+      }
     }
   }
   return rows;
@@ -487,6 +530,11 @@ std::vector<NightBenchRow> twilightRows(SkyRenderer& renderer, const NightBenchC
 }  // namespace
 
 void checkNightBenchConfig(const NightBenchConfig& config) {
+  for (double a : config.twilightAltitudesDeg)
+    if (!(a >= -19.0 && a <= 30.0))
+      throw InputError("--sun-altitude " + std::to_string(a) + ": the twilight rows take -19 to +30 deg");
+  for (int n : config.twilightTableOrders)
+    if (n < 1 || n > 64) throw InputError("--table-orders " + std::to_string(n) + ": 1 to 64");
   for (const char* t : kNightBenchTerms)
     if (config.term.empty() || config.term == t) return;
   throw InputError("--scenario " + config.term +

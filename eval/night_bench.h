@@ -10,8 +10,9 @@
 //    plus the isotropic-field estimate of what the air scatters of it;
 //  - the moonlit sky against the CPU reference (atmosphere/reference_renderer.h: single scattering by
 //    quadrature, multiple by path tracing) lit from the Moon's direction with its spectrum;
-//  - the twilight's ground illuminance at sun -6, -9, -12 deg, the frame (the tables) against the same
-//    reference integrated over the sky.
+//  - the twilight's ground illuminance at sun -6, -9, -12 deg (or the altitudes asked for), the frame and its
+//    other models (f_ms, Bruneton's 4D tables of each order asked for) against the same reference integrated
+//    over the sky.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct NightBenchConfig {
   int referenceSpp = 0;  // reference paths per direction for orders >= 2 (0: 128, --quick 32)
   int timingWidth = 640, timingHeight = 360;
   std::string term;  // only this term (empty: all): one of kNightBenchTerms
+  // The twilight rows' sun altitudes (deg, -30 to +30) and the orders of the 4D tables compared there.
+  std::vector<double> twilightAltitudesDeg = {-6.0, -9.0, -12.0};
+  std::vector<int> twilightTableOrders = {4};
   std::string environmentNote;
 };
 inline constexpr const char* kNightBenchTerms[] = {"moon_disc", "stars", "sky_glow", "moonlit_sky", "twilight"};

@@ -1,10 +1,55 @@
 #include "sky/render_plan.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "clouds/cloud_settings.h"
 #include "sky/scene_cloud_medium.h"
+#include "sky/scene_view.h"
 #include "sky/terrain_plan.h"
 
 namespace firmament {
+
+double twilightTablesWeight(double sunAltitudeDeg) {
+  const double t = std::clamp(
+      (kTwilightTablesAboveDeg - sunAltitudeDeg) / (kTwilightTablesAboveDeg - kTwilightTablesBelowDeg), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+double sceneTablesWeight(const Scene& scene, const PlanOptions& options, std::string* reason) {
+  auto say = [&](const std::string& text) {
+    if (reason) *reason = text;
+  };
+  if (options.multipleScattering == MultipleScattering::BrunetonTables) {
+    say("--multiple-scattering tables");
+    return 1.0;
+  }
+  if (options.multipleScattering == MultipleScattering::HillaireFms) {
+    say("--multiple-scattering fms");
+    return 0.0;
+  }
+  if (sceneHasCloudLayers(scene) || scene.hasSection("terrain")) {
+    say("clouds and terrain read the f_ms path: the 4D tables are not used");
+    return 0.0;
+  }
+  const double altitude =
+      std::asin(std::clamp(makeSceneView(scene).sunDirection.z, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+  const double w = twilightTablesWeight(altitude);
+  char text[200];
+  if (w <= 0.0)
+    std::snprintf(text, sizeof(text), "the sun is %.1f deg high: f_ms alone from %+.0f deg up (the 4D tables below it)",
+                  altitude, kTwilightTablesAboveDeg);
+  else if (w >= 1.0)
+    std::snprintf(text, sizeof(text), "the sun is at %.1f deg: the 4D tables alone from %+.0f deg down", altitude,
+                  kTwilightTablesBelowDeg);
+  else
+    std::snprintf(text, sizeof(text),
+                  "the sun is at %.1f deg, in the hand-over from %+.0f to %+.0f deg: tables weight %.3f", altitude,
+                  kTwilightTablesAboveDeg, kTwilightTablesBelowDeg, w);
+  say(text);
+  return w;
+}
 
 bool RenderPlan::has(const std::string& name) const {
   for (const auto& p : passes)
@@ -17,31 +62,42 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   // The atmosphere is always present; its tables depend on its parameters only.
   plan.passes.push_back(
       {"atmosphere/transmittance_lut", "transmittance table T(r, mu)", "every sky needs sunlight attenuation", false});
-  if (options.multipleScattering == MultipleScattering::BrunetonTables) {
+  std::string tablesReason;
+  const double weight = sceneTablesWeight(scene, options, &tablesReason);
+  const bool fms = options.multipleScattering != MultipleScattering::BrunetonTables;
+  const int batches = std::max(options.spectralSamples / 3, 1);
+  const std::string each =
+      batches > 1 ? " (once per batch of 3 of the " + std::to_string(options.spectralSamples) + " wavelengths)" : "";
+  if (weight > 0.0) {
     const int orders = options.scatteringOrders;
     const std::string higher = orders >= 2 ? "orders 2.." + std::to_string(orders) : "";
-    plan.passes.push_back(
-        {"atmosphere/direct_irradiance", "sunlight on the ground (lights order 2)", "Bruneton 2017 tables", false});
+    const std::string& tableEach = each;
+    plan.passes.push_back({"atmosphere/direct_irradiance", "sunlight on the ground (lights order 2)",
+                           "Bruneton 2017 tables" + tableEach, false});
     plan.passes.push_back({"atmosphere/single_scattering", "4D single Rayleigh and Mie scattering tables",
-                           "Bruneton 2017 tables, order 1", false});
+                           "Bruneton 2017 tables, order 1" + tableEach, false});
     if (orders >= 2) {
       plan.passes.push_back({"atmosphere/scattering_density", "4D scattering density J_n",
-                             "Bruneton 2017 tables, " + higher + " (one dispatch each)", false});
+                             "Bruneton 2017 tables, " + higher + " (one dispatch each)" + tableEach, false});
       plan.passes.push_back({"atmosphere/indirect_irradiance", "ground sky irradiance table E(r, mu_s)",
-                             "skylight on the ground, orders 1.." + std::to_string(orders - 1), false});
+                             "skylight on the ground, orders 1.." + std::to_string(orders - 1) + tableEach, false});
       plan.passes.push_back({"atmosphere/multiple_scattering", "4D scattering table, orders summed",
-                             "Bruneton 2017 tables, " + higher + " (one dispatch each)", false});
+                             "Bruneton 2017 tables, " + higher + " (one dispatch each)" + tableEach, false});
     }
+  } else if (options.multipleScattering == MultipleScattering::Auto) {
+    plan.omitted.push_back(
+        {"atmosphere/direct_irradiance .. atmosphere/multiple_scattering (the 4D tables)", tablesReason});
+  }
+  if (!fms) {
     plan.passes.push_back(
         {"sky/render_sky_tables", "HDR image (cd/m^2)", "the view from table lookups: sky, ground and sun disc", true});
     plan.omitted.push_back({"atmosphere/multiple_scattering_lut",
                             "multiple scattering comes from the 4D tables (--multiple-scattering tables)"});
   } else {
-    const int batches = options.spectralSamples / 3;
-    const std::string each =
-        batches > 1 ? " (once per batch of 3 of the " + std::to_string(options.spectralSamples) + " wavelengths)" : "";
+    const std::string why =
+        weight >= 1.0 ? " (" + tablesReason + ": for the night's moonlit sky and ground light)" : "";
     plan.passes.push_back({"atmosphere/multiple_scattering_lut", "multiple-scattering table Psi_ms(r, mu_s)",
-                           "light scattered more than once (Hillaire 2020): the first order" + each, false});
+                           "light scattered more than once (Hillaire 2020): the first order" + each + why, false});
     if (options.multipleScatteringOrders > 1)
       plan.passes.push_back(
           {"atmosphere/multiple_scattering_order",
@@ -54,7 +110,9 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
     // The sky-view table holds the sky seen from inside the atmosphere; from above it every pixel marches.
     const double cameraAltitude = scene.number("/location/height_m") + scene.number("/camera/height_above_ground_m");
     const bool inside = cameraAltitude <= scene.number("/atmosphere/thickness_m");
-    if (options.skyViewLut && inside) {
+    if (weight >= 1.0) {
+      plan.omitted.push_back({"sky/sky_view_lut, sky/render_sky", tablesReason});
+    } else if (options.skyViewLut && inside) {
       plan.passes.push_back({"sky/sky_view_lut", "sky-view table (azimuth from the sun, zenith angle), Rec.709",
                              "the sky from the camera's altitude, marched once per texel" + each, true});
       plan.passes.push_back(
@@ -65,6 +123,12 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
                                  (inside ? "" : " (camera above the atmosphere)") + each + ", plus the sun disc",
                              true});
     }
+    if (weight > 0.0)
+      plan.passes.push_back({"sky/render_sky_tables", "HDR image (cd/m^2)",
+                             weight >= 1.0 ? "the view from the 4D tables' lookups" + each + ": " + tablesReason
+                                           : "the view from the 4D tables' lookups" + each +
+                                                 ", blended over the f_ms sky: " + tablesReason,
+                             true});
   }
 
   if (scene.hasSection("clouds")) {
@@ -208,7 +272,7 @@ RenderPlan planRender(const Scene& scene, const PlanOptions& options) {
   {
     // The night (sky/night_plan.h): the moonlit sky is a second sky-view table.
     const double altitude = scene.number("/location/height_m") + scene.number("/camera/height_above_ground_m");
-    const bool skyView = options.multipleScattering == MultipleScattering::HillaireFms && options.skyViewLut &&
+    const bool skyView = options.multipleScattering != MultipleScattering::BrunetonTables && options.skyViewLut &&
                          altitude <= scene.number("/atmosphere/thickness_m");
     planNight(decideNight(scene, options.night, skyView), plan);
   }

@@ -28,8 +28,9 @@ static_assert(sizeof(FrameBlock) == 7 * 16);
 struct TablesPush {
   gpu::TileDispatch tiles;
   int32_t tableSize[4];  // nu, mu_s, mu, r
+  float blend[4];        // the tables' solar-irradiance rescale, the weight, the mode (write, add, blend), 0
 };
-static_assert(sizeof(TablesPush) == sizeof(gpu::TileDispatch) + 16);
+static_assert(sizeof(TablesPush) == sizeof(gpu::TileDispatch) + 32);
 
 void put(float (&out)[4], const glm::dvec3& v, double w = 0.0) {
   out[0] = float(v.x);
@@ -73,7 +74,9 @@ SkyRenderer::SkyRenderer(gpu::Context& context)
 PlanOptions planOptions(const SkyRenderOptions& options) {
   PlanOptions plan;
   plan.multipleScattering = options.multipleScattering;
-  plan.scatteringOrders = options.tables.scatteringOrders;
+  plan.scatteringOrders = options.multipleScattering == MultipleScattering::BrunetonTables
+                              ? options.tables.scatteringOrders
+                              : options.twilightTables.scatteringOrders;
   plan.skyViewLut = options.method == SkyMethod::SkyViewLut;
   plan.spectralSamples = options.luts.spectralSamples;
   plan.multipleScatteringOrders = options.luts.multipleScatteringOrders;
@@ -99,7 +102,8 @@ int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool
 // What one render() carries from step to step.
 struct SkyRenderer::Frame {
   SkyRenderOptions options;               // the request, its automatic choices resolved (spectral samples)
-  bool useTables = false;                 // Bruneton's 4D tables read per pixel instead of the f_ms march
+  bool useTables = false;                 // Bruneton's 4D tables alone (--multiple-scattering tables): no f_ms
+  double tablesWeight = 0.0;              // the 4D tables' share of the clear sky (1 with useTables)
   bool useSkyView = false;                // the sky-view table read per pixel (else a march per pixel per batch)
   bool derivedRecorded = false;           // the derived tables (4D tables or the ground's skylight) were recomputed
   bool lutsComputed = false;              // the atmosphere LUTs were computed (not from memory or disk)
@@ -134,8 +138,10 @@ RenderResult SkyRenderer::record(const Scene& scene, const SkyRenderOptions& req
   if (options.luts.spectralSamples == kSpectralSamplesAuto) options.luts.spectralSamples = 3;
   if (options.luts.spectralSamples != 3)
     throw InputError("embedded mode renders three wavelengths (spectral samples 3)");
-  if (options.multipleScattering != MultipleScattering::HillaireFms)
-    throw InputError("embedded mode needs the f_ms path (--multiple-scattering fms)");
+  if (options.multipleScattering == MultipleScattering::BrunetonTables)
+    throw InputError("embedded mode needs the f_ms path (--multiple-scattering fms or auto)");
+  // The host's shaders read the f_ms path's lookups (EmbeddedLookups): auto stays on it.
+  options.multipleScattering = MultipleScattering::HillaireFms;
   RenderResult result;
   Frame frame = plan(scene, options, result);
   frame.embedded = &targets;
@@ -268,8 +274,6 @@ void SkyRenderer::recordHostWrite(Frame& frame, gpu::CommandList& commands) {
 SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions& requested, RenderResult& result) {
   Frame frame;
   frame.useTables = requested.multipleScattering == MultipleScattering::BrunetonTables;
-  if (frame.useTables && requested.luts.spectralSamples != 3 && requested.luts.spectralSamples != kSpectralSamplesAuto)
-    throw InputError("the 4D scattering tables carry three wavelengths: use spectral samples 3 with them");
   result.view = makeSceneView(scene);
   frame.options = requested;
   // Terrain: the camera stands on the field at the location (sky/terrain_pass.h).
@@ -288,7 +292,10 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
   frame.options.luts.spectralSamples =
       resolveSpectralSamples(frame.options.luts.spectralSamples, result.view.sunZenith, hasClouds, frame.useTables);
   result.spectralSamples = frame.options.luts.spectralSamples;
-  result.plan = planRender(scene, planOptions(frame.options));
+  const PlanOptions planned = planOptions(frame.options);
+  result.plan = planRender(scene, planned);
+  frame.tablesWeight = sceneTablesWeight(scene, planned);
+  result.tablesWeight = frame.tablesWeight;
   const bool skyView = !frame.useTables && frame.options.method == SkyMethod::SkyViewLut &&
                        result.view.cameraRadius <=
                            atmosphereParametersAt(result.view.atmosphere, frame.options.luts.wavelengthsNm).top_radius;
@@ -318,10 +325,17 @@ void SkyRenderer::prepareTables(Frame& frame, RenderResult& result) {
   }
   gpu::CommandList derived(context_);
   bool recorded = false;
-  if (frame.useTables) {
-    if (!tables_) tables_ = std::make_unique<ScatteringTables>(context_);
-    recorded = tables_->update(luts_, options.tables, derived);
-  } else {
+  if (frame.tablesWeight > 0.0) {
+    // One set per spectral batch; kept while the atmosphere and settings are unchanged (the Sun's distance
+    // is not in their key: they are rescaled at lookup).
+    tables_.resize(luts_.batchCount());
+    for (size_t b = 0; b < luts_.batchCount(); ++b) {
+      if (!tables_[b]) tables_[b] = std::make_unique<ScatteringTables>(context_);
+      recorded =
+          tables_[b]->update(luts_, b, frame.useTables ? options.tables : options.twilightTables, derived) || recorded;
+    }
+  }
+  if (!frame.useTables) {
     fmsSkyIrradiance_.resize(luts_.batchCount());
     for (size_t b = 0; b < luts_.batchCount(); ++b) {
       if (!fmsSkyIrradiance_[b]) fmsSkyIrradiance_[b] = std::make_unique<FmsSkyIrradiance>(context_);
@@ -334,6 +348,8 @@ void SkyRenderer::prepareTables(Frame& frame, RenderResult& result) {
       result.timings.push_back(t);
       result.precomputeMilliseconds += t.milliseconds;
     }
+    if (frame.tablesWeight > 0.0)
+      for (size_t b = 0; b < luts_.batchCount(); ++b) tables_[b]->store();
   }
   frame.derivedRecorded = recorded;
   frame.lutsComputed = tables.source == AtmosphereLuts::Source::Computed;
@@ -424,7 +440,7 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
   }
   if (frame.derivedRecorded || frame.lutsComputed) skyViewKey_.clear();  // inputs recomputed
   result.skyViewReused = options.continueSequence && useSkyView && !skyViewKey_.empty() && skyViewKey == skyViewKey_;
-  if (useSkyView && !result.skyViewReused) {
+  if (useSkyView && !result.skyViewReused && frame.tablesWeight < 1.0) {
     skyViewKey_ = skyViewKey;
     // One sky-view pass per spectral batch, each adding its Rec.709 contribution.
     for (size_t b = 0; b < batches; ++b) {
@@ -447,32 +463,11 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
       commands.barrier();
     }
   }
-  if (useTables) {
-    // Bruneton 2017: the in-scattering is a lookup in the 4D tables; no march.
-    if (!skyTablesPipeline_)
-      skyTablesPipeline_ = std::make_unique<gpu::ComputePipeline>(
-          context_, gpu::PipelineDesc{
-                        "sky/render_sky_tables",
-                        {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
-                         gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
-                         gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
-                        sizeof(TablesPush)});
-    const gpu::Sampler& linear = luts_.linearClamp();
-    const ScatteringTableSettings& t = tables_->settings();
-    TablesPush push{tiles, {t.nuSize, t.muSSize, t.muSize, t.rSize}};
-    commands.bind(*skyTablesPipeline_, {luts_.atmosphereBlock(),
-                                        {luts_.transmittance(), linear},
-                                        {tables_->scattering(), linear},
-                                        {tables_->singleMieScattering(), linear},
-                                        {tables_->irradiance(), linear},
-                                        output,
-                                        frameBlock_});
-    commands.pushConstants(push);
-    commands.dispatchTiles(tiles, "sky/render_sky_tables");
-  }
-  // The image: one pass reading the sky-view table, or one march per spectral batch.
-  const size_t renderPasses = useTables ? 0 : useSkyView ? 1 : batches;
-  if (!useTables && !useSkyView && !skyMarchPipeline_)
+  // The image: one pass reading the sky-view table, or one march per spectral batch (f_ms), unless the
+  // 4D tables alone make the sky.
+  const bool fmsSky = !useTables && frame.tablesWeight < 1.0;
+  const size_t renderPasses = !fmsSky ? 0 : useSkyView ? 1 : batches;
+  if (fmsSky && !useSkyView && !skyMarchPipeline_)
     skyMarchPipeline_ = std::make_unique<gpu::ComputePipeline>(context_, renderSkyPipeline("sky/render_sky_march"));
   const gpu::ComputePipeline* skyPipeline =
       useSkyView ? &skyPipeline_ : skyMarchPipeline_.get();  // null with the 4D tables
@@ -497,6 +492,37 @@ void SkyRenderer::recordSky(Frame& frame, RenderResult& result, gpu::CommandList
     commands.pushConstants(push);
     commands.dispatchTiles(tiles, useSkyView ? "sky/render_sky" : "sky/render_sky_march");
     if (b + 1 < renderPasses) commands.barrier();
+  }
+  if (frame.tablesWeight > 0.0) {
+    // Bruneton 2017: the in-scattering is a lookup in the 4D tables, no march; one pass per spectral batch,
+    // the first writing the frame (or blending it over the f_ms sky), the others adding.
+    if (!skyTablesPipeline_)
+      skyTablesPipeline_ = std::make_unique<gpu::ComputePipeline>(
+          context_, gpu::PipelineDesc{
+                        "sky/render_sky_tables",
+                        {gpu::BindingType::UniformBuffer, gpu::BindingType::SampledImage,
+                         gpu::BindingType::SampledImage, gpu::BindingType::SampledImage, gpu::BindingType::SampledImage,
+                         gpu::BindingType::StorageBuffer, gpu::BindingType::UniformBuffer},
+                        sizeof(TablesPush)});
+    const gpu::Sampler& linear = luts_.linearClamp();
+    const float weight = float(frame.tablesWeight);
+    for (size_t b = 0; b < batches; ++b) {
+      const ScatteringTables& tables = *tables_[b];
+      const ScatteringTableSettings& t = tables.settings();
+      const float mode = b > 0 ? 1.0f : fmsSky ? 2.0f : 0.0f;
+      const float rescale = float(luts_.solarIrradianceScale() / tables.solarIrradianceScale());
+      TablesPush push{tiles, {t.nuSize, t.muSSize, t.muSize, t.rSize}, {rescale, weight, mode, 0.0f}};
+      if (fmsSky || b > 0) commands.barrier();
+      commands.bind(*skyTablesPipeline_, {luts_.batch(b).block,
+                                          {luts_.batch(b).transmittance, linear},
+                                          {tables.scattering(), linear},
+                                          {tables.singleMieScattering(), linear},
+                                          {tables.irradiance(), linear},
+                                          output,
+                                          frameBlock_});
+      commands.pushConstants(push);
+      commands.dispatchTiles(tiles, "sky/render_sky_tables");
+    }
   }
 }
 

@@ -40,8 +40,12 @@ int resolveSpectralSamples(int requested, double sunZenithRad, bool clouds, bool
 
 struct SkyRenderOptions {
   AtmosphereLutSettings luts{.spectralSamples = kSpectralSamplesAuto};
-  MultipleScattering multipleScattering = MultipleScattering::HillaireFms;
-  ScatteringTableSettings tables;             // BrunetonTables: orders (tables.scatteringOrders), sizes
+  // Auto: f_ms by day, Bruneton's 4D tables in twilight (render_plan.h's twilightTablesWeight).
+  MultipleScattering multipleScattering = MultipleScattering::Auto;
+  ScatteringTableSettings tables;  // BrunetonTables: orders (tables.scatteringOrders), sizes
+  // Auto's twilight tables (decision 0158): Bruneton's 4 orders at a quarter of the default size, one set
+  // per spectral batch, computed once per atmosphere (the Sun's distance is not in their key) and cached.
+  ScatteringTableSettings twilightTables = kTwilightTableSettings;
   FmsSkyIrradianceSettings fmsSkyIrradiance;  // HillaireFms: the ground's skylight table
   SkyMethod method = SkyMethod::SkyViewLut;   // HillaireFms: how the march reaches the pixels
   int viewSteps = 32;                         // march steps along each view ray (per pixel, or per sky-view texel)
@@ -82,8 +86,9 @@ struct RenderResult {
   std::string tablesSource;              // atmosphere tables: "memory", "disk cache" or "computed"
   std::string cloudNoiseSource;  // cloud noise textures: "memory", "disk cache" or "baked"; empty without clouds
   SkyMethod methodUsed = SkyMethod::SkyViewLut;
-  int spectralSamples = 3;  // the wavelengths used (kSpectralSamplesAuto resolved)
-  std::string timingNote;   // non-empty when timings are wall clock
+  int spectralSamples = 3;    // the wavelengths used (kSpectralSamplesAuto resolved)
+  double tablesWeight = 0.0;  // the 4D tables' share of the clear sky (render_plan.h's sceneTablesWeight)
+  std::string timingNote;     // non-empty when timings are wall clock
   // Scenes with clouds: rgb = the clouds' light in front of the sky, a = their transmittance (the image
   // is sky * a + rgb). Empty without clouds (and, like image, with SkyRenderOptions::downloadImages off).
   Image clouds;
@@ -165,7 +170,8 @@ class SkyRenderer {
   gpu::Context& context_;
   AtmosphereLuts luts_;
   std::vector<std::unique_ptr<FmsSkyIrradiance>> fmsSkyIrradiance_;  // one per spectral batch
-  std::unique_ptr<ScatteringTables> tables_;                         // created on first use (5 pipelines)
+  // The 4D tables, one per spectral batch (created on first use, 5 pipelines each).
+  std::vector<std::unique_ptr<ScatteringTables>> tables_;
   gpu::ComputePipeline skyViewPipeline_;
   gpu::ComputePipeline skyPipeline_;                        // sky/render_sky: the sky-view table read
   std::unique_ptr<gpu::ComputePipeline> skyMarchPipeline_;  // sky/render_sky_march: a march per pixel

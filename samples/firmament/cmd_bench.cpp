@@ -1,6 +1,8 @@
 // `firmament bench atmosphere|clouds|terrain|night|weather|all --out DIR [--quick]`: error-against-run-time sweeps
 // (docs/bench.md). Each target is one entry of kTargets; the ones not written yet exit 2.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -219,6 +221,26 @@ int benchNight(const Args& args, const std::filesystem::path& out) {
   config.threads = args.integer("threads", 0, 0, 1024);
   config.referenceSpp = args.integer("reference-spp", 0, 1, 1 << 16);
   config.term = args.getOr("scenario", "");
+  // Repeatable: each --sun-altitude and --table-orders adds one value (checked with the config below).
+  auto numbers = [&](const char* name) {
+    std::vector<double> values;
+    for (const std::string& text : args.all(name)) {
+      char* end = nullptr;
+      const double d = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(d))
+        throw InputError(std::string("option --") + name + ": '" + text + "' is not a number");
+      values.push_back(d);
+    }
+    return values;
+  };
+  if (args.has("sun-altitude")) config.twilightAltitudesDeg = numbers("sun-altitude");
+  if (args.has("table-orders")) {
+    config.twilightTableOrders.clear();
+    for (double n : numbers("table-orders")) {
+      if (n != std::floor(n)) throw InputError("option --table-orders: '" + std::to_string(n) + "' is not an integer");
+      config.twilightTableOrders.push_back(int(n));
+    }
+  }
   if (config.quick) config.timingWidth = 160, config.timingHeight = 90;
   readTimingSize(args, config.timingWidth, config.timingHeight, "640x360");
   checkNightBenchConfig(config);  // refused before any work
@@ -275,7 +297,7 @@ const CommandRegistration registration{Command{
     "error-against-run-time sweeps of the quality knobs: results.csv, report.md, SVG plots (docs/bench.md)",
     "bench atmosphere|clouds|terrain|night|weather|all --out DIR [--quick] [--scenario NAME] [--repeats N] "
     "[--reference-spp "
-    "N] "
+    "N] [--sun-altitude DEG]... [--table-orders N]... "
     "[--images] [--timing-only] [--timing-size WxH] [--timing-setting TEXT] [--error-setting TEXT] [--calibrate "
     "[--octaves N] [--light-steps N] [--phase P] [--group G] [--evaluate-defaults] "
     "[--reflection|--reflection-only|--low-sun]] [--device D]",
@@ -294,6 +316,10 @@ const CommandRegistration registration{Command{
         {"reference-spp", "N",
          "Monte Carlo paths per pixel of every reference (default: per scenario; terrain: hemisphere directions, 64)"},
         {"threads", "N", "reference worker threads (default: all cores)"},
+        {"sun-altitude", "DEG",
+         "night, twilight rows: a sun altitude (-19 to +30 deg; repeat for more; default -6, -9 and -12)", true},
+        {"table-orders", "N",
+         "night, twilight rows: compare Bruneton's 4D tables of N orders (1 to 64; repeat for more; default 4)", true},
         {"octaves", "N", "with --calibrate: the octave count to fit a, b, c for (default 3)"},
         {"light-steps", "N", "with --calibrate: the light-march samples to fit for (default: the default preset's)"},
         {"evaluate-defaults", "",

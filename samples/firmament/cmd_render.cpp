@@ -26,9 +26,9 @@ int runRender(const Args& args) {
   builder.device(args.getOr("device", ""));
 
   // The quality knobs (firmament::qualityKnobs()), each from its option.
-  const std::string multipleScattering = args.getOr("multiple-scattering", "fms");
-  if (multipleScattering != "tables" && multipleScattering != "fms")
-    throw InputError("--multiple-scattering " + multipleScattering + ": allowed: fms, tables");
+  const std::string multipleScattering = args.getOr("multiple-scattering", "auto");
+  if (multipleScattering != "tables" && multipleScattering != "fms" && multipleScattering != "auto")
+    throw InputError("--multiple-scattering " + multipleScattering + ": allowed: auto, fms, tables");
   builder.quality("/atmosphere/multiple_scattering=" + multipleScattering);
   if (args.has("orders"))
     builder.quality("/atmosphere/scattering_orders=" + std::to_string(args.integer("orders", 4, 1, 64)));
@@ -165,7 +165,7 @@ const CommandRegistration reg{
     {"render",
      "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
      "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
-     "[--multiple-scattering fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
+     "[--multiple-scattering auto|fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
      "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--frames N [--frame-interval S] "
      "[--yaw-rate DEG/S] [--pitch-rate DEG/S] [--climb-rate M/S]] [--explain] [--device D]",
      {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it", false, 'o'},
@@ -180,9 +180,10 @@ const CommandRegistration reg{
       {"spectral-samples", "N",
        "wavelengths: auto (default: 3, or 12 with the sun within 15 deg of the horizon or below), 3, or 6..48 "
        "integrated to luminance"},
-      {"multiple-scattering", "fms|tables",
-       "fms: Hillaire 2020's f_ms table and a march (default); tables: Bruneton 2017's "
-       "4D tables of N orders"},
+      {"multiple-scattering", "auto|fms|tables",
+       "auto (default): f_ms with the sun up, Bruneton 2017's 4D tables in twilight (blended from -2 to -6 deg; "
+       "f_ms always with clouds or terrain); fms: Hillaire 2020's f_ms table and a march; tables: the 4D tables "
+       "of N orders"},
       {"orders", "N", "scattering orders of the 4D tables (default 4)"},
       {"aerial-volume", "CxRxN",
        "aerial-perspective volume read by the clouds (/clouds/aerial_perspective volume): froxel "

@@ -12,6 +12,12 @@
 // wavelengths is converted to Rec.709 cd/m^2 as render_sky.comp does: the sky matrix for Rayleigh and
 // multiple scattering (and the ground's reflection of skylight), the sun matrix for single Mie, the
 // ground's reflection of sunlight and the sun disc.
+//
+// One dispatch per spectral batch (its own tables and conversion matrices): push.blend.z says how the
+// batch's Rec.709 radiance L_b enters the frame: 0 writes it, 1 adds w L_b, 2 replaces the frame's f_ms
+// sky F by (1 - w) F + w L_b (the hand-over through dusk, sky/render_plan.h's twilightTablesWeight), w =
+// push.blend.y. push.blend.x rescales what the tables hold to the current solar irradiance (the Sun's
+// distance; the tables are linear in it and keep the scale they were computed at).
 #include "atmosphere/irradiance_sampling.glsl"
 #include "atmosphere/scattering_sampling.glsl"
 #include "common/camera.glsl"
@@ -22,10 +28,10 @@ layout(set = 0, binding = 1) uniform sampler2D transmittanceLut;
 layout(set = 0, binding = 2) uniform sampler3D scatteringTable;
 layout(set = 0, binding = 3) uniform sampler3D singleMieTable;
 layout(set = 0, binding = 4) uniform sampler2D irradianceTable;
-layout(std430, set = 0, binding = 5) writeonly buffer OutputFrame { vec4 pixels[]; } outputFrame;  // row-major
+layout(std430, set = 0, binding = 5) buffer OutputFrame { vec4 pixels[]; } outputFrame;  // row-major
 #define SKY_FRAME_BLOCK_BINDING 6
 #include "sky/frame_block.glsl"
-layout(push_constant) uniform Push { TileDispatch tiles; ivec4 table_size; } push;
+layout(push_constant) uniform Push { TileDispatch tiles; ivec4 table_size; vec4 blend; } push;
 
 // The sun's disc at the top of the atmosphere: E_sun I(1)/E times the shared limb darkening
 // (common/atmosphere_medium.glsl), the same profile as the f_ms path and the reference.
@@ -44,10 +50,13 @@ void main() {
   CameraParameters camera = cameraFromBlock(frame.camera_forward, frame.camera_right, frame.camera_up, frame.image);
   bool valid;
   vec3 dir = cameraRayDirection(camera, vec2(pixel) + 0.5, valid);
+  const uint index = tile_pixel.y * push.tiles.width + tile_pixel.x;
+  const int mode = int(push.blend.z);
   if (!valid) {
-    outputFrame.pixels[tile_pixel.y * push.tiles.width + tile_pixel.x] = vec4(0.0);
+    if (mode == 0) outputFrame.pixels[index] = vec4(0.0);
     return;
   }
+  const float tableScale = push.blend.x;
   vec3 sun = frame.sun_direction.xyz;
   float nu = dot(dir, sun);
   vec3 origin = frame.camera_position.xyz;
@@ -96,12 +105,19 @@ void main() {
       singleMie *= smoothstep(0.0, 0.01, mu_s);
       vec3 reflectance = atmosphere.ground_albedo / kPi;
       sunlike += throughput * reflectance * directIrradiance(transmittanceLut, atmosphere, r_g, mu_s_g);
-      sky += throughput * reflectance * irradianceLookup(irradianceTable, atmosphere, r_g, mu_s_g);
+      sky += throughput * reflectance * (tableScale * irradianceLookup(irradianceTable, atmosphere, r_g, mu_s_g));
     }
-    sky += scattering * phaseR;
-    sunlike += singleMie * phaseM;
+    sky += tableScale * scattering * phaseR;
+    sunlike += tableScale * singleMie * phaseM;
   }
   vec3 rgb = skyRadianceToRgb() * sky + sunRadianceToRgb() * sunlike;
   if (!hitsGround) rgb += sunRadianceToRgb() * (throughput * sunDiscRadiance(atmosphere, nu));
-  outputFrame.pixels[tile_pixel.y * push.tiles.width + tile_pixel.x] = vec4(max(rgb, vec3(0.0)), 1.0);
+  rgb = max(rgb, vec3(0.0));
+  const float w = push.blend.y;
+  if (mode == 0)
+    outputFrame.pixels[index] = vec4(rgb, 1.0);
+  else if (mode == 1)
+    outputFrame.pixels[index].rgb += w * rgb;
+  else
+    outputFrame.pixels[index] = vec4(mix(outputFrame.pixels[index].rgb, rgb, w), 1.0);
 }

@@ -74,7 +74,7 @@ std::string utcAt(const char* day, int minute) {
 // exposure (core/tonemap.h) on each frame's mean. The night's zenith (sun below -18 deg): Leinert et al.
 // 1998's moonless dark site is 21.6-22.0 mag/arcsec^2; this view reaches 20 deg from the zenith and has
 // the catalogue's stars in it (each hour a different patch of sky), so the range allowed is 21.0-22.0
-// (measured 21.20 at 18:00 with the Milky Way up to 21.59 at 05:00, lavapipe).
+// (measured 21.27 at 18:00 with the Milky Way up to 21.55 at 05:00, lavapipe).
 TEST_F(NightSweepTest, EveryHourOfANewMoonDayIsFiniteAndTheMoonlessNightInItsRange) {
   std::vector<Frame> frames;
   for (int hour = 0; hour < 24; ++hour) frames.push_back(render(utcAt("2026-01-18", hour * 60)));
@@ -93,9 +93,10 @@ TEST_F(NightSweepTest, EveryHourOfANewMoonDayIsFiniteAndTheMoonlessNightInItsRan
 // Dusk of 2026-01-18 at sun altitudes +10 to -20 deg every 2.5 deg: the luminance falls at every step
 // (the Moon is down: nothing else brightens), and the preview's exposure (autoEv100ForLuminance, the
 // defaults) follows without a jump: no step moves it more than the luminance's own log2 step, and the
-// largest step (measured 3.55 EV, -5 to -7.5 deg, where the twilight falls fastest) is continuous: split
-// at its middle minute, each half is at most 0.75 of it (a step in the exposure would stay whole in one
-// half; measured 1.87 EV, 0.53).
+// largest step (measured 4.52 EV, -5 to -7.5 deg, where the twilight falls fastest: the 4D tables' sky
+// below -6 deg, decision 0158; 3.55 EV with f_ms's brighter twilight) is continuous: split at its middle
+// minute, each half is at most 0.75 of it (a step in the exposure would stay whole in one half; measured
+// 2.27 EV, 0.50).
 TEST_F(NightSweepTest, DuskDarkensAtEveryStepAndTheExposureFollowsWithoutAJump) {
   const astro::GeodeticLocation place = astro::GeodeticLocation::fromDegrees(46.55, 7.98, 500.0);
   std::vector<Frame> frames;
