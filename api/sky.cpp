@@ -500,7 +500,14 @@ std::string Sky::get(const std::string& pointer) const {
   return impl_->document.contains(p) ? impl_->document.at(p).dump() : std::string();
 }
 
-SkyFrame Sky::render(int width, int height) {
+SkyFrame Sky::render(int width, int height) { return renderFrame(width, height, false); }
+
+SkyFrame Sky::renderStill(int width, int height) {
+  restartSequence();
+  return renderFrame(width, height, true);
+}
+
+SkyFrame Sky::renderFrame(int width, int height, bool still) {
   if (impl_->context->adopted())
     throw InputError("render(): this sky is embedded in a host's device (Builder::embedded); use record()");
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
@@ -515,9 +522,9 @@ SkyFrame Sky::render(int width, int height) {
 
   SkyRenderOptions options = m.options;
   options.continueSequence = m.temporal && m.continueNext;
-  // A still (the clouds average /clouds/march/still_samples sub-frames): a Sky without temporal
-  // reprojection that makes no sequence frames (`firmament render` without --frames).
-  options.still = !m.temporal && !m.sequence;
+  // A still (the clouds average /clouds/march/still_samples sub-frames): renderStill(), or a Sky without
+  // temporal reprojection that makes no sequence frames (`firmament render` without --frames).
+  options.still = still || (!m.temporal && !m.sequence);
   const auto start = std::chrono::steady_clock::now();
   RenderResult result = m.renderer.render(m.scene, options);
   SkyFrame frame;
