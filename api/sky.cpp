@@ -336,6 +336,7 @@ struct Sky::Impl {
   nlohmann::json document;  // its JSON (defaults filled in), what the setters edit
   bool temporal = true;
   bool continueNext = false;
+  bool sequence = false;  // setSequenceFrame was called: the frames are a sequence's, never stills
   int lastWidth = 0, lastHeight = 0;
   SkyRenderOptions options;  // the quality knobs
   // Embedded mode's frames in flight: slot 0 is `renderer`, the others are made at their first record();
@@ -442,12 +443,14 @@ SkyPlan Sky::plan() const { return planOf(impl_->scene, impl_->options); }
 
 void Sky::setSequenceFrame(double elapsed_s, const SkyCamera& camera) {
   Impl& m = *impl_;
+  m.sequence = true;
   m.scene = sequenceScene(m.source, *m.base, elapsed_s, camera);
   m.document = m.scene.root();
 }
 
 void Sky::setSequenceFrame(double elapsed_s) {
   Impl& m = *impl_;
+  m.sequence = true;
   m.scene = sequenceScene(m.source, *m.base, elapsed_s, std::nullopt);
   m.document = m.scene.root();
 }
@@ -518,7 +521,14 @@ std::string Sky::get(const std::string& pointer) const {
   return impl_->document.contains(p) ? impl_->document.at(p).dump() : std::string();
 }
 
-SkyFrame Sky::render(int width, int height) {
+SkyFrame Sky::render(int width, int height) { return renderFrame(width, height, false); }
+
+SkyFrame Sky::renderStill(int width, int height) {
+  restartSequence();
+  return renderFrame(width, height, true);
+}
+
+SkyFrame Sky::renderFrame(int width, int height, bool still) {
   if (impl_->context->adopted())
     throw InputError("render(): this sky is embedded in a host's device (Builder::embedded); use record()");
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
@@ -533,6 +543,9 @@ SkyFrame Sky::render(int width, int height) {
 
   SkyRenderOptions options = m.options;
   options.continueSequence = m.temporal && m.continueNext;
+  // A still (the clouds average /clouds/march/still_samples sub-frames): renderStill(), or a Sky without
+  // temporal reprojection that makes no sequence frames (`firmament render` without --frames).
+  options.still = still || (!m.temporal && !m.sequence);
   const auto start = std::chrono::steady_clock::now();
   RenderResult result = m.renderer.render(m.scene, options);
   SkyFrame frame;

@@ -226,6 +226,10 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
   if (!volume && !aerialPlaceholder_)
     aerialPlaceholder_ =
         gpu::Image(context_, {2, 2, 2, gpu::Format::RGBA32F, false, true, "aerial perspective placeholder"});
+  // A still's sub-frames (CloudMarchSettings::stillSamples; the renderer sets 1 for a sequence's frames
+  // unless asked): the march alone repeats, its blue-noise value moved by s / N (stratified over the
+  // step), (L, T) averaged; per batch, so that each batch's sub-frames sum before the next adds its light.
+  const int subFrames = std::clamp(m.stillSamples, 1, 64);
   for (size_t batch = 0; batch < luts.batchCount(); ++batch) {
     const AtmosphereLuts::Batch& lut = luts.batch(batch);
     const gpu::Image& aerialImage = volume ? *aerial->volumes[batch] : aerialPlaceholder_;
@@ -251,19 +255,24 @@ void CloudPass::record(const CloudSettings& settings, const CloudView& view, con
                               {columnImage_, luts.linearClamp()},
                               {deepShadowImage_, luts.linearClamp()},
                               terrainDepth ? *terrainDepth : terrainDepthPlaceholder_});
-    // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
-    // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
-    Push push{marchTiles,
-              batch == 0 ? 1 : 0,
-              divisor,
-              divisor == 1 ? 1 : 0,
-              reprojected_ ? int32_t((temporalFrame_ * 37u) % 4096u) : 0,
-              {reprojected_ ? float(offset[0]) + 0.5f : 0.5f * float(divisor),
-               reprojected_ ? float(offset[1]) + 0.5f : 0.5f * float(divisor)},
-              {0.0f, 0.0f}};
-    commands.pushConstants(push);
-    commands.dispatchTiles(marchTiles, "clouds/render_clouds");
-    if (batch + 1 < luts.batchCount() || divisor > 1) commands.barrier();
+    for (int sub = 0; sub < subFrames; ++sub) {
+      // The ray through the centre of the d x d pixels a grid pixel stands for, or this frame's pixel of
+      // each block when reprojecting (with a new blue-noise pattern: each block pixel's 16 marches differ).
+      Push push{marchTiles,
+                batch == 0 ? 1 : 0,
+                divisor,
+                divisor == 1 ? 1 : 0,
+                reprojected_ ? int32_t((temporalFrame_ * 37u) % 4096u) : 0,
+                {reprojected_ ? float(offset[0]) + 0.5f : 0.5f * float(divisor),
+                 reprojected_ ? float(offset[1]) + 0.5f : 0.5f * float(divisor)},
+                float(sub) / float(subFrames),
+                1.0f / float(subFrames),
+                sub,
+                sub + 1 == subFrames ? 1 : 0};
+      commands.pushConstants(push);
+      commands.dispatchTiles(marchTiles, "clouds/render_clouds");
+      if (sub + 1 < subFrames || batch + 1 < luts.batchCount() || divisor > 1) commands.barrier();
+    }
   }
   if (reprojected_) {
     recordTemporalResolve(view, m, plan, coarseWidth, coarseHeight, marchTiles, tiles, offset, cloudFrame, historyFrame,

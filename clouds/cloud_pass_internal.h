@@ -79,7 +79,13 @@ struct Push {
   int32_t composite;  // 1: the march composites over the sky; 0: clouds/upsample_clouds or temporal_resolve does
   int32_t noiseShift;
   float pointOffset[2];  // grid pixel p marches image point divisor p + pointOffset
-  float pad[2];
+  // A still's sub-frames (CloudMarchSettings::stillSamples): the blue-noise value is moved by
+  // jitterShift (mod 1), the march's (L, T) weighted by sampleWeight and written (subFrame 0) or
+  // added; the first batch composites over the sky at the last sub-frame.
+  float jitterShift;
+  float sampleWeight;
+  int32_t subFrame;
+  int32_t lastSubFrame;
 };
 
 struct NeighbourhoodPush {

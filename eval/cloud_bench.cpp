@@ -107,6 +107,9 @@ struct KnobValue {
   bool skyAndGround = false;
   bool everyScenario = false;  // also for the scenarios without the full sweep (Scenario::fullSweep)
   bool severalLayers = false;  // only for scenarios with more than one layer (the same image otherwise)
+  // A still of this many sub-frames (CloudMarchSettings::stillSamples, SkyRenderOptions::still): besides
+  // its row against the path tracer, a row against the 64-sub-frame still of the same model (the noise alone).
+  int stillSamples = 0;
 };
 
 // A sequence at 30 frames per second ending exactly at the scenario's view: the camera turns 7.5
@@ -117,6 +120,9 @@ constexpr double kSunDiscLuminance = 1e6;
 constexpr double kSequenceYawPerFrameDeg = 0.25;
 constexpr double kSequenceWind_m_s = 10.0;
 constexpr double kSequenceFrameInterval_s = 1.0 / 30.0;
+// The still_samples rows' converged still: the noise of an N-sub-frame still is its rel RMSE against
+// this one (whose own noise is 1/8 of one sub-frame's, less with the stratified offsets).
+constexpr int kConvergedStillSamples = 64;
 
 // A row's renders: its last frame, the cloud passes' and all per-frame passes' ms of each timed frame,
 // and the mean density samples per pixel (view + light + the per-frame maps' bakes) over them.
@@ -488,6 +494,16 @@ std::vector<KnobValue> knobValues(bool quick) {
     k.temporalUpdate = n;
     v.push_back(k);
   }
+  // A still's jittered sub-frames (decision 0149): the error against the path tracer and the noise alone.
+  for (int n : quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 4, 8, 16}) {
+    KnobValue k{"still_samples", std::to_string(n), {}, [n](SkyRenderOptions& o) {
+                  o.still = true;
+                  o.clouds.stillSamples = n;
+                }};
+    k.stillSamples = n;
+    k.everyScenario = true;
+    v.push_back(k);
+  }
   // Aerial perspective against the 256-step air march (docs/atmosphere.md, "Aerial-perspective volume").
   v.push_back({"aerial_perspective",
                "off",
@@ -701,6 +717,8 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
     CloudReferenceImage skyAndGroundReference;  // KnobValue::skyAndGround's, made on first use
     std::vector<std::pair<std::string, std::vector<float>>> rowLuminance;  // config.images
     bool singleColumnWritten = false;
+    RenderResult convergedStill;  // the still_samples rows' noise reference, made on first use
+    std::vector<float> stillMask;
     for (const KnobValue& k : knobs) {
       SkyRenderOptions o = base;
       k.apply(o);
@@ -775,6 +793,37 @@ std::vector<CloudBenchRow> runCloudBench(gpu::Context& context, CloudBenchConfig
           }
           rowLuminance.push_back({k.knob + "=" + k.value, cloudPixelLuminance(r.clouds)});
         }
+      }
+      if (k.stillSamples > 0) {
+        // The noise alone: against the same model's still of kConvergedStillSamples sub-frames, over
+        // the reference's cloud pixels (the row's own rel RMSE is against the path tracer).
+        if (convergedStill.clouds.pixels.empty()) {
+          SkyRenderOptions many = base;
+          many.still = true;
+          many.clouds.stillSamples = kConvergedStillSamples;
+          convergedStill = renderer.render(scene, many);
+          stillMask.resize(ref.image.pixelCount());
+          for (size_t i = 0; i < stillMask.size(); ++i)
+            stillMask[i] = ref.image.pixels[4 * i + 3] < 0.95f ? 1.0f : 0.0f;
+        }
+        CloudBenchRow noise;
+        const ImageMetrics m = compareImages(r.clouds, convergedStill.clouds, stillMask);
+        noise.knob = k.knob;
+        noise.value = k.value;
+        noise.scenario = sc.name;
+        noise.against = "still_samples_" + std::to_string(kConvergedStillSamples);
+        noise.relRmse = noise.relRmseNoiseCorrected = m.luminance.relativeRmse;
+        noise.meanBias = m.luminance.relativeMeanBias;
+        noise.psnrDb = m.psnrDb;
+        noise.maxRelErr = maxRelativeLuminanceError(r.clouds, convergedStill.clouds);
+        noise.precomputeMs = bakeMs;
+        noise.frameMs = median(run.cloudMs);
+        noise.samplesPerPixel = run.samplesPerPixel;
+        noise.mapSamplesPerPixel = run.mapSamplesPerPixel;
+        noise.device = context.description();
+        rows.push_back(noise);
+        logInfo(sc.name + " still_samples " + k.value + ": noise " + std::to_string(noise.relRmse) + " against the " +
+                std::to_string(kConvergedStillSamples) + "-sub-frame still");
       }
       row.knob = k.knob;
       row.value = k.value;
@@ -942,6 +991,11 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
          o.clouds.beerShadowMap = true;
          o.clouds.lightShafts = true;
        }},
+      // A still's sub-frames (decision 0149); vs default: against the still of kConvergedStillSamples / 2.
+      {"still_samples 2", [](SkyRenderOptions& o) { o.clouds.stillSamples = 2; }, 1, true, false},
+      {"still_samples 4", [](SkyRenderOptions& o) { o.clouds.stillSamples = 4; }, 1, true, true},
+      {"still_samples 8", [](SkyRenderOptions& o) { o.clouds.stillSamples = 8; }, 1, true, false},
+      {"still_samples 16", [](SkyRenderOptions& o) { o.clouds.stillSamples = 16; }, 1, true, false},
       {"temporal_update 4 (sequence)", [](SkyRenderOptions&) {}, 4},
       {"temporal_update 16 (sequence)", [](SkyRenderOptions&) {}, 16, true},
   };
@@ -953,6 +1007,7 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
     const std::vector<std::string> sizeOverrides = {"/camera/width=" + std::to_string(width),
                                                     "/camera/height=" + std::to_string(height)};
     Image defaultImage;
+    Image convergedStill;  // the still_samples rows' reference (kConvergedStillSamples / 2 sub-frames)
     std::vector<float> cloudPixels;
     for (const Setting& setting : settings) {
       if (!sc.fullSweep && !setting.everyScenario) continue;
@@ -963,6 +1018,8 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
         continue;
       SkyRenderOptions o;
       setting.apply(o);
+      o.still = true;  // a still's sub-frames: the defaults' (and every still row's) still_samples
+      if (!o.clouds.stillSamples) o.clouds.stillSamples = 1;  // rows other than still_samples: one march
       std::vector<std::string> overrides = sizeOverrides;
       overrides.insert(overrides.end(), setting.sceneOverrides.begin(), setting.sceneOverrides.end());
       const TimedRuns run = timedRuns(renderer, sc.text, "<bench " + sc.name + ", " + setting.name + ">", overrides, o,
@@ -986,6 +1043,17 @@ std::vector<CloudTimingRow> runCloudTiming(gpu::Context& context, const CloudBen
           cloudPixels[i] =
               r.clouds.pixels[4 * i + 3] < 0.95f && luminanceRec709(&r.image.pixels[4 * i]) < kSunDiscLuminance ? 1.0f
                                                                                                                 : 0.0f;
+      } else if (setting.name.rfind("still_samples", 0) == 0) {
+        // The noise alone: against the still of many sub-frames at this size (made once, not timed).
+        if (convergedStill.pixels.empty()) {
+          SkyRenderOptions many;
+          many.still = true;
+          many.clouds.stillSamples = kConvergedStillSamples / 2;
+          convergedStill = renderer.render(Scene::parse(sc.text, "<bench " + sc.name + ">", sizeOverrides), many).image;
+        }
+        const ImageMetrics m = compareImages(r.image, convergedStill, cloudPixels);
+        row.relRmseVsDefault = m.luminance.relativeRmse;
+        row.biasVsDefault = m.luminance.relativeMeanBias;
       } else {
         const ImageMetrics m = compareImages(r.image, defaultImage, cloudPixels);
         row.relRmseVsDefault = m.luminance.relativeRmse;
@@ -1023,7 +1091,8 @@ void writeCloudTimingOutputs(const CloudBenchConfig& config, const std::vector<C
       "evaluations "
       "(view + light march) per image pixel; vs default: relative RMSE and bias of the frame's luminance against the "
       "defaults' frame at this size over its cloud pixels (T < 0.95; pixels of the sun's disc, above 1e6 cd/m^2, left "
-      "out). " +
+      "out); the still_samples rows (a still of N jittered sub-frames, decision 0149): against the still of 32 "
+      "sub-frames at this size instead (the jitter's noise alone; the default row is one sub-frame). " +
       std::string(config.timingOnly
                       ? "Timing only (--timing-only): no errors against the path tracer in this run."
                       : "Errors against the path tracer (at the bench's small size): clouds_results.csv.") +
@@ -1078,7 +1147,9 @@ void writeCloudBenchOutputs(const CloudBenchConfig& config, const std::vector<Cl
       "frame ms and samples are the reprojected frames' (median, mean). The phase row uses the approximate "
       "Mie phase (20 um droplets) on both sides: its path tracer renders with that phase, delta-scaled with TMS, and "
       "leaves out the pixels within its aureole cone around the sun (1.5 deg); the second phase row turns the "
-      "march's delta-scaling off.\n\n";
+      "march's delta-scaling off. The still_samples rows are stills of N jittered sub-frames (decision 0149): "
+      "against the path tracer, and against still_samples_64, the same model's still of 64 sub-frames (the "
+      "jitter's noise alone).\n\n";
   if (!config.timeFrames)
     md += "Not timed: each still's frame ms is its one cold render (with any pipeline compilation it needed).\n\n";
   if (!config.environmentNote.empty()) md += config.environmentNote + "\n\n";

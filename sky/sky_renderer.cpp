@@ -305,6 +305,8 @@ SkyRenderer::Frame SkyRenderer::plan(const Scene& scene, const SkyRenderOptions&
   if (hasClouds) {
     frame.clouds = std::make_unique<CloudSettings>(CloudSettings::fromScene(scene));
     frame.options.clouds.apply(frame.clouds->march);
+    // A still's sub-frames only for stills, unless the knob was set for every frame (decision 0149).
+    if (!frame.options.still && !frame.options.clouds.stillSamples) frame.clouds->march.stillSamples = 1;
     // The terrain's cloud shadows come from the Beer shadow map: baked whenever there is terrain.
     if (frame.terrain) frame.clouds->march.beerShadowMap = true;
   }

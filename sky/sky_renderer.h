@@ -63,6 +63,11 @@ struct SkyRenderOptions {
   // (/clouds/temporal_update, docs/clouds/resolution-and-temporal.md), and the sky-view table is kept
   // when its inputs are unchanged. False: a still, every pixel marched, every table of the frame computed.
   bool continueSequence = false;
+  // This frame is a still on its own (`firmament render` without --frames; the API's stills: a Sky built
+  // without temporal reprojection that makes no sequence frames): the clouds' march runs
+  // /clouds/march/still_samples times with moved blue-noise offsets and is averaged. False: one march,
+  // unless clouds.stillSamples is set, which then applies to every frame.
+  bool still = false;
   // False: the frame stays on the GPU and RenderResult::image and ::clouds are empty. Benches time
   // renders this way: downloading two 1920x1080 float images per frame kept an H100 busy 13-37 % of
   // the time, and its driver lowered the clocks from 1980 to 615 MHz in about 2 s (docs/gpu.md).

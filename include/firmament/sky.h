@@ -151,7 +151,8 @@ class Sky {
     Builder& set(const std::string& pointerEqualsValue);
     Builder& device(const std::string& nameOrIndex);  // as --device; "" (default): a GPU if any, else lavapipe
     // True (default): consecutive render() calls form a sequence: the clouds reproject the previous frame
-    // (/clouds/temporal_update) and unchanged tables are kept. False: every frame is a still.
+    // (/clouds/temporal_update) and unchanged tables are kept. False: every frame is a still, whose clouds
+    // average /clouds/march/still_samples jittered sub-frames (frames set by setSequenceFrame march once).
     Builder& temporalReprojection(bool enabled);
     // A quality knob, "/atmosphere/view_steps=64" (qualityKnobs()). Applied in order; InputError at build().
     Builder& quality(const std::string& pathEqualsValue);
@@ -209,6 +210,9 @@ class Sky {
   // Renders the view at width x height. With temporal reprojection on, a frame after another of the same
   // size continues it; restartSequence() makes the next frame a still (every pixel marched).
   SkyFrame render(int width, int height);
+  // A still of the view whatever the sequence (what `firmament render` of the view gives): every pixel
+  // marched, the clouds averaging /clouds/march/still_samples sub-frames; the next render() continues it.
+  SkyFrame renderStill(int width, int height);
   void restartSequence();
 
   // Embedded mode (firmament/embed.h): records the frame into targets.commandBuffer, compositing over
@@ -228,6 +232,7 @@ class Sky {
   struct Impl;
   explicit Sky(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
+  SkyFrame renderFrame(int width, int height, bool still);
 };
 
 }  // namespace firmament

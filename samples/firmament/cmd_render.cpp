@@ -63,6 +63,8 @@ int runRender(const Args& args) {
     throw InputError("--aerial-volume-depth: allowed: 0 (the clouds' march limit) or a distance in metres up to 1e7");
   if (args.has("aerial-volume-depth"))
     builder.quality("/aerial_perspective/depth_m=" + formatNumber("%.17g", aerialDepth));
+  // The clouds' sub-frames of a still (/clouds/march/still_samples); given, they apply to every frame.
+  if (auto n = args.get("still-samples")) builder.quality("/clouds/march/still_samples=" + *n);
 
   const SkyPlan plan = builder.explain();
   if (args.has("explain")) {
@@ -106,6 +108,8 @@ int runRender(const Args& args) {
 
   // Phases: device, then render (tables + frame) and write per frame. The bar appears only past one second.
   auto progress = std::make_unique<ProgressBar>("render", 1 + 2 * frames);
+  // One frame is a still (the clouds average their sub-frames); more continue each other.
+  builder.temporalReprojection(frames > 1);
   std::unique_ptr<Sky> sky = builder.build();
   info("device: " + sky->deviceDescription());
   progress->advance();
@@ -166,7 +170,7 @@ const CommandRegistration reg{
      "render a scene with the fast GPU path: EXR + PNG preview + stats JSON",
      "render [SCENE] [-o OUT.exr] [--width W --height H] [--set /PATH=VALUE]... "
      "[--multiple-scattering auto|fms|tables] [--orders N] [--spectral-samples auto|N] [--sky lut|march] "
-     "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--frames N [--frame-interval S] "
+     "[--aerial-volume CxRxN] [--aerial-volume-depth M] [--still-samples N] [--frames N [--frame-interval S] "
      "[--yaw-rate DEG/S] [--pitch-rate DEG/S] [--climb-rate M/S]] [--explain] [--device D]",
      {{"output", "OUT.exr", "output EXR (default out/<scene>.exr); .png and .json go beside it", false, 'o'},
       {"width", "W", "image width (same as --set /camera/width=W)"},
@@ -189,6 +193,9 @@ const CommandRegistration reg{
        "aerial-perspective volume read by the clouds (/clouds/aerial_perspective volume): froxel "
        "columns x rows x depth slices (default 32x32x32)"},
       {"aerial-volume-depth", "M", "distance its slices reach, m (default 0: the clouds' march limit, 80 km)"},
+      {"still-samples", "N",
+       "clouds: jittered sub-frames a still averages (1..64; default: /clouds/march/still_samples); given, every "
+       "frame of --frames takes them too"},
       {"frames", "N",
        "render a sequence of N frames (OUT_0000.exr ...), each continuing the last "
        "(clouds: temporal reprojection, /clouds/temporal_update)"},

@@ -211,8 +211,7 @@ class Viewer {
   // A still of the view (every pixel marched, as `firmament render` of the saved view renders it):
   // OUT.exr, OUT.png with the viewer's exposure, and the view as OUT.view.json, each written atomically.
   void screenshot(const std::filesystem::path& out) {
-    sky_->restartSequence();
-    const SkyFrame f = shown(sky_->render(renderWidth(), renderHeight()));
+    const SkyFrame f = shown(sky_->renderStill(renderWidth(), renderHeight()));
     saveExr(f, out.string());
     const double ev = exposure().savePng(f, std::filesystem::path(out).replace_extension(".png").string(),
                                          controls_.autoExposure ? &adaptedLuminance_ : nullptr);

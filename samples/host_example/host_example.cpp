@@ -836,7 +836,8 @@ int run(const Options& options) {
       } else {
         offlineBuilder.sceneFile(options.scene);
       }
-      auto offline = offlineBuilder.temporalReprojection(false).build();
+      // A still, but with one cloud march as the embedded frames have (its sub-frames would differ by the jitter).
+      auto offline = offlineBuilder.temporalReprojection(false).quality("/clouds/march/still_samples=1").build();
       firmament::SkyFrame reference = offline->render(width, height);
       // Which pixels the triangles cover: where the bright and the black frame differ.
       double skyWorst = 0.0;
@@ -940,7 +941,8 @@ int run(const Options& options) {
                    .framesInFlight(n)
                    .embedded({h.instance, h.physical, h.device, h.family, h.queue})
                    .build();
-    auto offline = offlineBuilder.temporalReprojection(false).build();
+    // A still, but with one cloud march as the embedded frames have (its sub-frames would differ by the jitter).
+    auto offline = offlineBuilder.temporalReprojection(false).quality("/clouds/march/still_samples=1").build();
     std::vector<Image> colours, depths;
     for (int i = 0; i < n; ++i) {
       colours.push_back(createImage(

@@ -66,7 +66,13 @@ layout(push_constant) uniform Push {
   int composite;   // 1: composite over the sky frame here; 0: clouds/upsample_clouds or temporal_resolve does
   int noiseShift;  // added to the pixel for the blue-noise lookup (a new pattern per temporal frame)
   vec2 pointOffset;  // grid pixel p marches the image point divisor p + pointOffset (pixel units)
-  vec2 pad1;
+  // A still's sub-frames (CloudMarchSettings::stillSamples): the blue-noise value moved by jitterShift
+  // (mod 1); (L, T) times sampleWeight, written at subFrame 0 and added after; the first batch
+  // composites the sum over the sky at the last sub-frame (lastSubFrame 1).
+  float jitterShift;
+  float sampleWeight;
+  int subFrame;
+  int lastSubFrame;
 } push;
 
 const int kMaxSegments = 16;  // two stretches per layer, 8 layers
@@ -227,7 +233,7 @@ void main() {
   float lowTransmittanceMax = cloud.weatherPlanet.z;    // CloudMarchSettings::lowTransmittanceStepMax K
   uint viewCount = 0u, lightCount = 0u;
   ivec2 blueSize = textureSize(blueNoise, 0);
-  float xi = jitter ? texelFetch(blueNoise, (pixel + push.noiseShift) % blueSize, 0).r : 0.5;
+  float xi = jitter ? fract(texelFetch(blueNoise, (pixel + push.noiseShift) % blueSize, 0).r + push.jitterShift) : 0.5;
   // Per octave of the current layer (set when the march enters a layer): the phase for this pixel's
   // scattering angle, the extinction scale a^i, the weight b^i, and the most the way down from the layer
   // top can pass (cloudOctaveTransmittanceBound, with a 1e-4 margin for its float rounding).
@@ -606,15 +612,18 @@ void main() {
   vec3 light = skyRadianceToRgb() * (airT * skylike) + sunRadianceToRgb() * (airT * sunlike) + opacity * airLight;
 
   // 5. Composite.
+  //    A still's sub-frames sum (L, T) weighted by 1/N first (one sub-frame: weight 1, the same values).
+  vec4 fresh = push.sampleWeight * vec4(light, transmittance);
   if (push.firstBatch != 0) {
     atomicAdd(counters.viewSamples, viewCount);
     atomicAdd(counters.lightSamples, lightCount);
-    cloudFrame.pixels[index] = vec4(light, transmittance);
+    vec4 sum = push.subFrame == 0 ? fresh : cloudFrame.pixels[index] + fresh;
+    cloudFrame.pixels[index] = sum;
     cloudDepth.depth[index] = depthWeight > 0.0 ? meanDepth : count > 0 ? segments[0].x : tMax;
-    if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb * transmittance + light, skyValue.a);
+    if (push.composite != 0 && push.lastSubFrame != 0) skyFrame.pixels[index] = vec4(skyValue.rgb * sum.a + sum.rgb, skyValue.a);
   } else {
     vec4 previous = cloudFrame.pixels[index];
-    cloudFrame.pixels[index] = vec4(previous.rgb + light, previous.a);
-    if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb + light, skyValue.a);
+    cloudFrame.pixels[index] = vec4(previous.rgb + fresh.rgb, previous.a);
+    if (push.composite != 0) skyFrame.pixels[index] = vec4(skyValue.rgb + fresh.rgb, skyValue.a);
   }
 }

@@ -78,6 +78,19 @@ TEST(Cli, BadScenesExitTwoWithAClearMessage) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));  // nothing written on bad input
 }
 
+// The clouds' still sub-frames (--still-samples, /clouds/march/still_samples): out of range or not an
+// integer is exit 2 naming the knob and the allowed values.
+TEST(Cli, BadStillSamplesExitTwoWithTheAllowedValues) {
+  for (const char* bad : {"0", "65", "many"}) {
+    CommandRun r = firmament(std::string("render --still-samples ") + bad + " --explain");
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("still_samples"), std::string::npos) << r.output;
+    if (std::string(bad) != "many") {
+      EXPECT_NE(r.output.find("integer in [1, 64]"), std::string::npos) << r.output;
+    }
+  }
+}
+
 // -o SCENE.exr beside SCENE.json would write the render's stats over the scene itself: refused (exit 2,
 // naming both files) for render, a sequence's frames and reference; the scene is left as it was.
 TEST(Cli, OutputsNeverOverwriteTheScene) {
