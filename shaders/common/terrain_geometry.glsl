@@ -154,50 +154,58 @@ SHARED_INLINE Real terrainCellGap(TerrainCellRay ray, vec4 cell, vec4 heights, R
 // there decides. The bracket is then halved `iterations` times (30 leaves 1e-9 of the
 // cell's span in double; 20 reach float's resolution). A dip that the quadratic does not see is
 // narrower than the cubic term: a graze by less than ~ h (cell / R)² (1e-8 m for a 10 m cell).
+// The search above as a function body over any gap GAP(t) (GLSL has no function arguments): the LOD
+// cast's terrainLodCellHit (terrain/terrain_cast.glsl) runs it on its blended surface. The enclosing
+// function has the parameters tEnter, tExit, iterations and the out parameter tHit.
+#define FIRMAMENT_TERRAIN_FIRST_ROOT(GAP)                          \
+  tHit = tEnter;                                                   \
+  Real g0 = GAP(tEnter);                                           \
+  if (g0 <= 0.0) return true;                                      \
+  if (!(tExit > tEnter)) return false;                             \
+  Real tMiddle = 0.5 * (tEnter + tExit);                           \
+  Real gMiddle = GAP(tMiddle);                                     \
+  Real g1 = GAP(tExit);                                            \
+  Real lo = tEnter;                                                \
+  Real hi = tExit;                                                 \
+  bool bracketed = false;                                          \
+  if (gMiddle <= 0.0) {                                            \
+    hi = tMiddle;                                                  \
+    bracketed = true;                                              \
+  } else if (g1 <= 0.0) {                                          \
+    lo = tMiddle;                                                  \
+    bracketed = true;                                              \
+  } else {                                                         \
+    /* g(s) = a s^2 + b s + g0 over s = (t - tEnter) / (tExit - tEnter) through the three values. */ \
+    Real a = 2.0 * g1 + 2.0 * g0 - 4.0 * gMiddle;                  \
+    Real b = g1 - g0 - a;                                          \
+    if (a > 0.0) {                                                 \
+      Real s = -b / (2.0 * a);                                     \
+      if (s > 0.0 && s < 1.0) {                                    \
+        Real tLow = tEnter + s * (tExit - tEnter);                 \
+        if (GAP(tLow) <= 0.0) {                                    \
+          hi = tLow;                                               \
+          bracketed = true;                                        \
+        }                                                          \
+      }                                                            \
+    }                                                              \
+  }                                                                \
+  if (!bracketed) return false;                                    \
+  for (int i = 0; i < iterations; ++i) {                           \
+    Real mid = 0.5 * (lo + hi);                                    \
+    if (GAP(mid) <= 0.0) {                                         \
+      hi = mid;                                                    \
+    } else {                                                       \
+      lo = mid;                                                    \
+    }                                                              \
+  }                                                                \
+  tHit = hi;                                                       \
+  return true;
+
 SHARED_INLINE bool terrainCellHit(TerrainCellRay ray, vec4 cell, vec4 heights, Real tEnter, Real tExit,
                                   int iterations, OUT(Real) tHit) {
-  tHit = tEnter;
-  Real g0 = terrainCellGap(ray, cell, heights, tEnter);
-  if (g0 <= 0.0) return true;
-  if (!(tExit > tEnter)) return false;
-  Real tMiddle = 0.5 * (tEnter + tExit);
-  Real gMiddle = terrainCellGap(ray, cell, heights, tMiddle);
-  Real g1 = terrainCellGap(ray, cell, heights, tExit);
-  Real lo = tEnter;
-  Real hi = tExit;
-  bool bracketed = false;
-  if (gMiddle <= 0.0) {
-    hi = tMiddle;
-    bracketed = true;
-  } else if (g1 <= 0.0) {
-    lo = tMiddle;
-    bracketed = true;
-  } else {
-    // g(s) = a s² + b s + g0 over s = (t − tEnter) / (tExit − tEnter) through the three values.
-    Real a = 2.0 * g1 + 2.0 * g0 - 4.0 * gMiddle;
-    Real b = g1 - g0 - a;
-    if (a > 0.0) {
-      Real s = -b / (2.0 * a);
-      if (s > 0.0 && s < 1.0) {
-        Real tLow = tEnter + s * (tExit - tEnter);
-        if (terrainCellGap(ray, cell, heights, tLow) <= 0.0) {
-          hi = tLow;
-          bracketed = true;
-        }
-      }
-    }
-  }
-  if (!bracketed) return false;
-  for (int i = 0; i < iterations; ++i) {
-    Real mid = 0.5 * (lo + hi);
-    if (terrainCellGap(ray, cell, heights, mid) <= 0.0) {
-      hi = mid;
-    } else {
-      lo = mid;
-    }
-  }
-  tHit = hi;
-  return true;
+#define FIRMAMENT_TERRAIN_CELL_GAP(t) terrainCellGap(ray, cell, heights, t)
+  FIRMAMENT_TERRAIN_FIRST_ROOT(FIRMAMENT_TERRAIN_CELL_GAP)
+#undef FIRMAMENT_TERRAIN_CELL_GAP
 }
 
 // The part of [tEnter, tExit] (the ray over a cell or a node) where the ray can meet a surface whose

@@ -189,46 +189,9 @@ float terrainLodGap(TerrainCellRay ray, TerrainLodRay lod, vec4 node, float t) {
 // so the same three samples, the quadratic's minimum and the halvings apply.
 bool terrainLodCellHit(TerrainCellRay ray, TerrainLodRay lod, vec4 node, float tEnter, float tExit, int iterations,
                        out float tHit) {
-  tHit = tEnter;
-  float g0 = terrainLodGap(ray, lod, node, tEnter);
-  if (g0 <= 0.0) return true;
-  if (!(tExit > tEnter)) return false;
-  float tMiddle = 0.5 * (tEnter + tExit);
-  float gMiddle = terrainLodGap(ray, lod, node, tMiddle);
-  float g1 = terrainLodGap(ray, lod, node, tExit);
-  float lo = tEnter, hi = tExit;
-  bool bracketed = false;
-  if (gMiddle <= 0.0) {
-    hi = tMiddle;
-    bracketed = true;
-  } else if (g1 <= 0.0) {
-    lo = tMiddle;
-    bracketed = true;
-  } else {
-    float a = 2.0 * g1 + 2.0 * g0 - 4.0 * gMiddle;
-    float b = g1 - g0 - a;
-    if (a > 0.0) {
-      float s = -b / (2.0 * a);
-      if (s > 0.0 && s < 1.0) {
-        float tLow = tEnter + s * (tExit - tEnter);
-        if (terrainLodGap(ray, lod, node, tLow) <= 0.0) {
-          hi = tLow;
-          bracketed = true;
-        }
-      }
-    }
-  }
-  if (!bracketed) return false;
-  for (int i = 0; i < iterations; ++i) {
-    float mid = 0.5 * (lo + hi);
-    if (terrainLodGap(ray, lod, node, mid) <= 0.0) {
-      hi = mid;
-    } else {
-      lo = mid;
-    }
-  }
-  tHit = hi;
-  return true;
+#define FIRMAMENT_TERRAIN_LOD_GAP(t) terrainLodGap(ray, lod, node, t)
+  FIRMAMENT_TERRAIN_FIRST_ROOT(FIRMAMENT_TERRAIN_LOD_GAP)
+#undef FIRMAMENT_TERRAIN_LOD_GAP
 }
 
 TerrainCastHit terrainNoHit() {
